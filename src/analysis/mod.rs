@@ -1,0 +1,8 @@
+//! Analyses on top of the physics: eigen-analysis with labelled modes, mode tracking (MAC),
+//! flutter-boundary search, parameter sweeps and time simulation (MODEL.md §6–§7).
+
+pub mod eigen;
+pub mod flutter;
+pub mod simulate;
+pub mod sweep;
+pub mod tracking;

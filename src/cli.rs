@@ -1,0 +1,199 @@
+//! The command line: one clap definition for every subcommand. Parsing only; each command's
+//! work lives in `commands/`.
+
+use clap::{Args, Parser, Subcommand, ValueEnum};
+
+#[derive(Debug, Parser)]
+#[command(
+    name = "flutterscope",
+    version,
+    about = "Aeroelastic stability of rotating composite wind-turbine blades: classical and stall flutter",
+    long_about = "Aeroelastic stability of rotating composite wind-turbine blades with bending–torsion \
+coupling. With no subcommand in a terminal, opens the interactive explorer on the default preset; \
+the headless subcommands below run the same engine for scripts."
+)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Option<Command>,
+}
+
+/// Which preset to start from and what to change in it.
+#[derive(Debug, Clone, Args)]
+pub struct PresetArgs {
+    /// Built-in preset name (see `flutterscope presets`) or path to a .toml file.
+    #[arg(long, short = 'p', default_value = crate::preset::DEFAULT_PRESET, value_name = "NAME|PATH")]
+    pub preset: String,
+    /// Override a preset key, e.g. --set section.ply_angle=30 (repeatable).
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub set: Vec<String>,
+}
+
+impl PresetArgs {
+    pub fn load(&self) -> crate::error::Result<crate::preset::Preset> {
+        crate::preset::Preset::load(&self.preset, &self.set)
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum ColorMode {
+    #[value(name = "16")]
+    Ansi16,
+    #[value(name = "256")]
+    Ansi256,
+    Truecolor,
+    None,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum MarkerKind {
+    Braille,
+    Halfblock,
+    Block,
+    Dot,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum ViewKind {
+    Main,
+    Campbell,
+    Help,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum Reproduction {
+    Table1,
+    Table2,
+    Fig2,
+    Fig3,
+    Fig4,
+    Fig5,
+}
+
+#[derive(Debug, Clone, Args)]
+pub struct DisplayArgs {
+    /// Colour depth; 16 colours is safe over any SSH link.
+    #[arg(long, value_enum, default_value = "16")]
+    pub color: ColorMode,
+    /// Plot marker: braille (finest), or halfblock/block/dot for terminals or fonts without braille.
+    #[arg(long, value_enum, default_value = "braille")]
+    pub marker: MarkerKind,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Open the interactive explorer (the default in a terminal).
+    Tui {
+        #[command(flatten)]
+        preset: PresetArgs,
+        #[command(flatten)]
+        display: DisplayArgs,
+        /// Frame-rate cap (frames per second); frames are drawn only when something changed.
+        #[arg(long, default_value_t = 20, value_parser = clap::value_parser!(u32).range(1..=120))]
+        fps: u32,
+    },
+    /// Coupled natural frequencies of the blade structure (no aerodynamics).
+    Modes {
+        #[command(flatten)]
+        preset: PresetArgs,
+        /// Machine-readable output.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Eigenvalues of the linearised aeroelastic system and the stability verdict.
+    Eigen {
+        #[command(flatten)]
+        preset: PresetArgs,
+        #[arg(long)]
+        json: bool,
+    },
+    /// Flutter (or divergence) boundary along one numeric preset key.
+    Flutter {
+        #[command(flatten)]
+        preset: PresetArgs,
+        /// The key to vary, e.g. operating.rotor_speed.
+        #[arg(long, value_name = "KEY")]
+        vary: String,
+        /// Start of the search range.
+        #[arg(long, allow_negative_numbers = true)]
+        from: f64,
+        /// End of the search range.
+        #[arg(long, allow_negative_numbers = true)]
+        to: f64,
+        /// Grid points used to bracket the crossing before refinement.
+        #[arg(long, default_value_t = 41)]
+        points: usize,
+        #[arg(long)]
+        json: bool,
+        /// Write a plot (SVG or PNG by extension).
+        #[arg(long, value_name = "FILE")]
+        plot: Option<std::path::PathBuf>,
+    },
+    /// Tracked modes' frequency and damping over a grid of one or more keys.
+    Sweep {
+        #[command(flatten)]
+        preset: PresetArgs,
+        /// KEY=FROM:TO:STEP, repeatable (the grid is their product).
+        #[arg(long, value_name = "KEY=A:B:STEP", required = true)]
+        vary: Vec<String>,
+        /// CSV output (the default).
+        #[arg(long, conflicts_with = "json")]
+        csv: bool,
+        #[arg(long)]
+        json: bool,
+        /// Compute slice I of N (1-based) of the grid, for batch schedulers.
+        #[arg(long, value_name = "I/N")]
+        shard: Option<String>,
+        /// Write a plot (SVG or PNG by extension).
+        #[arg(long, value_name = "FILE")]
+        plot: Option<std::path::PathBuf>,
+    },
+    /// Time response of the blade tip (twist and flap).
+    Simulate {
+        #[command(flatten)]
+        preset: PresetArgs,
+        #[arg(long, conflicts_with = "csv")]
+        json: bool,
+        #[arg(long)]
+        csv: bool,
+        #[arg(long, value_name = "FILE")]
+        plot: Option<std::path::PathBuf>,
+    },
+    /// Cross-section stiffness and mass properties (laminate, contour).
+    Section {
+        #[command(flatten)]
+        preset: PresetArgs,
+        /// Tabulate over a key, e.g. section.ply_angle=0:90:15.
+        #[arg(long, value_name = "KEY=A:B:STEP")]
+        vary: Option<String>,
+        #[arg(long)]
+        json: bool,
+        #[arg(long, value_name = "FILE")]
+        plot: Option<std::path::PathBuf>,
+    },
+    /// Reproduce the source paper's tables and figures beside our numbers.
+    Reproduce {
+        #[arg(value_enum)]
+        what: Reproduction,
+        #[arg(long)]
+        json: bool,
+        #[arg(long, value_name = "FILE")]
+        plot: Option<std::path::PathBuf>,
+    },
+    /// Render one explorer frame as text, after the worker has finished (deterministic).
+    Snapshot {
+        #[command(flatten)]
+        preset: PresetArgs,
+        /// Frame size COLSxROWS.
+        #[arg(long, default_value = "120x40")]
+        size: String,
+        #[arg(long, value_enum, default_value = "main")]
+        view: ViewKind,
+        #[arg(long, value_enum, default_value = "braille")]
+        marker: MarkerKind,
+    },
+    /// List the built-in presets.
+    Presets {
+        #[arg(long)]
+        json: bool,
+    },
+}

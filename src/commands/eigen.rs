@@ -1,0 +1,3 @@
+use crate::error::{Error, Result};
+use crate::preset::Preset;
+pub fn run(_p: &Preset, _json: bool) -> Result<()> { Err(Error::usage("eigen: not available yet")) }

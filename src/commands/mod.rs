@@ -1,0 +1,144 @@
+//! The headless commands. Each file turns parsed arguments into a computation through the
+//! library and prints text (default), JSON or CSV. No physics here.
+
+use crate::cli::Command;
+use crate::error::{Error, Result};
+
+pub mod eigen;
+pub mod flutter;
+pub mod modes;
+pub mod presets;
+pub mod reproduce;
+pub mod section;
+pub mod simulate;
+pub mod snapshot;
+pub mod sweep;
+pub mod tui;
+
+pub fn run(command: Command) -> Result<()> {
+    match command {
+        Command::Tui {
+            preset,
+            display,
+            fps,
+        } => tui::run(&preset, &display, fps),
+        Command::Modes { preset, json } => modes::run(&preset.load()?, json),
+        Command::Eigen { preset, json } => eigen::run(&preset.load()?, json),
+        Command::Flutter {
+            preset,
+            vary,
+            from,
+            to,
+            points,
+            json,
+            plot,
+        } => flutter::run(&preset.load()?, &vary, from, to, points, json, plot.as_deref()),
+        Command::Sweep {
+            preset,
+            vary,
+            csv: _,
+            json,
+            shard,
+            plot,
+        } => sweep::run(&preset.load()?, &vary, json, shard.as_deref(), plot.as_deref()),
+        Command::Simulate {
+            preset,
+            json,
+            csv,
+            plot,
+        } => simulate::run(&preset.load()?, json, csv, plot.as_deref()),
+        Command::Section {
+            preset,
+            vary,
+            json,
+            plot,
+        } => section::run(&preset.load()?, vary.as_deref(), json, plot.as_deref()),
+        Command::Reproduce { what, json, plot } => reproduce::run(what, json, plot.as_deref()),
+        Command::Snapshot {
+            preset,
+            size,
+            view,
+            marker,
+        } => snapshot::run(&preset, &size, view, marker),
+        Command::Presets { json } => presets::run(json),
+    }
+}
+
+/// No subcommand in a terminal: the explorer on the default preset.
+pub fn run_default_tui() -> Result<()> {
+    use clap::Parser;
+    match crate::cli::Cli::parse_from(["flutterscope", "tui"]).command {
+        Some(command) => run(command),
+        None => Err(Error::usage("internal: default command missing")),
+    }
+}
+
+/// Print a serialisable value as pretty JSON on stdout.
+pub fn print_json<T: serde::Serialize>(value: &T) -> Result<()> {
+    let text = serde_json::to_string_pretty(value)
+        .map_err(|e| Error::Io(format!("cannot encode JSON: {e}")))?;
+    println!("{text}");
+    Ok(())
+}
+
+/// Parse `KEY=FROM:TO:STEP` into the key and its grid (FROM and TO included when STEP divides
+/// the range; the last point never overshoots TO).
+pub fn parse_vary(spec: &str) -> Result<(String, Vec<f64>)> {
+    let bad = |why: &str| {
+        Error::usage(format!(
+            "--vary '{spec}': {why}; expected KEY=FROM:TO:STEP, e.g. operating.rotor_speed=0:200:5"
+        ))
+    };
+    let (key, range) = spec.split_once('=').ok_or_else(|| bad("missing '='"))?;
+    let parts: Vec<&str> = range.split(':').collect();
+    if parts.len() != 3 {
+        return Err(bad("range needs three numbers"));
+    }
+    let num = |s: &str| -> Result<f64> {
+        s.trim()
+            .parse::<f64>()
+            .ok()
+            .filter(|v| v.is_finite())
+            .ok_or_else(|| bad(&format!("'{s}' is not a finite number")))
+    };
+    let (from, to, step) = (num(parts[0])?, num(parts[1])?, num(parts[2])?);
+    if step <= 0.0 {
+        return Err(bad("STEP must be positive"));
+    }
+    if to < from {
+        return Err(bad("TO must not be below FROM"));
+    }
+    let count = ((to - from) / step + 1e-9).floor() as usize + 1;
+    if count > 10_000_000 {
+        return Err(bad("grid larger than 10 million points"));
+    }
+    crate::preset::key_spec(key.trim())?;
+    let grid = (0..count).map(|i| from + step * i as f64).collect();
+    Ok((key.trim().to_string(), grid))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn vary_grid_includes_both_ends() {
+        let (k, g) = parse_vary("operating.rotor_speed=0:200:50").unwrap();
+        assert_eq!(k, "operating.rotor_speed");
+        assert_eq!(g, vec![0.0, 50.0, 100.0, 150.0, 200.0]);
+    }
+
+    #[test]
+    fn vary_rejects_bad_specs() {
+        for bad in [
+            "operating.rotor_speed",
+            "operating.rotor_speed=0:10",
+            "operating.rotor_speed=0:10:0",
+            "operating.rotor_speed=10:0:1",
+            "operating.rotor_speed=a:10:1",
+            "no.such_key=0:1:1",
+        ] {
+            assert!(parse_vary(bad).is_err(), "{bad} accepted");
+        }
+    }
+}

@@ -1,0 +1,33 @@
+//! `flutterscope presets`: the built-in presets with one-line descriptions.
+
+use crate::error::Result;
+use crate::preset::{Preset, BUILTIN};
+use serde::Serialize;
+
+#[derive(Serialize)]
+struct Entry {
+    name: &'static str,
+    description: String,
+    aero_model: &'static str,
+}
+
+pub fn run(json: bool) -> Result<()> {
+    let mut entries = Vec::new();
+    for (name, _) in BUILTIN {
+        let p = Preset::load(name, &[])?;
+        entries.push(Entry {
+            name,
+            description: p.meta.description.clone(),
+            aero_model: p.aero.model.name(),
+        });
+    }
+    if json {
+        return super::print_json(&serde_json::json!({ "presets": entries }));
+    }
+    let width = entries.iter().map(|e| e.name.len()).max().unwrap_or(0);
+    for e in &entries {
+        println!("{:width$}  {}", e.name, e.description);
+    }
+    println!("\nUse one with --preset NAME, or --preset path/to/file.toml for your own.");
+    Ok(())
+}

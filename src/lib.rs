@@ -1,0 +1,13 @@
+//! flutterscope: aeroelastic stability of rotating composite wind-turbine blades.
+//!
+//! Data flows one way: `physics` (section → structure → aero → system) → `analysis`
+//! (eigen, tracking, flutter, sweep, simulate) → `explorer` (worker → state → ui).
+//! The physics reference is MODEL.md (in `../shared/`); each module cites the section it implements.
+
+pub mod analysis;
+pub mod cli;
+pub mod commands;
+pub mod error;
+pub mod explorer;
+pub mod physics;
+pub mod preset;

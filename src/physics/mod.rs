@@ -1,0 +1,10 @@
+//! Pure physics: functions of parameters, no threads, no terminal (MODEL.md §2–§5).
+//! Flow: `section` → `structure` (on `basis`) → `inflow` → `aero` → `system`.
+
+pub mod aero;
+pub mod basis;
+pub mod inflow;
+pub mod laminate;
+pub mod section;
+pub mod structure;
+pub mod system;
