@@ -10,4 +10,5 @@ pub mod commands;
 pub mod error;
 pub mod explorer;
 pub mod physics;
+pub mod plot;
 pub mod preset;

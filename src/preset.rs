@@ -545,75 +545,424 @@ macro_rules! int {
     };
 }
 
-
 /// Every numeric key with its allowed range. Enumerated keys (`section.source`, `aero.model`, …)
 /// are checked by serde against their variants.
 pub static KEYS: &[KeySpec] = &[
     real!("blade.length", "m", 0.0, 500.0, open = true, blade.length),
-    real!("blade.hub_radius", "m", 0.0, 100.0, open = false, blade.hub_radius),
-    real!("section.ply_angle", "deg", 0.0, 90.0, open = false, section.ply_angle),
-    real!("section.mass_per_length", "kg/m", 0.0, 1e5, open = true, section.mass_per_length),
-    real!("section.polar_inertia", "kg·m", 0.0, 1e5, open = true, section.polar_inertia),
+    real!(
+        "blade.hub_radius",
+        "m",
+        0.0,
+        100.0,
+        open = false,
+        blade.hub_radius
+    ),
+    real!(
+        "section.ply_angle",
+        "deg",
+        0.0,
+        90.0,
+        open = false,
+        section.ply_angle
+    ),
+    real!(
+        "section.mass_per_length",
+        "kg/m",
+        0.0,
+        1e5,
+        open = true,
+        section.mass_per_length
+    ),
+    real!(
+        "section.polar_inertia",
+        "kg·m",
+        0.0,
+        1e5,
+        open = true,
+        section.polar_inertia
+    ),
     real!("section.ka2", "m²", 0.0, 100.0, open = false, section.ka2),
-    real!("section.km1_2", "m²", 0.0, 100.0, open = false, section.km1_2),
-    real!("section.km2_2", "m²", 0.0, 100.0, open = false, section.km2_2),
+    real!(
+        "section.km1_2",
+        "m²",
+        0.0,
+        100.0,
+        open = false,
+        section.km1_2
+    ),
+    real!(
+        "section.km2_2",
+        "m²",
+        0.0,
+        100.0,
+        open = false,
+        section.km2_2
+    ),
     real!("section.chord", "m", 0.0, 50.0, open = true, section.chord),
-    real!("section.ea_offset", "m", -50.0, 50.0, open = false, section.ea_offset),
-    real!("section.cg_offset", "m", -50.0, 50.0, open = false, section.cg_offset),
+    real!(
+        "section.ea_offset",
+        "m",
+        -50.0,
+        50.0,
+        open = false,
+        section.ea_offset
+    ),
+    real!(
+        "section.cg_offset",
+        "m",
+        -50.0,
+        50.0,
+        open = false,
+        section.cg_offset
+    ),
     real!("section.c22", "N·m²", 0.0, 1e13, open = true, section.c22),
-    real!("section.c23", "N·m²", -1e13, 1e13, open = false, section.c23),
+    real!(
+        "section.c23",
+        "N·m²",
+        -1e13,
+        1e13,
+        open = false,
+        section.c23
+    ),
     real!("section.c33", "N·m²", 0.0, 1e13, open = true, section.c33),
-    real!("section.layup.e11", "Pa", 0.0, 1e13, open = true, section.layup.e11),
-    real!("section.layup.e22", "Pa", 0.0, 1e13, open = true, section.layup.e22),
-    real!("section.layup.nu12", "", -1.0, 10.0, open = true, section.layup.nu12),
-    real!("section.layup.g12", "Pa", 0.0, 1e13, open = true, section.layup.g12),
-    real!("section.layup.density", "kg/m³", 0.0, 1e5, open = true, section.layup.density),
-    real!("section.layup.ply_thickness", "m", 0.0, 0.1, open = true, section.layup.ply_thickness),
+    real!(
+        "section.layup.e11",
+        "Pa",
+        0.0,
+        1e13,
+        open = true,
+        section.layup.e11
+    ),
+    real!(
+        "section.layup.e22",
+        "Pa",
+        0.0,
+        1e13,
+        open = true,
+        section.layup.e22
+    ),
+    real!(
+        "section.layup.nu12",
+        "",
+        -1.0,
+        10.0,
+        open = true,
+        section.layup.nu12
+    ),
+    real!(
+        "section.layup.g12",
+        "Pa",
+        0.0,
+        1e13,
+        open = true,
+        section.layup.g12
+    ),
+    real!(
+        "section.layup.density",
+        "kg/m³",
+        0.0,
+        1e5,
+        open = true,
+        section.layup.density
+    ),
+    real!(
+        "section.layup.ply_thickness",
+        "m",
+        0.0,
+        0.1,
+        open = true,
+        section.layup.ply_thickness
+    ),
     int!("section.layup.plies", 1, 200, section.layup.plies),
-    real!("section.layup.nonstructural_mass", "kg/m", 0.0, 1e5, open = false, section.layup.nonstructural_mass),
-    real!("section.layup.nonstructural_position", "m", -50.0, 50.0, open = false, section.layup.nonstructural_position),
-    real!("section.contour.width", "m", 0.0, 50.0, open = true, section.contour.width),
-    real!("section.contour.height", "m", 0.0, 50.0, open = true, section.contour.height),
-    real!("section.contour.a", "m", 0.0, 50.0, open = true, section.contour.a),
-    real!("section.contour.b", "m", 0.0, 50.0, open = true, section.contour.b),
-    real!("operating.wind_speed", "m/s", 0.0, 200.0, open = false, operating.wind_speed),
-    real!("operating.rotor_speed", "rpm", 0.0, 5000.0, open = false, operating.rotor_speed),
-    real!("operating.pitch", "deg", -90.0, 90.0, open = false, operating.pitch),
-    real!("operating.tunnel_speed", "m/s", 0.0, 1000.0, open = false, operating.tunnel_speed),
-    real!("operating.air_density", "kg/m³", 0.0, 100.0, open = false, operating.air_density),
-    real!("operating.induction", "", 0.0, 0.5, open = false, operating.induction),
-    real!("operating.twist_root", "deg", -90.0, 90.0, open = false, operating.twist_root),
-    real!("operating.twist_tip", "deg", -90.0, 90.0, open = false, operating.twist_tip),
+    real!(
+        "section.layup.nonstructural_mass",
+        "kg/m",
+        0.0,
+        1e5,
+        open = false,
+        section.layup.nonstructural_mass
+    ),
+    real!(
+        "section.layup.nonstructural_position",
+        "m",
+        -50.0,
+        50.0,
+        open = false,
+        section.layup.nonstructural_position
+    ),
+    real!(
+        "section.contour.width",
+        "m",
+        0.0,
+        50.0,
+        open = true,
+        section.contour.width
+    ),
+    real!(
+        "section.contour.height",
+        "m",
+        0.0,
+        50.0,
+        open = true,
+        section.contour.height
+    ),
+    real!(
+        "section.contour.a",
+        "m",
+        0.0,
+        50.0,
+        open = true,
+        section.contour.a
+    ),
+    real!(
+        "section.contour.b",
+        "m",
+        0.0,
+        50.0,
+        open = true,
+        section.contour.b
+    ),
+    real!(
+        "operating.wind_speed",
+        "m/s",
+        0.0,
+        200.0,
+        open = false,
+        operating.wind_speed
+    ),
+    real!(
+        "operating.rotor_speed",
+        "rpm",
+        0.0,
+        5000.0,
+        open = false,
+        operating.rotor_speed
+    ),
+    real!(
+        "operating.pitch",
+        "deg",
+        -90.0,
+        90.0,
+        open = false,
+        operating.pitch
+    ),
+    real!(
+        "operating.tunnel_speed",
+        "m/s",
+        0.0,
+        1000.0,
+        open = false,
+        operating.tunnel_speed
+    ),
+    real!(
+        "operating.air_density",
+        "kg/m³",
+        0.0,
+        100.0,
+        open = false,
+        operating.air_density
+    ),
+    real!(
+        "operating.induction",
+        "",
+        0.0,
+        0.5,
+        open = false,
+        operating.induction
+    ),
+    real!(
+        "operating.twist_root",
+        "deg",
+        -90.0,
+        90.0,
+        open = false,
+        operating.twist_root
+    ),
+    real!(
+        "operating.twist_tip",
+        "deg",
+        -90.0,
+        90.0,
+        open = false,
+        operating.twist_tip
+    ),
     int!("structure.modes", 1, 40, structure.modes),
-    real!("structure.loss_factor", "", 0.0, 1.0, open = false, structure.loss_factor),
-    real!("aero.lift_slope", "1/rad", 0.0, 20.0, open = false, aero.lift_slope),
+    real!(
+        "structure.loss_factor",
+        "",
+        0.0,
+        1.0,
+        open = false,
+        structure.loss_factor
+    ),
+    real!(
+        "aero.lift_slope",
+        "1/rad",
+        0.0,
+        20.0,
+        open = false,
+        aero.lift_slope
+    ),
     int!("aero.stations", 1, 64, aero.stations),
-    real!("aero.drag_coefficient", "", 0.0, 2.0, open = false, aero.drag_coefficient),
-    real!("aero.onera.lambda_l", "", 0.0, 10.0, open = true, aero.onera.lambda_l),
-    real!("aero.onera.a0l", "1/rad", 0.0, 20.0, open = false, aero.onera.a0l),
+    real!(
+        "aero.drag_coefficient",
+        "",
+        0.0,
+        2.0,
+        open = false,
+        aero.drag_coefficient
+    ),
+    real!(
+        "aero.onera.lambda_l",
+        "",
+        0.0,
+        10.0,
+        open = true,
+        aero.onera.lambda_l
+    ),
+    real!(
+        "aero.onera.a0l",
+        "1/rad",
+        0.0,
+        20.0,
+        open = false,
+        aero.onera.a0l
+    ),
     real!("aero.onera.a_l", "", 0.0, 10.0, open = true, aero.onera.a_l),
     real!("aero.onera.r_l", "", 0.0, 10.0, open = true, aero.onera.r_l),
     real!("aero.onera.a_m", "", 0.0, 10.0, open = true, aero.onera.a_m),
     real!("aero.onera.r_m", "", 0.0, 10.0, open = true, aero.onera.r_m),
     real!("aero.onera.a_d", "", 0.0, 10.0, open = true, aero.onera.a_d),
     real!("aero.onera.r_d", "", 0.0, 10.0, open = true, aero.onera.r_d),
-    real!("aero.onera.a_l1", "", -100.0, 100.0, open = false, aero.onera.a_l1),
-    real!("aero.onera.a_l2", "", -100.0, 100.0, open = false, aero.onera.a_l2),
-    real!("aero.onera.a_m1", "", -100.0, 100.0, open = false, aero.onera.a_m1),
-    real!("aero.onera.a_m2", "", -100.0, 100.0, open = false, aero.onera.a_m2),
-    real!("aero.onera.a_d1", "", -100.0, 100.0, open = false, aero.onera.a_d1),
-    real!("aero.onera.a_d2", "", -100.0, 100.0, open = false, aero.onera.a_d2),
-    real!("aero.onera.a_d3", "", -100.0, 100.0, open = false, aero.onera.a_d3),
-    real!("aero.onera.cm0", "", -2.0, 2.0, open = false, aero.onera.cm0),
+    real!(
+        "aero.onera.a_l1",
+        "",
+        -100.0,
+        100.0,
+        open = false,
+        aero.onera.a_l1
+    ),
+    real!(
+        "aero.onera.a_l2",
+        "",
+        -100.0,
+        100.0,
+        open = false,
+        aero.onera.a_l2
+    ),
+    real!(
+        "aero.onera.a_m1",
+        "",
+        -100.0,
+        100.0,
+        open = false,
+        aero.onera.a_m1
+    ),
+    real!(
+        "aero.onera.a_m2",
+        "",
+        -100.0,
+        100.0,
+        open = false,
+        aero.onera.a_m2
+    ),
+    real!(
+        "aero.onera.a_d1",
+        "",
+        -100.0,
+        100.0,
+        open = false,
+        aero.onera.a_d1
+    ),
+    real!(
+        "aero.onera.a_d2",
+        "",
+        -100.0,
+        100.0,
+        open = false,
+        aero.onera.a_d2
+    ),
+    real!(
+        "aero.onera.a_d3",
+        "",
+        -100.0,
+        100.0,
+        open = false,
+        aero.onera.a_d3
+    ),
+    real!(
+        "aero.onera.cm0",
+        "",
+        -2.0,
+        2.0,
+        open = false,
+        aero.onera.cm0
+    ),
     real!("aero.onera.cd0", "", 0.0, 2.0, open = false, aero.onera.cd0),
-    real!("aero.onera.alpha1", "rad", 0.0, 1.5, open = false, aero.onera.alpha1),
-    real!("aero.onera.alpha2", "rad", 0.0, 1.5, open = false, aero.onera.alpha2),
-    real!("simulation.kick_twist", "deg", -90.0, 90.0, open = false, simulation.kick_twist),
-    real!("simulation.kick_flap", "m", -100.0, 100.0, open = false, simulation.kick_flap),
-    real!("simulation.duration", "s", 0.0, 1e4, open = true, simulation.duration),
-    real!("simulation.sample_rate", "1/s", 0.0, 1e5, open = true, simulation.sample_rate),
-    real!("view.rotor_speed_max", "rpm", 0.0, 5000.0, open = true, view.rotor_speed_max),
-    real!("view.wind_speed_max", "m/s", 0.0, 200.0, open = true, view.wind_speed_max),
+    real!(
+        "aero.onera.alpha1",
+        "rad",
+        0.0,
+        1.5,
+        open = false,
+        aero.onera.alpha1
+    ),
+    real!(
+        "aero.onera.alpha2",
+        "rad",
+        0.0,
+        1.5,
+        open = false,
+        aero.onera.alpha2
+    ),
+    real!(
+        "simulation.kick_twist",
+        "deg",
+        -90.0,
+        90.0,
+        open = false,
+        simulation.kick_twist
+    ),
+    real!(
+        "simulation.kick_flap",
+        "m",
+        -100.0,
+        100.0,
+        open = false,
+        simulation.kick_flap
+    ),
+    real!(
+        "simulation.duration",
+        "s",
+        0.0,
+        1e4,
+        open = true,
+        simulation.duration
+    ),
+    real!(
+        "simulation.sample_rate",
+        "1/s",
+        0.0,
+        1e5,
+        open = true,
+        simulation.sample_rate
+    ),
+    real!(
+        "view.rotor_speed_max",
+        "rpm",
+        0.0,
+        5000.0,
+        open = true,
+        view.rotor_speed_max
+    ),
+    real!(
+        "view.wind_speed_max",
+        "m/s",
+        0.0,
+        200.0,
+        open = true,
+        view.wind_speed_max
+    ),
 ];
 
 /// The spec of a numeric key, or a usage error listing what exists.
@@ -633,6 +982,8 @@ pub fn key_spec(key: &str) -> Result<&'static KeySpec> {
 /// Presets shipped in `presets/` and embedded so the binary runs from anywhere.
 pub static BUILTIN: &[(&str, &str)] = &[
     ("liu2017", include_str!("../presets/liu2017.toml")),
+    ("goland", include_str!("../presets/goland.toml")),
+    ("demo-blade", include_str!("../presets/demo-blade.toml")),
 ];
 
 /// The preset the explorer opens with no arguments.
@@ -785,10 +1136,14 @@ fn apply_override(table: &mut toml::Table, ov: &str) -> Result<()> {
     let key = key.trim();
     let raw = raw.trim();
     if key.is_empty() || key.split('.').any(|p| p.is_empty()) {
-        return Err(Error::usage(format!("--set: malformed key '{key}' in '{ov}'")));
+        return Err(Error::usage(format!(
+            "--set: malformed key '{key}' in '{ov}'"
+        )));
     }
     let value: toml::Value = match format!("v = {raw}").parse::<toml::Table>() {
-        Ok(mut t) => t.remove("v").unwrap_or(toml::Value::String(raw.to_string())),
+        Ok(mut t) => t
+            .remove("v")
+            .unwrap_or(toml::Value::String(raw.to_string())),
         Err(_) => toml::Value::String(raw.to_string()),
     };
     let parts: Vec<&str> = key.split('.').collect();

@@ -1,1 +1,226 @@
-//! (in progress)
+//! Mode tracking along a swept parameter by eigenvector correlation (MAC).
+//!
+//! Input: the structural modes at consecutive parameter values (each with its Galerkin shape).
+//! Output: tracks — for each mode of the first point, the index of the same physical mode at
+//! every later point (or none where it has no partner, e.g. when a complex pair turns into two
+//! real roots at divergence).
+//!
+//! Consecutive points are matched by the assignment that maximises the total Modal Assurance
+//! Criterion `MAC(a, b) = |aᴴb|² / (|a|²|b|²)`, solved exactly by the Hungarian algorithm. Why not
+//! greedy best-MAC: at a crossing or veering two candidates have similar MACs, and a greedy pick
+//! for one mode can steal the partner the other mode needs, swapping identities; the optimal
+//! assignment looks at both together. With at most a few dozen modes the O(n³) cost is negligible
+//! next to the eigen-solve. Each track compares with the last shape it was matched to, so a mode
+//! that rotates slowly through a veering keeps its identity.
+
+use crate::analysis::eigen::Mode;
+use nalgebra::Complex;
+
+/// Modal Assurance Criterion of two complex shapes (0…1; 0 if either is zero).
+pub fn mac(a: &[Complex<f64>], b: &[Complex<f64>]) -> f64 {
+    let dot: Complex<f64> = a.iter().zip(b).map(|(x, y)| x.conj() * y).sum();
+    let na: f64 = a.iter().map(|c| c.norm_sqr()).sum();
+    let nb: f64 = b.iter().map(|c| c.norm_sqr()).sum();
+    if na == 0.0 || nb == 0.0 {
+        0.0
+    } else {
+        dot.norm_sqr() / (na * nb)
+    }
+}
+
+/// One tracked mode: its label at the first point and its index in each point's mode list.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Track {
+    pub label: String,
+    pub index: Vec<Option<usize>>,
+}
+
+/// Weight of the eigenvalue distance in the matching cost. It only breaks ties between shapes
+/// that MAC cannot tell apart (e.g. exactly repeated roots); shape similarity decides everything
+/// else.
+const EIGENVALUE_TIE_BREAK: f64 = 1e-3;
+
+/// Track the modes of `points[0]` through every later point.
+pub fn track_modes(points: &[Vec<Mode>]) -> Vec<Track> {
+    let Some(first) = points.first() else {
+        return Vec::new();
+    };
+    let mut tracks: Vec<Track> = first
+        .iter()
+        .enumerate()
+        .map(|(i, m)| Track {
+            label: m.label.clone(),
+            index: vec![Some(i)],
+        })
+        .collect();
+    // Reference (last matched) mode of each track.
+    let mut reference: Vec<Mode> = first.clone();
+    for modes in &points[1..] {
+        let assignment = match_modes(&reference, modes);
+        for (t, a) in tracks.iter_mut().zip(&assignment) {
+            t.index.push(*a);
+        }
+        for (r, a) in reference.iter_mut().zip(&assignment) {
+            if let Some(j) = a {
+                *r = modes[*j].clone();
+            }
+        }
+    }
+    tracks
+}
+
+/// For each mode of `previous`, its partner in `next` (optimal total MAC), or none.
+pub fn match_modes(previous: &[Mode], next: &[Mode]) -> Vec<Option<usize>> {
+    let (n, m) = (previous.len(), next.len());
+    let size = n.max(m);
+    // Padding (unmatched) costs more than any real pairing: real costs are ≤ 1 + tie-break.
+    let mut cost = vec![vec![2.0; size]; size];
+    for (i, a) in previous.iter().enumerate() {
+        for (j, b) in next.iter().enumerate() {
+            let la = Complex::new(a.re, a.im);
+            let lb = Complex::new(b.re, b.im);
+            let distance = (la - lb).norm() / (la.norm() + lb.norm()).max(f64::MIN_POSITIVE);
+            cost[i][j] = 1.0 - mac(&a.shape, &b.shape) + EIGENVALUE_TIE_BREAK * distance;
+        }
+    }
+    let assigned = hungarian(&cost);
+    (0..n)
+        .map(|i| Some(assigned[i]).filter(|&j| j < m))
+        .collect()
+}
+
+/// Minimum-cost perfect assignment on a square cost matrix (Kuhn–Munkres with potentials,
+/// O(n³)). Returns the column assigned to each row.
+pub fn hungarian(cost: &[Vec<f64>]) -> Vec<usize> {
+    let n = cost.len();
+    if n == 0 {
+        return Vec::new();
+    }
+    // 1-based arrays as in the classic formulation; column 0 is the virtual start.
+    let mut u = vec![0.0; n + 1];
+    let mut v = vec![0.0; n + 1];
+    let mut owner = vec![0usize; n + 1];
+    let mut way = vec![0usize; n + 1];
+    for row in 1..=n {
+        owner[0] = row;
+        let mut j0 = 0;
+        let mut minv = vec![f64::INFINITY; n + 1];
+        let mut used = vec![false; n + 1];
+        loop {
+            used[j0] = true;
+            let i0 = owner[j0];
+            let mut delta = f64::INFINITY;
+            let mut j1 = 0;
+            for j in 1..=n {
+                if used[j] {
+                    continue;
+                }
+                let reduced = cost[i0 - 1][j - 1] - u[i0] - v[j];
+                if reduced < minv[j] {
+                    minv[j] = reduced;
+                    way[j] = j0;
+                }
+                if minv[j] < delta {
+                    delta = minv[j];
+                    j1 = j;
+                }
+            }
+            for j in 0..=n {
+                if used[j] {
+                    u[owner[j]] += delta;
+                    v[j] -= delta;
+                } else {
+                    minv[j] -= delta;
+                }
+            }
+            j0 = j1;
+            if owner[j0] == 0 {
+                break;
+            }
+        }
+        loop {
+            let j1 = way[j0];
+            owner[j0] = owner[j1];
+            j0 = j1;
+            if j0 == 0 {
+                break;
+            }
+        }
+    }
+    let mut assignment = vec![0; n];
+    for j in 1..=n {
+        if owner[j] > 0 {
+            assignment[owner[j] - 1] = j - 1;
+        }
+    }
+    assignment
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn mode(label: &str, freq: f64, shape: &[f64]) -> Mode {
+        Mode {
+            re: -0.1,
+            im: freq,
+            frequency_hz: freq / std::f64::consts::TAU,
+            damping_ratio: 0.0,
+            label: label.into(),
+            structural_share: 1.0,
+            shape: shape.iter().map(|&x| Complex::new(x, 0.0)).collect(),
+        }
+    }
+
+    #[test]
+    fn hungarian_beats_greedy() {
+        // Greedy on row 0 takes column 0 (cost 1) and forces row 1 onto column 1 (cost 10):
+        // total 11. The optimum is 2 + 2 = 4.
+        let cost = vec![vec![1.0, 2.0], vec![2.0, 10.0]];
+        assert_eq!(hungarian(&cost), vec![1, 0]);
+    }
+
+    #[test]
+    fn mac_is_scale_and_phase_invariant() {
+        let a = [Complex::new(1.0, 0.0), Complex::new(0.5, 0.0)];
+        let b: Vec<_> = a.iter().map(|c| c * Complex::new(0.0, -3.0)).collect();
+        assert!((mac(&a, &b) - 1.0).abs() < 1e-14);
+        let c = [Complex::new(-0.5, 0.0), Complex::new(1.0, 0.0)];
+        assert!(mac(&a, &c).abs() < 1e-14);
+    }
+
+    #[test]
+    fn identities_survive_a_frequency_crossing() {
+        // Two modes whose frequencies cross between the second and third points; the
+        // frequency-sorted lists swap order, the shapes do not.
+        let points = vec![
+            vec![
+                mode("flap 1", 1.0, &[1.0, 0.05]),
+                mode("torsion 1", 3.0, &[0.05, 1.0]),
+            ],
+            vec![
+                mode("flap 1", 1.5, &[1.0, 0.04]),
+                mode("torsion 1", 2.0, &[0.06, 1.0]),
+            ],
+            vec![
+                mode("flap 1", 1.2, &[0.07, 1.0]),
+                mode("torsion 1", 1.9, &[1.0, 0.03]),
+            ],
+        ];
+        let tracks = track_modes(&points);
+        assert_eq!(tracks[0].label, "flap 1");
+        assert_eq!(tracks[0].index, vec![Some(0), Some(0), Some(1)]);
+        assert_eq!(tracks[1].index, vec![Some(1), Some(1), Some(0)]);
+    }
+
+    #[test]
+    fn a_vanished_mode_is_unmatched() {
+        let points = vec![
+            vec![mode("a", 1.0, &[1.0, 0.0]), mode("b", 2.0, &[0.0, 1.0])],
+            vec![mode("b", 2.0, &[0.0, 1.0])],
+        ];
+        let tracks = track_modes(&points);
+        assert_eq!(tracks[0].index, vec![Some(0), None]);
+        assert_eq!(tracks[1].index, vec![Some(1), Some(0)]);
+    }
+}

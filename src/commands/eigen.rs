@@ -1,3 +1,64 @@
-use crate::error::{Error, Result};
+//! `flutterscope eigen`: eigenvalues of the linearised aeroelastic system and the verdict.
+
+use crate::analysis::eigen::{analyse, Mode, Stability, Verdict};
+use crate::error::Result;
 use crate::preset::Preset;
-pub fn run(_p: &Preset, _json: bool) -> Result<()> { Err(Error::usage("eigen: not available yet")) }
+
+pub fn run(p: &Preset, json: bool) -> Result<()> {
+    let s = analyse(p)?;
+    if json {
+        return super::print_json(&s);
+    }
+    print!("{}", render(p, &s));
+    Ok(())
+}
+
+/// The text report: a table of the structural modes, the aero-lag roots apart, the verdict.
+pub fn render(p: &Preset, s: &Stability) -> String {
+    let mut out = format!(
+        "{} — aero model {}, U = {} m/s, Ω = {} rpm, V_t = {} m/s, pitch {}°\n\n",
+        p.display_name(),
+        p.aero.model.name(),
+        p.operating.wind_speed,
+        p.operating.rotor_speed,
+        p.operating.tunnel_speed,
+        p.operating.pitch
+    );
+    out += &table(&s.eigenvalues);
+    if !s.aero_lags.is_empty() {
+        out += &format!("\naerodynamic lag roots ({}):\n", s.aero_lags.len());
+        out += &table(&s.aero_lags);
+    }
+    out += "\n";
+    out += &match (s.verdict, s.critical()) {
+        (Verdict::Stable, Some(m)) => format!(
+            "STABLE: every root has σ < 0 (least damped: {}, σ = {:.4} 1/s, ζ = {:.4})\n",
+            m.label, m.re, m.damping_ratio
+        ),
+        (Verdict::Stable, None) => "STABLE: no roots\n".to_string(),
+        (Verdict::Flutter, Some(m)) => format!(
+            "UNSTABLE (flutter): {} grows at σ = {:.4} 1/s, oscillating at {:.4} Hz\n",
+            m.label, m.re, m.frequency_hz
+        ),
+        (Verdict::Divergence, Some(m)) => format!(
+            "UNSTABLE (static divergence): {} grows at σ = {:.4} 1/s without oscillating\n",
+            m.label, m.re
+        ),
+        (_, None) => "UNSTABLE\n".to_string(),
+    };
+    out
+}
+
+fn table(modes: &[Mode]) -> String {
+    let mut out = format!(
+        "{:<14} {:>13} {:>13} {:>12} {:>10} {:>7}\n",
+        "mode", "σ (1/s)", "ω (rad/s)", "f (Hz)", "ζ", "struct"
+    );
+    for m in modes {
+        out += &format!(
+            "{:<14} {:>13.5} {:>13.5} {:>12.5} {:>10.5} {:>7.3}\n",
+            m.label, m.re, m.im, m.frequency_hz, m.damping_ratio, m.structural_share
+        );
+    }
+    out
+}

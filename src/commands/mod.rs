@@ -32,7 +32,15 @@ pub fn run(command: Command) -> Result<()> {
             points,
             json,
             plot,
-        } => flutter::run(&preset.load()?, &vary, from, to, points, json, plot.as_deref()),
+        } => flutter::run(
+            &preset.load()?,
+            &vary,
+            from,
+            to,
+            points,
+            json,
+            plot.as_deref(),
+        ),
         Command::Sweep {
             preset,
             vary,
@@ -40,7 +48,13 @@ pub fn run(command: Command) -> Result<()> {
             json,
             shard,
             plot,
-        } => sweep::run(&preset.load()?, &vary, json, shard.as_deref(), plot.as_deref()),
+        } => sweep::run(
+            &preset.load()?,
+            &vary,
+            json,
+            shard.as_deref(),
+            plot.as_deref(),
+        ),
         Command::Simulate {
             preset,
             json,

@@ -1,4 +1,67 @@
+//! `flutterscope simulate`: tip twist and flap over time.
+
+use crate::analysis::simulate::{simulate, Response, RunStatus};
 use crate::error::{Error, Result};
 use crate::preset::Preset;
+use std::io::Write;
 use std::path::Path;
-pub fn run(_p: &Preset, _json: bool, _csv: bool, _plot: Option<&Path>) -> Result<()> { Err(Error::usage("simulate: not available yet")) }
+
+pub fn run(p: &Preset, json: bool, csv: bool, plot: Option<&Path>) -> Result<()> {
+    if plot.is_some() {
+        return Err(Error::usage("simulate --plot: not available yet"));
+    }
+    let r = simulate(p)?;
+    if json {
+        return super::print_json(&r);
+    }
+    if csv {
+        return write_csv(&r);
+    }
+    print!("{}", summary(p, &r));
+    Ok(())
+}
+
+fn write_csv(r: &Response) -> Result<()> {
+    let io = |e: std::io::Error| Error::Io(format!("cannot write CSV: {e}"));
+    let mut out = std::io::BufWriter::new(std::io::stdout().lock());
+    writeln!(out, "t,tip_twist,tip_flap").map_err(io)?;
+    for ((t, a), u) in r.t.iter().zip(&r.tip_twist).zip(&r.tip_flap) {
+        writeln!(out, "{t},{a},{u}").map_err(io)?;
+    }
+    out.flush().map_err(io)
+}
+
+/// Start, end, extremes and status in a few lines.
+pub fn summary(p: &Preset, r: &Response) -> String {
+    let extreme = |v: &[f64]| {
+        v.iter()
+            .fold(0.0f64, |m, x| if x.abs() > m.abs() { *x } else { m })
+    };
+    let last = |v: &[f64]| v.last().copied().unwrap_or(0.0);
+    let mut out = format!(
+        "{} — {} aerodynamics, start {:?}, {} samples over {:.3} s\n",
+        p.display_name(),
+        p.aero.model.name(),
+        p.simulation.start,
+        r.t.len(),
+        r.t.last().copied().unwrap_or(0.0)
+    );
+    out += &format!(
+        "tip twist: final {:.6e} rad ({:.4}°), largest {:.6e} rad\n",
+        last(&r.tip_twist),
+        last(&r.tip_twist).to_degrees(),
+        extreme(&r.tip_twist)
+    );
+    out += &format!(
+        "tip flap:  final {:.6e} m, largest {:.6e} m\n",
+        last(&r.tip_flap),
+        extreme(&r.tip_flap)
+    );
+    out += &match (r.status, r.diverged_at) {
+        (RunStatus::Diverging, Some(t)) => {
+            format!("status: DIVERGING — the response left the bounds at t = {t:.4} s\n")
+        }
+        _ => "status: ok\n".to_string(),
+    };
+    out
+}

@@ -1,1 +1,537 @@
-//! (in progress)
+//! The blade structure in Galerkin coordinates `q = [q_φ (N); q_u (N)]` (MODEL.md §3–§4): mass,
+//! elastic and centrifugal stiffness, stiffness-proportional damping, natural modes.
+//!
+//! The section is uniform along the span, so every integral is a section constant times a pure
+//! basis integral; the only span-varying coefficient is the centrifugal tension `F_c(x)`. All
+//! integrals use one Gauss–Legendre rule sized for the basis ([`Basis::quadrature`]).
+
+use crate::error::{Error, Result};
+use crate::physics::basis::{torsion_wavenumber, Basis, BendingMode};
+use crate::physics::section::{section_properties, SectionProps};
+use crate::preset::{Form, Preset};
+use nalgebra::{Complex, DMatrix, DVector};
+
+/// Structural matrices of one blade at one rotor speed (MODEL.md §3–§4).
+#[derive(Debug, Clone)]
+pub struct StructuralModel {
+    pub n: usize,
+    pub basis: Basis,
+    pub section: SectionProps,
+    /// M (2N×2N), symmetric.
+    pub mass: DMatrix<f64>,
+    /// K_e: symmetric in the weak form; the strong form adds the tip term `C23 U(L) Φ''(L)ᵀ` to
+    /// the flap–twist block.
+    pub elastic: DMatrix<f64>,
+    /// K_c, symmetric.
+    pub centrifugal: DMatrix<f64>,
+    /// C_s = a_s K_e with a_s = η1/ω1 (MODEL.md §4, paper Eq. 9).
+    pub damping: DMatrix<f64>,
+    /// ω1 (rad/s), lowest natural frequency of (M, K_e + K_c).
+    pub omega1: f64,
+}
+
+/// One undamped natural mode of (M, K_e + K_c).
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct NaturalMode {
+    pub frequency_hz: f64,
+    /// `flap k` or `torsion k`.
+    pub label: String,
+    /// Share of the kinetic energy in the twist coordinates (0…1).
+    pub torsion_share: f64,
+    /// Galerkin coefficients q (2N), unit Euclidean norm, largest entry positive.
+    #[serde(skip)]
+    pub shape: DVector<f64>,
+}
+
+/// Assemble the structure of a preset: section from its source, N from `structure.modes`, form
+/// from `structure.form`, rotor speed from `operating.rotor_speed`, damping from
+/// `structure.loss_factor` (MODEL.md §3–§4).
+pub fn assemble(p: &Preset) -> Result<StructuralModel> {
+    let section = section_properties(p)?;
+    let spec = BladeSpec {
+        n: p.structure.modes,
+        length: p.blade.length,
+        hub_radius: p.blade.hub_radius,
+        omega: p.omega(),
+        form: p.structure.form,
+        loss_factor: p.structure.loss_factor,
+    };
+    spec.check()?;
+    assemble_section(section, &spec)
+}
+
+/// Everything besides the section that fixes the structural matrices.
+#[derive(Debug, Clone, Copy)]
+struct BladeSpec {
+    n: usize,
+    length: f64,
+    hub_radius: f64,
+    /// Ω (rad/s).
+    omega: f64,
+    form: Form,
+    loss_factor: f64,
+}
+
+impl BladeSpec {
+    fn check(&self) -> Result<()> {
+        if self.n == 0 {
+            return Err(Error::numerical("structure.modes must be at least 1"));
+        }
+        let values = [
+            ("blade.length", self.length),
+            ("blade.hub_radius", self.hub_radius),
+            ("rotor speed", self.omega),
+            ("structure.loss_factor", self.loss_factor),
+        ];
+        if let Some((name, v)) = values.iter().find(|(_, v)| !v.is_finite()) {
+            return Err(Error::numerical(format!("{name} = {v} is not finite")));
+        }
+        if self.length <= 0.0 {
+            return Err(Error::numerical(format!(
+                "blade.length = {} must be positive",
+                self.length
+            )));
+        }
+        Ok(())
+    }
+}
+
+/// Pure basis integrals over [0, L] (section constants not applied), N×N each.
+struct BasisIntegrals {
+    /// ∫ΦΦᵀ
+    phi_phi: DMatrix<f64>,
+    /// ∫Φ'Φ'ᵀ
+    dphi_dphi: DMatrix<f64>,
+    /// ∫F_c Φ'Φ'ᵀ / (mΩ²) (geometric tension weight, so Ω = 0 costs nothing special)
+    tension_dphi_dphi: DMatrix<f64>,
+    /// ∫UUᵀ
+    u_u: DMatrix<f64>,
+    /// ∫U''U''ᵀ
+    ddu_ddu: DMatrix<f64>,
+    /// ∫F_c U'U'ᵀ / (mΩ²)
+    tension_du_du: DMatrix<f64>,
+    /// ∫ΦUᵀ
+    phi_u: DMatrix<f64>,
+    /// ∫Φ'U''ᵀ
+    dphi_ddu: DMatrix<f64>,
+}
+
+/// Gauss quadrature of every basis product (MODEL.md §4). `F_c/(mΩ²) = ½((r_hub+L)² − r²)`.
+fn basis_integrals(basis: &Basis, hub_radius: f64) -> BasisIntegrals {
+    let n = basis.n;
+    let l = basis.length;
+    let modes: Vec<BendingMode> = (1..=n).map(|j| BendingMode::new(j, l)).collect();
+    let wavenumbers: Vec<f64> = (1..=n).map(|j| torsion_wavenumber(j, l)).collect();
+    let (xs, ws) = basis.quadrature();
+    let z = || DMatrix::<f64>::zeros(n, n);
+    let mut out = BasisIntegrals {
+        phi_phi: z(),
+        dphi_dphi: z(),
+        tension_dphi_dphi: z(),
+        u_u: z(),
+        ddu_ddu: z(),
+        tension_du_du: z(),
+        phi_u: z(),
+        dphi_ddu: z(),
+    };
+    let (mut phi, mut dphi) = (vec![0.0; n], vec![0.0; n]);
+    let (mut u, mut du, mut ddu) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    let r_tip = hub_radius + l;
+    for (&x, &w) in xs.iter().zip(&ws) {
+        for j in 0..n {
+            let (s, c) = (wavenumbers[j] * x).sin_cos();
+            phi[j] = s;
+            dphi[j] = wavenumbers[j] * c;
+            [u[j], du[j], ddu[j]] = modes[j].eval012(x, l);
+        }
+        let r = hub_radius + x;
+        let wt = w * 0.5 * (r_tip * r_tip - r * r);
+        add_outer_sym(&mut out.phi_phi, w, &phi);
+        add_outer_sym(&mut out.dphi_dphi, w, &dphi);
+        add_outer_sym(&mut out.tension_dphi_dphi, wt, &dphi);
+        add_outer_sym(&mut out.u_u, w, &u);
+        add_outer_sym(&mut out.ddu_ddu, w, &ddu);
+        add_outer_sym(&mut out.tension_du_du, wt, &du);
+        add_outer(&mut out.phi_u, w, &phi, &u);
+        add_outer(&mut out.dphi_ddu, w, &dphi, &ddu);
+    }
+    for m in [
+        &mut out.phi_phi,
+        &mut out.dphi_dphi,
+        &mut out.tension_dphi_dphi,
+        &mut out.u_u,
+        &mut out.ddu_ddu,
+        &mut out.tension_du_du,
+    ] {
+        m.fill_lower_triangle_with_upper_triangle();
+    }
+    out
+}
+
+/// `a += w · v vᵀ`, upper triangle only.
+#[inline]
+fn add_outer_sym(a: &mut DMatrix<f64>, w: f64, v: &[f64]) {
+    for j in 0..v.len() {
+        let wv = w * v[j];
+        for i in 0..=j {
+            a[(i, j)] += wv * v[i];
+        }
+    }
+}
+
+/// `a += w · x yᵀ`.
+#[inline]
+fn add_outer(a: &mut DMatrix<f64>, w: f64, x: &[f64], y: &[f64]) {
+    for j in 0..y.len() {
+        let wy = w * y[j];
+        for i in 0..x.len() {
+            a[(i, j)] += wy * x[i];
+        }
+    }
+}
+
+/// Place N×N blocks into a 2N×2N matrix `[φφ φu; uφ uu]`.
+fn blocks(
+    pp: &DMatrix<f64>,
+    pu: &DMatrix<f64>,
+    up: &DMatrix<f64>,
+    uu: &DMatrix<f64>,
+) -> DMatrix<f64> {
+    let n = pp.nrows();
+    let mut a = DMatrix::zeros(2 * n, 2 * n);
+    a.view_mut((0, 0), (n, n)).copy_from(pp);
+    a.view_mut((0, n), (n, n)).copy_from(pu);
+    a.view_mut((n, 0), (n, n)).copy_from(up);
+    a.view_mut((n, n), (n, n)).copy_from(uu);
+    a
+}
+
+/// The strong form's extra flap–twist term `C23 U_i(L) Φ_j''(L)` (MODEL.md §4): what remains of
+/// `∫U_i C23 Φ_j'''` after two integrations by parts, because the sines do not satisfy the coupled
+/// tip shear condition. `Φ_j''(L) = −k_j² sin(k_j L) = −k_j² (−1)^{j−1}`.
+fn strong_tip_term(basis: &Basis, c23: f64) -> DMatrix<f64> {
+    let n = basis.n;
+    let u_tip = basis.bending(basis.length, 0);
+    DMatrix::from_fn(n, n, |i, j| {
+        let k = torsion_wavenumber(j + 1, basis.length);
+        let sign = if j % 2 == 0 { 1.0 } else { -1.0 };
+        c23 * u_tip[i] * (-k * k * sign)
+    })
+}
+
+/// Mass, elastic and centrifugal matrices, ω1 and damping for a uniform section (MODEL.md §3–§4).
+fn assemble_section(section: SectionProps, spec: &BladeSpec) -> Result<StructuralModel> {
+    let s = &section;
+    let basis = Basis::new(spec.n, spec.length);
+    let g = basis_integrals(&basis, spec.hub_radius);
+    let omega2 = spec.omega * spec.omega;
+
+    // M: ∫IΦΦᵀ, ∫mUUᵀ, ∫m d ΦUᵀ.
+    let m_pu = &g.phi_u * (s.m * s.cg_offset);
+    let mass = blocks(
+        &(&g.phi_phi * s.i),
+        &m_pu,
+        &m_pu.transpose(),
+        &(&g.u_u * s.m),
+    );
+
+    // K_e: ∫C22Φ'Φ'ᵀ, ∫C23Φ'U''ᵀ, ∫C33U''U''ᵀ; the weak form is symmetric.
+    let k_pu = &g.dphi_ddu * s.c23;
+    let mut k_up = k_pu.transpose();
+    if spec.form == Form::Strong {
+        k_up += strong_tip_term(&basis, s.c23);
+    }
+    let elastic = blocks(&(&g.dphi_dphi * s.c22), &k_pu, &k_up, &(&g.ddu_ddu * s.c33));
+
+    // K_c: ∫F_c K_A² Φ'Φ'ᵀ + ∫mΩ²(K_m2² − K_m1²)ΦΦᵀ (propeller moment), ∫F_c U'U'ᵀ.
+    let m_omega2 = s.m * omega2;
+    let kc_pp =
+        &g.tension_dphi_dphi * (m_omega2 * s.ka2) + &g.phi_phi * (m_omega2 * (s.km2_2 - s.km1_2));
+    let zero = DMatrix::zeros(spec.n, spec.n);
+    let centrifugal = blocks(&kc_pp, &zero, &zero, &(&g.tension_du_du * m_omega2));
+
+    for (name, a) in [
+        ("mass", &mass),
+        ("elastic stiffness", &elastic),
+        ("centrifugal stiffness", &centrifugal),
+    ] {
+        if a.iter().any(|v| !v.is_finite()) {
+            return Err(Error::numerical(format!(
+                "{name} matrix has non-finite entries"
+            )));
+        }
+    }
+
+    let stiffness = &elastic + &centrifugal;
+    let lambdas = eigenvalues(&mass, &stiffness)?;
+    let omega1 = lowest_frequency(&lambdas)?;
+    let damping = &elastic * (spec.loss_factor / omega1);
+    Ok(StructuralModel {
+        n: spec.n,
+        basis,
+        section,
+        mass,
+        elastic,
+        centrifugal,
+        damping,
+        omega1,
+    })
+}
+
+/// ω1 = √λ_min; a non-positive λ means the blade has no stiffness against some shape.
+fn lowest_frequency(lambdas: &[f64]) -> Result<f64> {
+    let lmin = lambdas.iter().copied().fold(f64::INFINITY, f64::min);
+    if lmin > 0.0 && lmin.is_finite() {
+        Ok(lmin.sqrt())
+    } else {
+        Err(Error::numerical(format!(
+            "structure is not positive definite: lowest eigenvalue ω² = {lmin:e} (rad/s)²"
+        )))
+    }
+}
+
+/// Iteration cap for the symmetric eigensolver: far beyond what a 2N ≤ 80 problem needs, so a
+/// failure means broken input, reported rather than looped on.
+const MAX_SWEEPS: usize = 10_000;
+
+/// `L⁻¹ K L⁻ᵀ` with `M = LLᵀ` (Cholesky), symmetrised against round-off, and `L`.
+fn cholesky_reduce(mass: &DMatrix<f64>, k: &DMatrix<f64>) -> Result<(DMatrix<f64>, DMatrix<f64>)> {
+    let chol = mass
+        .clone()
+        .cholesky()
+        .ok_or_else(|| Error::numerical("mass matrix is not positive definite"))?;
+    let l = chol.unpack();
+    let lk = l
+        .solve_lower_triangular(k)
+        .ok_or_else(|| Error::numerical("singular mass factor"))?;
+    let mut a = l
+        .solve_lower_triangular(&lk.transpose())
+        .ok_or_else(|| Error::numerical("singular mass factor"))?;
+    let at = a.transpose();
+    a += at;
+    a *= 0.5;
+    Ok((a, l))
+}
+
+/// Eigenvalues ω² of `K q = ω² M q`, ascending. Symmetric K (weak form, or no coupling):
+/// Cholesky reduction and the symmetric solver. Non-symmetric K (strong form): the general real
+/// solver on `M⁻¹K` (faer: Francis QR with an iteration cap); complex pairs, which a nearly
+/// symmetric positive K does not produce, keep their real part.
+fn eigenvalues(mass: &DMatrix<f64>, k: &DMatrix<f64>) -> Result<Vec<f64>> {
+    let mut lambdas = match is_symmetric(k) {
+        true => {
+            let (a, _) = cholesky_reduce(mass, k)?;
+            nalgebra::SymmetricEigen::try_new(a, f64::EPSILON, MAX_SWEEPS)
+                .ok_or_else(|| Error::numerical("symmetric eigensolver did not converge"))?
+                .eigenvalues
+                .iter()
+                .copied()
+                .collect::<Vec<_>>()
+        }
+        false => {
+            let a = mass_inverse_times(mass, k)?;
+            faer_matrix(&a)
+                .eigenvalues()
+                .map_err(|e| Error::numerical(format!("general eigensolver failed: {e:?}")))?
+                .iter()
+                .map(|z| z.re)
+                .collect()
+        }
+    };
+    if lambdas.iter().any(|v| !v.is_finite()) {
+        return Err(Error::numerical("non-finite structural eigenvalue"));
+    }
+    lambdas.sort_by(f64::total_cmp);
+    Ok(lambdas)
+}
+
+/// `M⁻¹ K` through the Cholesky factor of M.
+fn mass_inverse_times(mass: &DMatrix<f64>, k: &DMatrix<f64>) -> Result<DMatrix<f64>> {
+    let chol = mass
+        .clone()
+        .cholesky()
+        .ok_or_else(|| Error::numerical("mass matrix is not positive definite"))?;
+    Ok(chol.solve(k))
+}
+
+fn faer_matrix(a: &DMatrix<f64>) -> faer::Mat<f64> {
+    faer::Mat::from_fn(a.nrows(), a.ncols(), |i, j| a[(i, j)])
+}
+
+impl StructuralModel {
+    /// K_e + K_c.
+    pub fn stiffness(&self) -> DMatrix<f64> {
+        &self.elastic + &self.centrifugal
+    }
+
+    /// Undamped natural modes of (M, K_e + K_c), sorted by frequency, labelled by their kinetic
+    /// energy share (MODEL.md §4, §6).
+    pub fn natural_modes(&self) -> Result<Vec<NaturalMode>> {
+        let k = self.stiffness();
+        let pairs = match is_symmetric(&k) {
+            true => self.symmetric_pairs(&k)?,
+            false => self.general_pairs(&k)?,
+        };
+        let shares: Vec<f64> = pairs
+            .iter()
+            .map(|(_, q)| {
+                let qc: Vec<Complex<f64>> = q.iter().map(|&v| Complex::new(v, 0.0)).collect();
+                self.torsion_share(&qc)
+            })
+            .collect();
+        let labels = mode_labels(&shares);
+        Ok(pairs
+            .into_iter()
+            .zip(shares)
+            .zip(labels)
+            .map(|(((lambda, shape), torsion_share), label)| NaturalMode {
+                frequency_hz: lambda.max(0.0).sqrt() / (2.0 * std::f64::consts::PI),
+                label,
+                torsion_share,
+                shape,
+            })
+            .collect())
+    }
+
+    /// (ω², q) pairs, ascending, of the symmetric problem.
+    fn symmetric_pairs(&self, k: &DMatrix<f64>) -> Result<Vec<(f64, DVector<f64>)>> {
+        let (a, l) = cholesky_reduce(&self.mass, k)?;
+        let eig = nalgebra::SymmetricEigen::try_new(a, f64::EPSILON, MAX_SWEEPS)
+            .ok_or_else(|| Error::numerical("symmetric eigensolver did not converge"))?;
+        let q = l
+            .tr_solve_lower_triangular(&eig.eigenvectors)
+            .ok_or_else(|| Error::numerical("singular mass factor"))?;
+        let mut pairs: Vec<(f64, DVector<f64>)> = eig
+            .eigenvalues
+            .iter()
+            .zip(q.column_iter())
+            .map(|(&lambda, col)| (lambda, normalise(col.into_owned())))
+            .collect();
+        check_pairs(&mut pairs)?;
+        Ok(pairs)
+    }
+
+    /// (ω², q) pairs, ascending, of the non-symmetric (strong-form) problem. The eigenvectors of a
+    /// real eigenvalue are real up to a complex phase, which [`normalise_complex`] removes.
+    fn general_pairs(&self, k: &DMatrix<f64>) -> Result<Vec<(f64, DVector<f64>)>> {
+        let a = mass_inverse_times(&self.mass, k)?;
+        let eig = faer::linalg::solvers::Eigen::new_from_real(faer_matrix(&a).as_ref())
+            .map_err(|e| Error::numerical(format!("general eigensolver failed: {e:?}")))?;
+        let s = eig.S();
+        let u = eig.U();
+        let dim = a.nrows();
+        let mut pairs: Vec<(f64, DVector<f64>)> = (0..dim)
+            .map(|c| {
+                let z: Vec<Complex<f64>> = (0..dim)
+                    .map(|r| {
+                        let v = u[(r, c)];
+                        Complex::new(v.re, v.im)
+                    })
+                    .collect();
+                (s[c].re, normalise_complex(&z))
+            })
+            .collect();
+        check_pairs(&mut pairs)?;
+        Ok(pairs)
+    }
+
+    /// Φ(L): the tip twist is `row · q_φ`.
+    pub fn tip_twist_row(&self) -> DVector<f64> {
+        self.basis.torsion(self.basis.length, 0)
+    }
+
+    /// U(L): the tip flap is `row · q_u`.
+    pub fn tip_flap_row(&self) -> DVector<f64> {
+        self.basis.bending(self.basis.length, 0)
+    }
+
+    /// Share of the kinetic energy in the twist coordinates,
+    /// `q_φᴴM_φφq_φ / (q_φᴴM_φφq_φ + q_uᴴM_uuq_u)`: in [0, 1] for any complex eigenvector (the
+    /// cg-offset coupling block is left out, as it carries no sign). Uses the first 2N entries.
+    pub fn torsion_share(&self, q: &[Complex<f64>]) -> f64 {
+        let n = self.n;
+        let quad = |offset: usize| -> f64 {
+            let mut e = 0.0;
+            for j in 0..n {
+                for i in 0..n {
+                    let mij = self.mass[(offset + i, offset + j)];
+                    e += mij * (q[offset + i].conj() * q[offset + j]).re;
+                }
+            }
+            e.max(0.0)
+        };
+        let (et, ef) = (quad(0), quad(n));
+        if et + ef > 0.0 {
+            et / (et + ef)
+        } else {
+            0.0
+        }
+    }
+}
+
+/// Whether K is symmetric to round-off. Only the strong form's tip term breaks symmetry, and it
+/// does so at the size of the coupling blocks, far above this tolerance; a symmetric K gets the
+/// faster and more accurate symmetric solver whatever form built it.
+fn is_symmetric(k: &DMatrix<f64>) -> bool {
+    let scale = k.amax();
+    let n = k.nrows();
+    (0..n).all(|i| (0..i).all(|j| (k[(i, j)] - k[(j, i)]).abs() <= 1e-13 * scale))
+}
+
+/// Sort ascending and reject non-finite results.
+fn check_pairs(pairs: &mut [(f64, DVector<f64>)]) -> Result<()> {
+    if pairs
+        .iter()
+        .any(|(l, v)| !l.is_finite() || v.iter().any(|x| !x.is_finite()))
+    {
+        return Err(Error::numerical("non-finite natural mode"));
+    }
+    pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
+    Ok(())
+}
+
+/// Unit Euclidean norm, largest-magnitude entry positive (a deterministic sign).
+fn normalise(mut v: DVector<f64>) -> DVector<f64> {
+    let imax = v.iamax();
+    let norm = v.norm();
+    if norm > 0.0 {
+        v *= v[imax].signum() / norm;
+    }
+    v
+}
+
+/// The real shape of a complex eigenvector: rotate so the largest entry is real, keep the real part.
+fn normalise_complex(z: &[Complex<f64>]) -> DVector<f64> {
+    let big = z
+        .iter()
+        .copied()
+        .max_by(|a, b| a.norm_sqr().total_cmp(&b.norm_sqr()))
+        .unwrap_or(Complex::new(1.0, 0.0));
+    let phase = if big.norm() > 0.0 {
+        big.conj() / big.norm()
+    } else {
+        Complex::new(1.0, 0.0)
+    };
+    normalise(DVector::from_iterator(
+        z.len(),
+        z.iter().map(|v| (v * phase).re),
+    ))
+}
+
+/// Labels `flap k` / `torsion k` (share > 0.5 → torsion), k counting within its kind in the given
+/// (frequency) order.
+pub fn mode_labels(torsion_shares_in_frequency_order: &[f64]) -> Vec<String> {
+    let (mut flap, mut torsion) = (0, 0);
+    torsion_shares_in_frequency_order
+        .iter()
+        .map(|&share| {
+            if share > 0.5 {
+                torsion += 1;
+                format!("torsion {torsion}")
+            } else {
+                flap += 1;
+                format!("flap {flap}")
+            }
+        })
+        .collect()
+}

@@ -1,1 +1,482 @@
-//! (in progress)
+//! The coupled aeroelastic system: structure + strip aerodynamics as one first-order ODE
+//! (MODEL.md §6), its static equilibrium and its linearisation.
+//!
+//! State `x = [q, q̇, z]`: Galerkin coordinates `q = [q_φ; q_u]` (2N), their rates (2N) and the
+//! aerodynamic states `z` (station-major: `z[s·n_s + i]` is state `i` of station `s`).
+//!
+//! `(M − M_a) q̈ = Q(q, q̇, z) − (K_e + K_c) q − C_s q̇`, `ż = G(q, q̇, z)`, where `Q` is the
+//! Galerkin projection `Q_φ = Σ_s w_s m_φ Φ(x_s)`, `Q_u = Σ_s w_s f_u U(x_s)` of the strip loads
+//! and `M_a = Σ_s w_s Pᵀ M_a,s P` the apparent mass (P maps `q` to the strip's `[φ, u]`).
+//!
+//! The system is written for any [`StripModel`], linear or not: [`System::rhs`] gives `ẋ`,
+//! [`System::jacobian`] its exact Jacobian (chain rule through the models' analytic partials),
+//! [`System::equilibrium`] a damped Newton solve (one step for the affine models), and
+//! [`System::linearise`] the state matrix `A = ∂ẋ/∂x` at equilibrium. A nonlinear model (ONERA,
+//! §5.3) joins by implementing `StripModel`; nothing here changes.
+
+use crate::error::{Error, Result};
+use crate::physics::aero::{model_for, Kinematics, SteadyStates, StripEval, StripModel};
+use crate::physics::inflow::{preset_stations, Station};
+use crate::physics::structure::{assemble, StructuralModel};
+use crate::preset::Preset;
+use nalgebra::{DMatrix, DVector};
+use std::sync::Arc;
+
+/// Newton iterations allowed for the static equilibrium before reporting non-convergence.
+const NEWTON_MAX_ITERATIONS: usize = 60;
+
+pub struct System {
+    structure: Arc<StructuralModel>,
+    stations: Vec<Station>,
+    model: Box<dyn StripModel>,
+    /// Φ(x_s) and U(x_s) at every station (N each).
+    torsion_at: Vec<DVector<f64>>,
+    flap_at: Vec<DVector<f64>>,
+    /// The rows e_φ = [Φ(x_s); 0] and e_u = [0; U(x_s)] that map q to each strip's φ and u.
+    rows: Vec<[DVector<f64>; 2]>,
+    /// (M − M_a)⁻¹, factored once: every rhs and Jacobian needs it.
+    mass_inv: DMatrix<f64>,
+    stiffness: DMatrix<f64>,
+    damping: DMatrix<f64>,
+    /// Galerkin functions per field (N).
+    n: usize,
+    /// States per station.
+    ns: usize,
+    span: f64,
+}
+
+/// Generalised loads and aero-state rates at one state, with their Jacobians when asked.
+struct Projection {
+    force: DVector<f64>,
+    zdot: DVector<f64>,
+    /// ∂Q/∂q, ∂Q/∂q̇, ∂Q/∂z.
+    dq: DMatrix<f64>,
+    dv: DMatrix<f64>,
+    dz: DMatrix<f64>,
+    /// ∂G/∂q, ∂G/∂q̇, ∂G/∂z.
+    gq: DMatrix<f64>,
+    gv: DMatrix<f64>,
+    gz: DMatrix<f64>,
+}
+
+/// The linearised system about its equilibrium: `ẋ = A (x − x*)`.
+#[derive(Clone)]
+pub struct LinearSystem {
+    pub a: DMatrix<f64>,
+    /// Equilibrium state x*.
+    pub x_eq: DVector<f64>,
+    /// Structural coordinates 2N (q); the state is `[q (2N), q̇ (2N), z (n_aero)]`.
+    pub nq: usize,
+    pub n_aero: usize,
+    /// Weight of each aero state next to `q` when measuring a mode's structural share: its
+    /// angle-of-attack contribution per unit state times `√(w_s/L)` (the station's share of span).
+    pub aero_weights: DVector<f64>,
+    /// Tip twist φ(L) = `tip_twist · q` and tip flap u(L) = `tip_flap · q` (2N each).
+    pub tip_twist: DVector<f64>,
+    pub tip_flap: DVector<f64>,
+    pub structure: Arc<StructuralModel>,
+}
+
+impl System {
+    /// Assemble structure, stations and the preset's aerodynamic model.
+    pub fn new(p: &Preset) -> Result<System> {
+        let structure = assemble(p)?;
+        let model = model_for(p)?;
+        System::from_parts(structure, preset_stations(p), model)
+    }
+
+    /// Build from an assembled structure, stations and a model (tests and alternative models).
+    pub fn from_parts(
+        structure: StructuralModel,
+        stations: Vec<Station>,
+        model: Box<dyn StripModel>,
+    ) -> Result<System> {
+        let n = structure.n;
+        let nq = 2 * n;
+        let torsion_at: Vec<_> = stations
+            .iter()
+            .map(|s| structure.basis.torsion(s.x, 0))
+            .collect();
+        let flap_at: Vec<_> = stations
+            .iter()
+            .map(|s| structure.basis.bending(s.x, 0))
+            .collect();
+        let rows: Vec<[DVector<f64>; 2]> = torsion_at
+            .iter()
+            .zip(&flap_at)
+            .map(|(phi, uu)| [embed(phi, 0, nq), embed(uu, n, nq)])
+            .collect();
+        let mut mass = structure.mass.clone();
+        for (s, rows) in stations.iter().zip(&rows) {
+            let ma = model.apparent_mass(s);
+            for l in 0..2 {
+                for j in 0..2 {
+                    if ma[l][j] != 0.0 {
+                        // Loads M_a q̈ move to the left-hand side: M − M_a.
+                        mass.ger(-s.weight * ma[l][j], &rows[l], &rows[j], 1.0);
+                    }
+                }
+            }
+        }
+        check_finite("mass matrix", &mass)?;
+        let mass_inv = mass.clone().lu().try_inverse().ok_or_else(|| {
+            Error::numerical("the mass matrix (structure plus apparent mass) is singular")
+        })?;
+        check_finite("inverse mass matrix", &mass_inv)?;
+        let stiffness = structure.stiffness();
+        check_finite("stiffness matrix", &stiffness)?;
+        check_finite("damping matrix", &structure.damping)?;
+        let damping = structure.damping.clone();
+        let ns = model.states_per_station();
+        let span = structure.basis.length;
+        Ok(System {
+            structure: Arc::new(structure),
+            stations,
+            model,
+            torsion_at,
+            flap_at,
+            rows,
+            mass_inv,
+            stiffness,
+            damping,
+            n,
+            ns,
+            span,
+        })
+    }
+
+    /// Length of the state vector: 4N + aero states.
+    pub fn dim(&self) -> usize {
+        4 * self.n + self.n_aero()
+    }
+    /// Structural coordinates 2N.
+    pub fn nq(&self) -> usize {
+        2 * self.n
+    }
+    pub fn n_aero(&self) -> usize {
+        self.ns * self.stations.len()
+    }
+    pub fn structure(&self) -> &StructuralModel {
+        &self.structure
+    }
+    pub fn stations(&self) -> &[Station] {
+        &self.stations
+    }
+    pub fn model(&self) -> &dyn StripModel {
+        self.model.as_ref()
+    }
+
+    /// Tip twist φ(L) (rad) and tip flap u(L) (m) of a state.
+    pub fn tip(&self, x: &DVector<f64>) -> (f64, f64) {
+        let n = self.n;
+        (
+            self.structure.tip_twist_row().dot(&x.rows(0, n)),
+            self.structure.tip_flap_row().dot(&x.rows(n, n)),
+        )
+    }
+
+    /// ẋ = f(x).
+    pub fn rhs(&self, x: &DVector<f64>) -> DVector<f64> {
+        let nq = self.nq();
+        let (q, v, z) = self.split(x);
+        let pr = self.project(q, v, z, false);
+        let mut out = DVector::zeros(self.dim());
+        out.rows_mut(0, nq).copy_from(&v);
+        let net = &pr.force - &self.stiffness * q - &self.damping * v;
+        out.rows_mut(nq, nq).copy_from(&(&self.mass_inv * net));
+        out.rows_mut(2 * nq, self.n_aero()).copy_from(&pr.zdot);
+        out
+    }
+
+    /// ∂ẋ/∂x at `x`, exact.
+    pub fn jacobian(&self, x: &DVector<f64>) -> DMatrix<f64> {
+        let (nq, na) = (self.nq(), self.n_aero());
+        let (q, v, z) = self.split(x);
+        let pr = self.project(q, v, z, true);
+        let mut a = DMatrix::zeros(self.dim(), self.dim());
+        a.view_mut((0, nq), (nq, nq)).fill_with_identity();
+        a.view_mut((nq, 0), (nq, nq))
+            .copy_from(&(&self.mass_inv * (&pr.dq - &self.stiffness)));
+        a.view_mut((nq, nq), (nq, nq))
+            .copy_from(&(&self.mass_inv * (&pr.dv - &self.damping)));
+        if na > 0 {
+            a.view_mut((nq, 2 * nq), (nq, na))
+                .copy_from(&(&self.mass_inv * &pr.dz));
+            a.view_mut((2 * nq, 0), (na, nq)).copy_from(&pr.gq);
+            a.view_mut((2 * nq, nq), (na, nq)).copy_from(&pr.gv);
+            a.view_mut((2 * nq, 2 * nq), (na, na)).copy_from(&pr.gz);
+        }
+        a
+    }
+
+    /// The static equilibrium x* (q̇ = 0, aero states steady, `K q = Q(q)`), by Newton's method
+    /// on q with a backtracking line search (MODEL.md §6). For the affine models (quasi-steady
+    /// without drag, theodorsen, none) the first step is the exact linear solve.
+    pub fn equilibrium(&self) -> Result<DVector<f64>> {
+        let nq = self.nq();
+        let mut q = DVector::zeros(nq);
+        let (mut res, mut jac) = self.static_residual(&q, true)?;
+        let scale = self.static_scale(&q)?;
+        for _ in 0..NEWTON_MAX_ITERATIONS {
+            let rnorm = res.norm();
+            if rnorm <= 1e-12 * scale {
+                return Ok(self.steady_state_of(&q));
+            }
+            let step = jac
+                .clone()
+                .lu()
+                .solve(&(-&res))
+                .filter(|s| s.iter().all(|v| v.is_finite()))
+                .ok_or_else(|| {
+                    Error::numerical(
+                        "static equilibrium: singular tangent stiffness (the operating point sits \
+                         on a static-divergence boundary)",
+                    )
+                })?;
+            let mut t = 1.0;
+            loop {
+                let trial = &q + t * &step;
+                let (r, _) = self.static_residual(&trial, false)?;
+                // Armijo-type sufficient decrease; the full step overshoots on soft blades.
+                if r.norm() <= (1.0 - 1e-4 * t) * rnorm || t < 1e-6 {
+                    q = trial;
+                    break;
+                }
+                t *= 0.5;
+            }
+            let (r, j) = self.static_residual(&q, true)?;
+            res = r;
+            jac = j;
+            if step.norm() * t <= 1e-14 * (1.0 + q.norm()) {
+                return Ok(self.steady_state_of(&q));
+            }
+        }
+        Err(Error::numerical(format!(
+            "static equilibrium did not converge in {NEWTON_MAX_ITERATIONS} Newton steps \
+             (residual {:.3e} against load scale {scale:.3e})",
+            res.norm()
+        )))
+    }
+
+    /// Equilibrium and the state matrix there.
+    pub fn linearise(&self) -> Result<LinearSystem> {
+        let x_eq = self.equilibrium()?;
+        let a = self.jacobian(&x_eq);
+        check_finite("state matrix", &a)?;
+        let mut aero_weights = DVector::zeros(self.n_aero());
+        let mut w = vec![0.0; self.ns];
+        for (si, s) in self.stations.iter().enumerate() {
+            self.model.state_weights(s, &mut w);
+            let share = (s.weight / self.span).sqrt();
+            for (i, wi) in w.iter().enumerate() {
+                aero_weights[si * self.ns + i] = wi * share;
+            }
+        }
+        Ok(LinearSystem {
+            a,
+            x_eq,
+            nq: self.nq(),
+            n_aero: self.n_aero(),
+            aero_weights,
+            tip_twist: embed(&self.structure.tip_twist_row(), 0, self.nq()),
+            tip_flap: embed(&self.structure.tip_flap_row(), self.n, self.nq()),
+            structure: Arc::clone(&self.structure),
+        })
+    }
+
+    // ---- internals ----
+
+    fn split<'a>(
+        &self,
+        x: &'a DVector<f64>,
+    ) -> (
+        nalgebra::DVectorView<'a, f64>,
+        nalgebra::DVectorView<'a, f64>,
+        nalgebra::DVectorView<'a, f64>,
+    ) {
+        let nq = self.nq();
+        (x.rows(0, nq), x.rows(nq, nq), x.rows(2 * nq, self.n_aero()))
+    }
+
+    /// The full state at static deflection q: q̇ = 0, aero states steady.
+    fn steady_state_of(&self, q: &DVector<f64>) -> DVector<f64> {
+        let nq = self.nq();
+        let mut x = DVector::zeros(self.dim());
+        x.rows_mut(0, nq).copy_from(q);
+        let mut st = SteadyStates::new(self.ns);
+        for (si, s) in self.stations.iter().enumerate() {
+            let (phi, u) = self.deflection_at(si, q.as_view());
+            self.model.steady_states(s, phi, u, &mut st);
+            x.rows_mut(2 * nq + si * self.ns, self.ns)
+                .copy_from_slice(&st.z);
+        }
+        x
+    }
+
+    /// A load magnitude for the convergence test: the rigid (q = 0) load and the stiffness scale.
+    fn static_scale(&self, q: &DVector<f64>) -> Result<f64> {
+        let (r, _) = self.static_residual(q, false)?;
+        let k = self.stiffness.amax();
+        Ok(r.norm().max(k * 1e-12).max(f64::MIN_POSITIVE))
+    }
+
+    /// `R(q) = Q(q, 0, z*(q)) − K q` and, when asked, `dR/dq` (aero states held steady).
+    fn static_residual(
+        &self,
+        q: &DVector<f64>,
+        want_jac: bool,
+    ) -> Result<(DVector<f64>, DMatrix<f64>)> {
+        let nq = self.nq();
+        let x = self.steady_state_of(q);
+        let (qv, v, z) = self.split(&x);
+        let pr = self.project(qv, v, z, want_jac);
+        let res = &pr.force - &self.stiffness * q;
+        if !res.iter().all(|v| v.is_finite()) {
+            return Err(Error::numerical(
+                "static equilibrium: non-finite aerodynamic load (check the operating point)",
+            ));
+        }
+        if !want_jac {
+            return Ok((res, DMatrix::zeros(0, 0)));
+        }
+        let mut jac = &pr.dq - &self.stiffness;
+        if self.ns > 0 {
+            // Chain rule through the steady states: dz*/dq.
+            let mut zq = DMatrix::zeros(self.n_aero(), nq);
+            let mut st = SteadyStates::new(self.ns);
+            for (si, s) in self.stations.iter().enumerate() {
+                let (phi, u) = self.deflection_at(si, q.as_view());
+                self.model.steady_states(s, phi, u, &mut st);
+                let rows = self.kinematic_rows(si);
+                for i in 0..self.ns {
+                    let mut row = zq.row_mut(si * self.ns + i);
+                    row +=
+                        st.dz_dk[i][0] * rows[0].transpose() + st.dz_dk[i][1] * rows[1].transpose();
+                }
+            }
+            jac += &pr.dz * zq;
+        }
+        Ok((res, jac))
+    }
+
+    /// `[φ, u]` at station `si` for coordinates `q`.
+    fn deflection_at(&self, si: usize, q: nalgebra::DVectorView<f64>) -> (f64, f64) {
+        let n = self.n;
+        (
+            self.torsion_at[si].dot(&q.rows(0, n)),
+            self.flap_at[si].dot(&q.rows(n, n)),
+        )
+    }
+
+    fn kinematic_rows(&self, si: usize) -> &[DVector<f64>; 2] {
+        &self.rows[si]
+    }
+
+    fn project(
+        &self,
+        q: nalgebra::DVectorView<f64>,
+        v: nalgebra::DVectorView<f64>,
+        z: nalgebra::DVectorView<f64>,
+        want_jac: bool,
+    ) -> Projection {
+        let (nq, na, ns) = (self.nq(), self.n_aero(), self.ns);
+        let jac_dim = |r: usize, c: usize| {
+            if want_jac {
+                DMatrix::zeros(r, c)
+            } else {
+                DMatrix::zeros(0, 0)
+            }
+        };
+        let mut pr = Projection {
+            force: DVector::zeros(nq),
+            zdot: DVector::zeros(na),
+            dq: jac_dim(nq, nq),
+            dv: jac_dim(nq, nq),
+            dz: jac_dim(nq, na),
+            gq: jac_dim(na, nq),
+            gv: jac_dim(na, nq),
+            gz: jac_dim(na, na),
+        };
+        let mut eval = StripEval::new(ns);
+        let mut zs = Vec::with_capacity(ns);
+        for (si, s) in self.stations.iter().enumerate() {
+            let (phi, u) = self.deflection_at(si, q);
+            let (phi_dot, u_dot) = self.deflection_at(si, v);
+            let k = Kinematics {
+                phi,
+                u,
+                phi_dot,
+                u_dot,
+            };
+            zs.clear();
+            zs.extend(z.rows(si * ns, ns).iter());
+            eval.clear();
+            self.model.evaluate(s, &k, &zs, &mut eval, want_jac);
+            let rows = self.kinematic_rows(si);
+            let w = s.weight;
+            for l in 0..2 {
+                pr.force.axpy(w * eval.loads[l], &rows[l], 1.0);
+            }
+            pr.zdot.rows_mut(si * ns, ns).copy_from_slice(&eval.zdot);
+            if !want_jac {
+                continue;
+            }
+            for l in 0..2 {
+                for j in 0..2 {
+                    let dpos = eval.dloads_dk[l][j];
+                    if dpos != 0.0 {
+                        pr.dq.ger(w * dpos, &rows[l], &rows[j], 1.0);
+                    }
+                    let drate = eval.dloads_dk[l][j + 2];
+                    if drate != 0.0 {
+                        pr.dv.ger(w * drate, &rows[l], &rows[j], 1.0);
+                    }
+                }
+                for i in 0..ns {
+                    let mut col = pr.dz.column_mut(si * ns + i);
+                    col.axpy(w * eval.dloads_dz[l][i], &rows[l], 1.0);
+                }
+            }
+            for i in 0..ns {
+                let r = si * ns + i;
+                let d = eval.dzdot_dk[i];
+                let mut gq = pr.gq.row_mut(r);
+                gq += d[0] * rows[0].transpose() + d[1] * rows[1].transpose();
+                let mut gv = pr.gv.row_mut(r);
+                gv += d[2] * rows[0].transpose() + d[3] * rows[1].transpose();
+                for j in 0..ns {
+                    pr.gz[(r, si * ns + j)] = eval.dzdot_dz[i * ns + j];
+                }
+            }
+        }
+        pr
+    }
+}
+
+impl LinearSystem {
+    /// Length of the state vector.
+    pub fn dim(&self) -> usize {
+        self.a.nrows()
+    }
+    /// Tip twist and flap of a state.
+    pub fn tip(&self, x: &DVector<f64>) -> (f64, f64) {
+        let q = x.rows(0, self.nq);
+        (self.tip_twist.dot(&q), self.tip_flap.dot(&q))
+    }
+}
+
+/// `v` placed at `offset` in a zero vector of length `len`.
+fn embed(v: &DVector<f64>, offset: usize, len: usize) -> DVector<f64> {
+    let mut out = DVector::zeros(len);
+    out.rows_mut(offset, v.len()).copy_from(v);
+    out
+}
+
+/// Every entry finite, or a numerical error naming the matrix.
+pub fn check_finite(what: &str, m: &DMatrix<f64>) -> Result<()> {
+    if m.iter().all(|v| v.is_finite()) {
+        Ok(())
+    } else {
+        Err(Error::numerical(format!("{what} has non-finite entries")))
+    }
+}

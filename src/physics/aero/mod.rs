@@ -1,1 +1,270 @@
-//! (in progress)
+//! Strip aerodynamics (MODEL.md §5): one interface, one model per file.
+//!
+//! Every model is a [`StripModel`]: given one strip's rigid flow ([`Station`]), its local
+//! kinematics (twist `φ`, flap `u` and their rates) and its own aerodynamic states `z`, it returns
+//! the loads per unit span — the moment `m_φ` toward feather and the force `f_u` downwind — and the
+//! state rates `ż`, with their exact partial derivatives. Apparent-mass loads (proportional to
+//! `φ̈`, `ü`) are a separate, constant matrix so the system can move them into its mass matrix.
+//! The system (`physics::system`) does the spanwise Galerkin projection; a model never sees the
+//! basis functions.
+//!
+//! Ordering convention, used everywhere in this interface: loads `[m_φ, f_u]`, kinematics
+//! `[φ, u, φ̇, u̇]`, apparent-mass inputs `[φ̈, ü]` — torsion first, as in `q = [q_φ; q_u]`.
+//!
+//! Adding a model (e.g. ONERA, §5.3): implement [`StripModel`] in its own file, including
+//! `steady_states` (the states that make `ż = 0` for a static deflection, with their derivative,
+//! so the equilibrium solve needs no special case) and add it to [`model_for`].
+
+pub mod onera;
+pub mod quasi_steady;
+pub mod theodorsen;
+
+use crate::error::{Error, Result};
+use crate::physics::inflow::Station;
+use crate::preset::{AeroModel, Preset};
+
+/// Local kinematics of one strip, in the blade's sign conventions (MODEL.md §1).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Kinematics {
+    /// Elastic twist φ (rad, toward feather).
+    pub phi: f64,
+    /// Flap displacement u (m, downwind).
+    pub u: f64,
+    /// φ̇ (rad/s).
+    pub phi_dot: f64,
+    /// u̇ (m/s).
+    pub u_dot: f64,
+}
+
+/// The per-length section and air data every strip model needs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StripSection {
+    /// Chord c (m).
+    pub chord: f64,
+    /// e_a = x_EA − x_AC (m), positive when the elastic axis is aft of the aerodynamic centre.
+    pub ea_offset: f64,
+    /// Air density ρ_a (kg/m³).
+    pub air_density: f64,
+    /// Lift-curve slope a0 (1/rad).
+    pub lift_slope: f64,
+    /// Profile drag coefficient C_D0.
+    pub drag_coefficient: f64,
+}
+
+impl StripSection {
+    pub fn from_preset(p: &Preset) -> StripSection {
+        StripSection {
+            chord: p.section.chord,
+            ea_offset: p.section.ea_offset,
+            air_density: p.operating.air_density,
+            lift_slope: p.aero.lift_slope,
+            drag_coefficient: p.aero.drag_coefficient,
+        }
+    }
+    /// Semichord b = c/2 (m).
+    pub fn semichord(&self) -> f64 {
+        0.5 * self.chord
+    }
+}
+
+/// One strip's loads, state rates and (when asked) their partial derivatives. Sized once for a
+/// model's state count and reused across stations, so the inner loop does not allocate.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StripEval {
+    /// `[m_φ, f_u]` per unit span (N·m/m, N/m), apparent mass excluded.
+    pub loads: [f64; 2],
+    /// ∂loads/∂[φ, u, φ̇, u̇].
+    pub dloads_dk: [[f64; 4]; 2],
+    /// ∂loads/∂z, `[load][state]`.
+    pub dloads_dz: [Vec<f64>; 2],
+    /// ż.
+    pub zdot: Vec<f64>,
+    /// ∂ż/∂[φ, u, φ̇, u̇], one row per state.
+    pub dzdot_dk: Vec<[f64; 4]>,
+    /// ∂ż/∂z, row-major `states × states`.
+    pub dzdot_dz: Vec<f64>,
+}
+
+impl StripEval {
+    pub fn new(states: usize) -> StripEval {
+        StripEval {
+            loads: [0.0; 2],
+            dloads_dk: [[0.0; 4]; 2],
+            dloads_dz: [vec![0.0; states], vec![0.0; states]],
+            zdot: vec![0.0; states],
+            dzdot_dk: vec![[0.0; 4]; states],
+            dzdot_dz: vec![0.0; states * states],
+        }
+    }
+
+    /// Zero everything (models then only write their non-zero entries).
+    pub fn clear(&mut self) {
+        self.loads = [0.0; 2];
+        self.dloads_dk = [[0.0; 4]; 2];
+        for row in &mut self.dloads_dz {
+            row.fill(0.0);
+        }
+        self.zdot.fill(0.0);
+        self.dzdot_dk.fill([0.0; 4]);
+        self.dzdot_dz.fill(0.0);
+    }
+}
+
+/// The steady aerodynamic states of one strip held at a static deflection.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SteadyStates {
+    /// z such that ż = 0 at φ̇ = u̇ = 0.
+    pub z: Vec<f64>,
+    /// ∂z/∂[φ, u], one row per state.
+    pub dz_dk: Vec<[f64; 2]>,
+}
+
+impl SteadyStates {
+    pub fn new(states: usize) -> SteadyStates {
+        SteadyStates {
+            z: vec![0.0; states],
+            dz_dk: vec![[0.0; 2]; states],
+        }
+    }
+}
+
+/// A strip-theory aerodynamic model (MODEL.md §5).
+pub trait StripModel: Send + Sync + std::fmt::Debug {
+    /// The preset name of the model (`aero.model`).
+    fn name(&self) -> &'static str;
+
+    /// Aerodynamic states per station (0 for quasi-steady).
+    fn states_per_station(&self) -> usize;
+
+    /// Apparent-mass loads: `[m_φ, f_u] += M_a · [φ̈, ü]`, `M_a[load][accel]`. Constant in time;
+    /// the system moves it to the left-hand side (mass matrix).
+    fn apparent_mass(&self, _s: &Station) -> [[f64; 2]; 2] {
+        [[0.0; 2]; 2]
+    }
+
+    /// Loads and state rates at kinematics `k` and states `z`; partial derivatives too when
+    /// `jacobian` is true (otherwise those fields are left as they were).
+    fn evaluate(&self, s: &Station, k: &Kinematics, z: &[f64], out: &mut StripEval, jacobian: bool);
+
+    /// The states for which `ż = 0` when the strip is held at twist `phi` and flap `u` with no
+    /// motion, and their derivative with respect to `[φ, u]`.
+    fn steady_states(&self, s: &Station, phi: f64, u: f64, out: &mut SteadyStates);
+
+    /// How much each state counts next to the structural coordinates when a mode's structural
+    /// share is measured: its contribution to the effective angle of attack per unit state
+    /// (rad per state unit). Zero-length for stateless models.
+    fn state_weights(&self, s: &Station, out: &mut [f64]);
+}
+
+/// `aero.model = "none"`: the structure alone, no loads, no states.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct NoAero;
+
+impl StripModel for NoAero {
+    fn name(&self) -> &'static str {
+        "none"
+    }
+    fn states_per_station(&self) -> usize {
+        0
+    }
+    fn evaluate(&self, _: &Station, _: &Kinematics, _: &[f64], out: &mut StripEval, _: bool) {
+        out.clear();
+    }
+    fn steady_states(&self, _: &Station, _: f64, _: f64, _: &mut SteadyStates) {}
+    fn state_weights(&self, _: &Station, _: &mut [f64]) {}
+}
+
+/// The model a preset selects.
+pub fn model_for(p: &Preset) -> Result<Box<dyn StripModel>> {
+    let section = StripSection::from_preset(p);
+    match p.aero.model {
+        AeroModel::None => Ok(Box::new(NoAero)),
+        AeroModel::QuasiSteady => Ok(Box::new(quasi_steady::QuasiSteady::new(section))),
+        AeroModel::Theodorsen => Ok(Box::new(theodorsen::Theodorsen::new(section))),
+        AeroModel::Onera => Err(Error::usage(
+            "aero.model = \"onera\" is not available yet in this build; use quasi-steady or theodorsen",
+        )),
+    }
+}
+
+#[cfg(test)]
+pub(crate) mod test_support {
+    //! Central-difference checks shared by the model tests.
+    use super::*;
+
+    /// Compare every analytic partial derivative of `model` against central differences at
+    /// kinematics `k` and states `z`; returns the largest relative mismatch.
+    pub fn jacobian_mismatch(model: &dyn StripModel, s: &Station, k: Kinematics, z: &[f64]) -> f64 {
+        let ns = model.states_per_station();
+        let mut exact = StripEval::new(ns);
+        model.evaluate(s, &k, z, &mut exact, true);
+        let mut worst: f64 = 0.0;
+        let mut compare = |analytic: f64, numeric: f64| {
+            let scale = analytic.abs().max(numeric.abs()).max(1e-6);
+            worst = worst.max((analytic - numeric).abs() / scale);
+        };
+        let h = 1e-6;
+        for j in 0..4 {
+            let shifted = |d: f64| {
+                let mut kk = k;
+                match j {
+                    0 => kk.phi += d,
+                    1 => kk.u += d,
+                    2 => kk.phi_dot += d,
+                    _ => kk.u_dot += d,
+                }
+                let mut e = StripEval::new(ns);
+                model.evaluate(s, &kk, z, &mut e, false);
+                e
+            };
+            let (p, m) = (shifted(h), shifted(-h));
+            for l in 0..2 {
+                compare(exact.dloads_dk[l][j], (p.loads[l] - m.loads[l]) / (2.0 * h));
+            }
+            for i in 0..ns {
+                compare(exact.dzdot_dk[i][j], (p.zdot[i] - m.zdot[i]) / (2.0 * h));
+            }
+        }
+        for j in 0..ns {
+            let shifted = |d: f64| {
+                let mut zz = z.to_vec();
+                zz[j] += d;
+                let mut e = StripEval::new(ns);
+                model.evaluate(s, &k, &zz, &mut e, false);
+                e
+            };
+            let (p, m) = (shifted(h), shifted(-h));
+            for l in 0..2 {
+                compare(exact.dloads_dz[l][j], (p.loads[l] - m.loads[l]) / (2.0 * h));
+            }
+            for i in 0..ns {
+                compare(
+                    exact.dzdot_dz[i * ns + j],
+                    (p.zdot[i] - m.zdot[i]) / (2.0 * h),
+                );
+            }
+        }
+        worst
+    }
+
+    pub fn station() -> Station {
+        Station {
+            x: 3.0,
+            weight: 0.5,
+            radius: 3.5,
+            v0: 42.0,
+            psi: 0.35,
+            alpha_r: 0.12,
+        }
+    }
+
+    pub fn section() -> StripSection {
+        StripSection {
+            chord: 0.5,
+            ea_offset: 0.06,
+            air_density: 1.225,
+            lift_slope: 6.0,
+            drag_coefficient: 0.01,
+        }
+    }
+}

@@ -1,0 +1,206 @@
+//! The explorer without a terminal or threads: effects are carried out synchronously, in order,
+//! so a frame is a pure function of the preset and the keys pressed (snapshots, tests,
+//! benchmarks). The tip simulation runs for a fixed number of samples instead of real time.
+
+use crate::cli::{MarkerKind, ViewKind};
+use crate::error::{Error, Result};
+use crate::explorer::engine::Engine;
+use crate::explorer::keys::Action;
+use crate::explorer::state::{update, AppState, Effect, Msg, Options, PresetEntry};
+use crate::explorer::worker::guarded;
+use crate::preset::{builtin_names, Preset};
+use ratatui::backend::TestBackend;
+use ratatui::buffer::CellWidth;
+use ratatui::Terminal;
+
+/// Samples a headless run simulates: one `simulation.duration` at `simulation.sample_rate`
+/// (what the response pane holds), capped so a long preset cannot stall a snapshot.
+pub fn fixed_samples(p: &Preset) -> usize {
+    const CAP: f64 = 20_000.0;
+    (p.simulation.duration * p.simulation.sample_rate)
+        .round()
+        .clamp(1.0, CAP) as usize
+}
+
+/// Carry out `effects` and every effect they lead to, synchronously.
+pub fn settle(state: &mut AppState, engine: &dyn Engine, effects: Vec<Effect>) {
+    let mut queue: std::collections::VecDeque<Effect> = effects.into();
+    while let Some(effect) = queue.pop_front() {
+        let msgs: Vec<Msg> = match effect {
+            Effect::Solve { gen, preset } => {
+                let mut msgs = vec![Msg::Solved {
+                    gen,
+                    result: guarded("solve", || engine.solve(&preset)),
+                }];
+                match guarded("simulation", || engine.stream(&preset)) {
+                    Ok(mut stream) => {
+                        let n = fixed_samples(&preset);
+                        match guarded("simulation", || {
+                            let samples = stream.advance(n)?;
+                            Ok((samples, stream.status()))
+                        }) {
+                            Ok((samples, status)) => msgs.push(Msg::Samples {
+                                gen,
+                                samples,
+                                status,
+                            }),
+                            Err(error) => msgs.push(Msg::SimFailed { gen, error }),
+                        }
+                    }
+                    Err(error) => msgs.push(Msg::SimFailed { gen, error }),
+                }
+                msgs
+            }
+            Effect::Boundary {
+                gen,
+                preset,
+                key,
+                from,
+                to,
+                points,
+            } => vec![Msg::Boundary {
+                gen,
+                key: key.to_string(),
+                result: guarded("boundary search", || {
+                    engine.boundary(&preset, key, from, to, points)
+                }),
+            }],
+            Effect::Campbell { gen, preset, grid } => vec![Msg::Campbell {
+                gen,
+                result: guarded("Campbell sweep", || engine.campbell(&preset, &grid)),
+            }],
+            // No running simulation to kick or pause between headless frames.
+            Effect::Kick { .. } | Effect::Pause(_) | Effect::Quit => Vec::new(),
+        };
+        for m in msgs {
+            queue.extend(update(state, m));
+        }
+    }
+}
+
+/// Press `actions` in order, settling after each.
+pub fn press(state: &mut AppState, engine: &dyn Engine, actions: &[Action]) {
+    for a in actions {
+        let effects = update(state, Msg::Action(*a));
+        settle(state, engine, effects);
+    }
+}
+
+/// The presets `[`/`]` cycle through: the built-ins, with `first` (a loaded file or a built-in
+/// with `--set` overrides) in its built-in's place or in front. Returns the entries and the index
+/// of `first`.
+pub fn preset_entries(first_name: &str, first: Preset) -> (Vec<PresetEntry>, usize) {
+    let mut entries = Vec::new();
+    let mut index = None;
+    for name in builtin_names() {
+        if name == first_name {
+            index = Some(entries.len());
+            entries.push(PresetEntry {
+                name: name.to_string(),
+                preset: first.clone(),
+            });
+        } else if let Ok(p) = Preset::load(name, &[]) {
+            entries.push(PresetEntry {
+                name: name.to_string(),
+                preset: p,
+            });
+        }
+    }
+    let index = match index {
+        Some(i) => i,
+        None => {
+            entries.insert(
+                0,
+                PresetEntry {
+                    name: first.display_name().to_string(),
+                    preset: first,
+                },
+            );
+            0
+        }
+    };
+    (entries, index)
+}
+
+/// A settled explorer on `preset` in `view`, as the snapshot command and the tests see it.
+pub fn settled_state(
+    name: &str,
+    preset: Preset,
+    engine: &dyn Engine,
+    view: ViewKind,
+    marker: MarkerKind,
+) -> AppState {
+    let (entries, index) = preset_entries(name, preset);
+    let opts = Options {
+        color: crate::cli::ColorMode::None,
+        marker,
+    };
+    let mut state = AppState::new(entries, index, opts);
+    let effects = state.start();
+    settle(&mut state, engine, effects);
+    match view {
+        ViewKind::Main => {}
+        ViewKind::Campbell => press(&mut state, engine, &[Action::ToggleCampbell]),
+        ViewKind::Help => press(&mut state, engine, &[Action::ToggleHelp]),
+    }
+    state
+}
+
+/// Parse `COLSxROWS`; at least 80×24 (the smallest layout), at most 1000×500.
+pub fn parse_size(text: &str) -> Result<(u16, u16)> {
+    let bad = |why: &str| {
+        Error::usage(format!(
+            "--size '{text}': {why}; expected COLSxROWS between 80x24 and 1000x500, e.g. 120x40"
+        ))
+    };
+    let (w, h) = text
+        .trim()
+        .split_once(['x', 'X'])
+        .ok_or_else(|| bad("missing 'x'"))?;
+    let num = |s: &str| -> Result<u16> {
+        s.trim()
+            .parse::<u16>()
+            .map_err(|_| bad(&format!("'{s}' is not a whole number")))
+    };
+    let (w, h) = (num(w)?, num(h)?);
+    if w < 80 || h < 24 {
+        return Err(bad("smaller than 80x24, the smallest explorer layout"));
+    }
+    if w > 1000 || h > 500 {
+        return Err(bad("larger than 1000x500"));
+    }
+    Ok((w, h))
+}
+
+/// Render `state` into a `cols × rows` buffer and return it as text, one line per row, trailing
+/// spaces trimmed.
+pub fn render_text(state: &AppState, cols: u16, rows: u16) -> String {
+    let mut terminal = match Terminal::new(TestBackend::new(cols, rows)) {
+        Ok(t) => t,
+        Err(never) => match never {},
+    };
+    let frame = match terminal.draw(|f| crate::explorer::ui::render(state, f)) {
+        Ok(f) => f,
+        Err(never) => match never {},
+    };
+    buffer_text(frame.buffer)
+}
+
+/// A buffer as plain text (symbols only), trailing spaces trimmed.
+pub fn buffer_text(buf: &ratatui::buffer::Buffer) -> String {
+    let width = buf.area.width as usize;
+    let mut out = String::with_capacity(buf.content.len() + buf.area.height as usize);
+    for row in buf.content.chunks(width.max(1)) {
+        let mut line = String::with_capacity(width);
+        let mut skip = 0u16;
+        for cell in row {
+            if skip == 0 {
+                line.push_str(cell.symbol());
+            }
+            skip = skip.max(cell.cell_width()).saturating_sub(1);
+        }
+        out.push_str(line.trim_end());
+        out.push('\n');
+    }
+    out
+}

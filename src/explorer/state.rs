@@ -1,0 +1,734 @@
+//! The explorer's state and the one function that changes it. [`update`] takes a message (a key
+//! action or a worker result), changes [`AppState`] and returns the [`Effect`]s to carry out; it
+//! does no I/O, so key sequences are tested without a terminal or a worker.
+
+use crate::analysis::eigen::Mode;
+use crate::analysis::flutter::Boundary;
+use crate::analysis::simulate::{RunStatus, TipSample};
+use crate::analysis::sweep::TrackedSweep;
+use crate::cli::{ColorMode, MarkerKind};
+use crate::explorer::engine::Solved;
+use crate::explorer::keys::Action;
+use crate::preset::{key_spec, AeroModel, Preset};
+use std::sync::Arc;
+
+/// Grid points the background boundary search brackets on (as `flutterscope flutter`).
+pub const BOUNDARY_POINTS: usize = 41;
+/// Rotor speeds in the Campbell diagram, 0 to `view.rotor_speed_max`.
+pub const CAMPBELL_POINTS: usize = 41;
+/// Earlier pole positions kept as the fading trail while parameters move.
+pub const TRAIL_LEN: usize = 12;
+/// Tip kick when the preset gives none: a 1° twist and a flap of 1 % of the span, small against
+/// the operating pitch so the response stays in the linear range.
+pub const KICK_TWIST_DEG: f64 = 1.0;
+pub const KICK_FLAP_SPAN_FRACTION: f64 = 0.01;
+
+/// How a parameter row is changed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ParamKind {
+    /// A numeric preset key with fine and coarse steps and display decimals.
+    Number {
+        key: &'static str,
+        step: f64,
+        coarse: f64,
+        decimals: usize,
+        /// Whether the background boundary search runs along this key when it is selected.
+        boundary: bool,
+    },
+    /// `aero.model`, cycled.
+    Aero,
+}
+
+/// One row of the parameters pane.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Param {
+    pub label: &'static str,
+    pub kind: ParamKind,
+}
+
+const fn number(
+    label: &'static str,
+    key: &'static str,
+    step: f64,
+    coarse: f64,
+    decimals: usize,
+    boundary: bool,
+) -> Param {
+    Param {
+        label,
+        kind: ParamKind::Number {
+            key,
+            step,
+            coarse,
+            decimals,
+            boundary,
+        },
+    }
+}
+
+/// The parameters the explorer varies, in pane order.
+pub static PARAMS: &[Param] = &[
+    number("ply angle", "section.ply_angle", 1.0, 5.0, 1, true),
+    number("wind speed", "operating.wind_speed", 0.5, 5.0, 1, true),
+    number("rotor speed", "operating.rotor_speed", 1.0, 10.0, 0, true),
+    number("pitch", "operating.pitch", 0.5, 5.0, 1, true),
+    Param {
+        label: "aero model",
+        kind: ParamKind::Aero,
+    },
+    number("modes N", "structure.modes", 1.0, 5.0, 0, false),
+    number(
+        "loss factor",
+        "structure.loss_factor",
+        0.005,
+        0.05,
+        3,
+        false,
+    ),
+];
+
+/// The slider range of a numeric key: the key table's range, with wind and rotor speed capped by
+/// the preset's `view` maxima (but never below the current value).
+pub fn param_bounds(p: &Preset, key: &str) -> (f64, f64) {
+    let Ok(spec) = key_spec(key) else {
+        return (f64::NEG_INFINITY, f64::INFINITY);
+    };
+    let (lo, mut hi) = (spec.min, spec.max);
+    let cur = (spec.get)(p);
+    match key {
+        "operating.rotor_speed" => hi = p.view.rotor_speed_max.max(cur),
+        "operating.wind_speed" => hi = p.view.wind_speed_max.max(cur),
+        _ => {}
+    }
+    (lo, hi)
+}
+
+/// The unit of a numeric key.
+pub fn unit(key: &str) -> &'static str {
+    key_spec(key).map(|s| s.unit).unwrap_or("")
+}
+
+/// A named preset the `[`/`]` keys cycle through.
+#[derive(Debug, Clone)]
+pub struct PresetEntry {
+    pub name: String,
+    pub preset: Preset,
+}
+
+/// Display options from the command line.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Options {
+    pub color: ColorMode,
+    pub marker: MarkerKind,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            color: ColorMode::Ansi16,
+            marker: MarkerKind::Braille,
+        }
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ViewMode {
+    Main,
+    Campbell,
+}
+
+/// The streaming tip response of the current parameters.
+#[derive(Debug, Clone, Default)]
+pub struct Response {
+    /// Generation of the parameters these samples belong to.
+    pub gen: u64,
+    pub samples: Vec<TipSample>,
+    pub diverging: bool,
+    pub error: Option<String>,
+}
+
+/// The background boundary search along one key.
+#[derive(Debug, Clone)]
+pub struct BoundaryJob {
+    pub gen: u64,
+    pub key: &'static str,
+    /// Search range and the value it started from.
+    pub from: f64,
+    pub to: f64,
+    pub current: f64,
+    /// Whether the operating point was unstable (the search then looks below it).
+    pub unstable: bool,
+    /// The current value is at the end of the slider in the search direction: no search ran.
+    pub empty_range: bool,
+    /// `None` while running (or when the range is empty).
+    pub result: Option<Result<Boundary, String>>,
+}
+
+/// The Campbell diagram, valid for every preset equal to `for_preset` up to the rotor speed.
+#[derive(Debug, Clone)]
+pub struct CampbellJob {
+    pub gen: u64,
+    pub for_preset: Preset,
+    pub result: Option<Result<TrackedSweep, String>>,
+}
+
+/// Everything the screen shows.
+#[derive(Debug, Clone)]
+pub struct AppState {
+    pub presets: Vec<PresetEntry>,
+    pub preset_index: usize,
+    /// The parameters being explored.
+    pub preset: Preset,
+    pub focus: usize,
+    /// Bumped on every parameter change; results of older generations are ignored.
+    pub gen: u64,
+    /// The generation of `solved` (or of the error that replaced it).
+    pub solved_gen: u64,
+    pub solved: Option<Solved>,
+    pub solve_error: Option<String>,
+    /// Modes before the last change, for the trend arrows.
+    pub prev_modes: Vec<Mode>,
+    /// Earlier pole positions (σ, ω), newest first.
+    pub trails: Vec<Vec<(f64, f64)>>,
+    pub response: Response,
+    pub boundary_key: &'static str,
+    pub boundary: Option<BoundaryJob>,
+    pub campbell: Option<CampbellJob>,
+    pub view: ViewMode,
+    pub help: bool,
+    pub paused: bool,
+    pub opts: Options,
+    /// One-line note for the user (cleared by the next key).
+    pub notice: Option<String>,
+    /// The worker failed outside a job (e.g. had to be restarted).
+    pub worker_error: Option<String>,
+    pub quit: bool,
+    /// Why the explorer quit on its own (reported after the terminal is restored).
+    pub exit_error: Option<String>,
+    /// Something visible changed since the last frame.
+    pub dirty: bool,
+}
+
+/// Inputs to [`update`].
+#[derive(Debug, Clone)]
+pub enum Msg {
+    Action(Action),
+    /// The terminal changed size: redraw.
+    Resize,
+    Solved {
+        gen: u64,
+        result: Result<Solved, String>,
+    },
+    Samples {
+        gen: u64,
+        samples: Vec<TipSample>,
+        status: RunStatus,
+    },
+    SimFailed {
+        gen: u64,
+        error: String,
+    },
+    Boundary {
+        gen: u64,
+        key: String,
+        result: Result<Boundary, String>,
+    },
+    Campbell {
+        gen: u64,
+        result: Result<TrackedSweep, String>,
+    },
+    /// The worker died and was restarted (or could not be).
+    WorkerFailed(String),
+    /// Terminal input failed (e.g. stdin closed): the explorer cannot be driven, so it quits.
+    InputClosed(String),
+}
+
+/// What [`update`] asks the outside world to do.
+#[derive(Debug, Clone)]
+pub enum Effect {
+    /// Solve these parameters and restart the tip simulation from them.
+    Solve {
+        gen: u64,
+        preset: Arc<Preset>,
+    },
+    Boundary {
+        gen: u64,
+        preset: Arc<Preset>,
+        key: &'static str,
+        from: f64,
+        to: f64,
+        points: usize,
+    },
+    Campbell {
+        gen: u64,
+        preset: Arc<Preset>,
+        grid: Vec<f64>,
+    },
+    /// Kick the running simulation of generation `gen`.
+    Kick {
+        gen: u64,
+        twist_rad: f64,
+        flap_m: f64,
+    },
+    Pause(bool),
+    Quit,
+}
+
+impl AppState {
+    /// A state showing `presets[index]`; call [`AppState::start`] for the first effects.
+    pub fn new(presets: Vec<PresetEntry>, index: usize, opts: Options) -> AppState {
+        assert!(
+            !presets.is_empty(),
+            "the explorer needs at least one preset"
+        );
+        let index = index.min(presets.len() - 1);
+        let preset = presets[index].preset.clone();
+        AppState {
+            presets,
+            preset_index: index,
+            preset,
+            focus: 0,
+            gen: 0,
+            solved_gen: 0,
+            solved: None,
+            solve_error: None,
+            prev_modes: Vec::new(),
+            trails: Vec::new(),
+            response: Response::default(),
+            boundary_key: "operating.rotor_speed",
+            boundary: None,
+            campbell: None,
+            view: ViewMode::Main,
+            help: false,
+            paused: false,
+            opts,
+            notice: None,
+            worker_error: None,
+            quit: false,
+            exit_error: None,
+            dirty: true,
+        }
+    }
+
+    /// The first request: solve the starting parameters.
+    pub fn start(&mut self) -> Vec<Effect> {
+        self.gen += 1;
+        vec![self.solve_effect()]
+    }
+
+    /// Still waiting for the solve of the current parameters.
+    pub fn solving(&self) -> bool {
+        self.solved_gen != self.gen
+    }
+
+    pub fn focused(&self) -> &'static Param {
+        &PARAMS[self.focus]
+    }
+
+    /// The value of a parameter row as text with its unit.
+    pub fn param_text(&self, param: &Param) -> String {
+        match param.kind {
+            ParamKind::Aero => self.preset.aero.model.name().to_string(),
+            ParamKind::Number { key, decimals, .. } => {
+                let v = self.preset.get(key).unwrap_or(f64::NAN);
+                let u = unit(key);
+                if u.is_empty() {
+                    format!("{v:.decimals$}")
+                } else {
+                    format!("{v:.decimals$} {u}")
+                }
+            }
+        }
+    }
+
+    /// The tip kick: the preset's, or [`KICK_TWIST_DEG`] and [`KICK_FLAP_SPAN_FRACTION`].
+    pub fn kick_amounts(&self) -> (f64, f64) {
+        let s = &self.preset.simulation;
+        if s.kick_twist != 0.0 || s.kick_flap != 0.0 {
+            (s.kick_twist.to_radians(), s.kick_flap)
+        } else {
+            (
+                KICK_TWIST_DEG.to_radians(),
+                KICK_FLAP_SPAN_FRACTION * self.preset.blade.length,
+            )
+        }
+    }
+
+    fn solve_effect(&self) -> Effect {
+        Effect::Solve {
+            gen: self.gen,
+            preset: Arc::new(self.preset.clone()),
+        }
+    }
+
+    /// The parameters changed: new generation, re-solve.
+    fn changed(&mut self) -> Vec<Effect> {
+        self.gen += 1;
+        vec![self.solve_effect()]
+    }
+
+    /// Load preset entry `index` (or the current one again for reset).
+    fn load_entry(&mut self, index: usize) -> Vec<Effect> {
+        self.preset_index = index;
+        self.preset = self.presets[index].preset.clone();
+        self.trails.clear();
+        self.prev_modes.clear();
+        self.changed()
+    }
+
+    /// A boundary search along the current boundary key, once the verdict is known.
+    fn boundary_effect(&mut self) -> Option<Effect> {
+        let solved = self.solved.as_ref()?;
+        if self.solved_gen != self.gen {
+            return None;
+        }
+        let key = self.boundary_key;
+        let current = self.preset.get(key).ok()?;
+        let (lo, hi) = param_bounds(&self.preset, key);
+        let unstable = !solved.stability.stable;
+        let (from, to) = if unstable {
+            (lo, current)
+        } else {
+            (current, hi)
+        };
+        let mut job = BoundaryJob {
+            gen: self.gen,
+            key,
+            from,
+            to,
+            current,
+            unstable,
+            empty_range: false,
+            result: None,
+        };
+        if to <= from {
+            // At the end of the slider: nothing to search.
+            job.empty_range = true;
+            self.boundary = Some(job);
+            return None;
+        }
+        self.boundary = Some(job);
+        Some(Effect::Boundary {
+            gen: self.gen,
+            preset: Arc::new(self.preset.clone()),
+            key,
+            from,
+            to,
+            points: BOUNDARY_POINTS,
+        })
+    }
+
+    /// The preset as the Campbell diagram sees it (rotor speed is its axis).
+    fn campbell_key(&self) -> Preset {
+        let mut p = self.preset.clone();
+        p.operating.rotor_speed = 0.0;
+        p
+    }
+
+    /// The Campbell diagram is current for these parameters (or being computed for them).
+    pub fn campbell_current(&self) -> bool {
+        self.campbell
+            .as_ref()
+            .is_some_and(|c| c.for_preset == self.campbell_key())
+    }
+
+    fn campbell_effect(&mut self) -> Option<Effect> {
+        if self.view != ViewMode::Campbell || self.campbell_current() {
+            return None;
+        }
+        let max = self.preset.view.rotor_speed_max;
+        let grid: Vec<f64> = (0..CAMPBELL_POINTS)
+            .map(|i| max * i as f64 / (CAMPBELL_POINTS - 1) as f64)
+            .collect();
+        self.campbell = Some(CampbellJob {
+            gen: self.gen,
+            for_preset: self.campbell_key(),
+            result: None,
+        });
+        Some(Effect::Campbell {
+            gen: self.gen,
+            preset: Arc::new(self.preset.clone()),
+            grid,
+        })
+    }
+
+    /// Step the focused parameter by `steps` fine or coarse steps.
+    fn adjust(&mut self, up: bool, coarse: bool) -> Vec<Effect> {
+        match self.focused().kind {
+            ParamKind::Aero => {
+                let all = AeroModel::ALL;
+                let i = all
+                    .iter()
+                    .position(|m| *m == self.preset.aero.model)
+                    .unwrap_or(0);
+                let j = if up {
+                    (i + 1) % all.len()
+                } else {
+                    (i + all.len() - 1) % all.len()
+                };
+                self.preset.aero.model = all[j];
+                self.changed()
+            }
+            ParamKind::Number {
+                key,
+                step,
+                coarse: coarse_step,
+                ..
+            } => {
+                let step = if coarse { coarse_step } else { step };
+                let Ok(v) = self.preset.get(key) else {
+                    return Vec::new();
+                };
+                let (lo, hi) = param_bounds(&self.preset, key);
+                // Snap to the step grid, then clamp; round away float drift.
+                let k = v / step;
+                let next = if up {
+                    ((k + 1e-9).floor() + 1.0) * step
+                } else {
+                    ((k - 1e-9).ceil() - 1.0) * step
+                };
+                let next = (next.clamp(lo, hi) * 1e9).round() / 1e9;
+                if next == v {
+                    self.notice = Some(format!(
+                        "{} is at its {} ({})",
+                        self.focused().label,
+                        if up { "maximum" } else { "minimum" },
+                        self.param_text(self.focused())
+                    ));
+                    return Vec::new();
+                }
+                match self.preset.set(key, next) {
+                    Ok(()) => self.changed(),
+                    Err(e) => {
+                        self.notice = Some(e.to_string());
+                        Vec::new()
+                    }
+                }
+            }
+        }
+    }
+
+    fn on_action(&mut self, action: Action) -> Vec<Effect> {
+        self.notice = None;
+        match action {
+            Action::FocusPrev | Action::FocusNext => {
+                let n = PARAMS.len();
+                self.focus = if action == Action::FocusNext {
+                    (self.focus + 1) % n
+                } else {
+                    (self.focus + n - 1) % n
+                };
+                self.trails.clear();
+                if let ParamKind::Number {
+                    key,
+                    boundary: true,
+                    ..
+                } = self.focused().kind
+                {
+                    if key != self.boundary_key {
+                        self.boundary_key = key;
+                        return self.boundary_effect().into_iter().collect();
+                    }
+                }
+                Vec::new()
+            }
+            Action::Decrease => self.adjust(false, false),
+            Action::Increase => self.adjust(true, false),
+            Action::DecreaseCoarse => self.adjust(false, true),
+            Action::IncreaseCoarse => self.adjust(true, true),
+            Action::PrevPreset | Action::NextPreset => {
+                let n = self.presets.len();
+                if n < 2 {
+                    self.notice = Some("no other presets to cycle through".into());
+                    return Vec::new();
+                }
+                let i = if action == Action::NextPreset {
+                    (self.preset_index + 1) % n
+                } else {
+                    (self.preset_index + n - 1) % n
+                };
+                self.load_entry(i)
+            }
+            Action::CycleAero => {
+                self.preset.aero.model = self.preset.aero.model.next();
+                self.changed()
+            }
+            Action::TogglePause => {
+                self.paused = !self.paused;
+                vec![Effect::Pause(self.paused)]
+            }
+            Action::Reset => self.load_entry(self.preset_index),
+            Action::Kick => {
+                if self.response.diverging {
+                    self.notice = Some("the response diverged; press r to restart it".into());
+                    return Vec::new();
+                }
+                let (twist_rad, flap_m) = self.kick_amounts();
+                let mut out = Vec::new();
+                if self.paused {
+                    self.paused = false;
+                    out.push(Effect::Pause(false));
+                }
+                out.push(Effect::Kick {
+                    gen: self.gen,
+                    twist_rad,
+                    flap_m,
+                });
+                out
+            }
+            Action::Boundary => {
+                if self.solved.is_none() || self.solving() {
+                    self.notice = Some("the boundary search starts once the solve is done".into());
+                    return Vec::new();
+                }
+                self.boundary_effect().into_iter().collect()
+            }
+            Action::ToggleCampbell => {
+                self.view = match self.view {
+                    ViewMode::Main => ViewMode::Campbell,
+                    ViewMode::Campbell => ViewMode::Main,
+                };
+                self.campbell_effect().into_iter().collect()
+            }
+            Action::CycleMarker => {
+                self.opts.marker = match self.opts.marker {
+                    MarkerKind::Braille => MarkerKind::Halfblock,
+                    MarkerKind::Halfblock => MarkerKind::Block,
+                    MarkerKind::Block => MarkerKind::Dot,
+                    MarkerKind::Dot => MarkerKind::Braille,
+                };
+                Vec::new()
+            }
+            Action::ToggleHelp => {
+                self.help = !self.help;
+                Vec::new()
+            }
+            Action::Back => {
+                if self.help {
+                    self.help = false;
+                } else if self.view == ViewMode::Campbell {
+                    self.view = ViewMode::Main;
+                }
+                Vec::new()
+            }
+            Action::Quit => {
+                self.quit = true;
+                vec![Effect::Quit]
+            }
+        }
+    }
+
+    fn on_solved(&mut self, gen: u64, result: Result<Solved, String>) -> Vec<Effect> {
+        self.solved_gen = gen;
+        match result {
+            Ok(solved) => {
+                if let Some(old) = self.solved.take() {
+                    let poles: Vec<(f64, f64)> = old
+                        .stability
+                        .eigenvalues
+                        .iter()
+                        .map(|m| (m.re, m.im))
+                        .collect();
+                    self.trails.insert(0, poles);
+                    self.trails.truncate(TRAIL_LEN);
+                    self.prev_modes = old.stability.eigenvalues;
+                }
+                self.solved = Some(solved);
+                self.solve_error = None;
+                let mut out: Vec<Effect> = self.boundary_effect().into_iter().collect();
+                out.extend(self.campbell_effect());
+                out
+            }
+            Err(e) => {
+                if let Some(old) = self.solved.take() {
+                    self.prev_modes = old.stability.eigenvalues;
+                }
+                self.solve_error = Some(e);
+                self.boundary = None;
+                Vec::new()
+            }
+        }
+    }
+}
+
+/// Apply one message. Returns the effects to carry out, in order.
+pub fn update(s: &mut AppState, msg: Msg) -> Vec<Effect> {
+    let visible = match &msg {
+        Msg::Action(_) | Msg::Resize | Msg::WorkerFailed(_) | Msg::InputClosed(_) => true,
+        Msg::Solved { gen, .. } | Msg::Samples { gen, .. } | Msg::SimFailed { gen, .. } => {
+            *gen == s.gen
+        }
+        Msg::Boundary { gen, key, .. } => {
+            s.boundary
+                .as_ref()
+                .is_some_and(|b| b.gen == *gen && b.key == key.as_str())
+                && *gen == s.gen
+        }
+        Msg::Campbell { gen, .. } => s.campbell.as_ref().is_some_and(|c| c.gen == *gen),
+    };
+    if !visible {
+        // A stale result: the parameters moved on since it was asked for.
+        return Vec::new();
+    }
+    s.dirty = true;
+    match msg {
+        Msg::Action(a) => s.on_action(a),
+        Msg::Resize => Vec::new(),
+        Msg::Solved { gen, result } => s.on_solved(gen, result),
+        Msg::Samples {
+            gen,
+            samples,
+            status,
+        } => {
+            let r = &mut s.response;
+            if r.gen != gen {
+                *r = Response {
+                    gen,
+                    ..Response::default()
+                };
+            }
+            r.samples.extend(samples);
+            r.diverging = status == RunStatus::Diverging;
+            // Keep one simulation duration of history.
+            if let Some(last) = r.samples.last().map(|x| x.t) {
+                let window = s.preset.simulation.duration;
+                let first_kept = r.samples.partition_point(|x| x.t < last - window);
+                if first_kept > 0 {
+                    r.samples.drain(..first_kept);
+                }
+            }
+            Vec::new()
+        }
+        Msg::SimFailed { gen, error } => {
+            if s.response.gen != gen {
+                s.response = Response {
+                    gen,
+                    ..Response::default()
+                };
+            }
+            s.response.error = Some(error);
+            Vec::new()
+        }
+        Msg::Boundary { result, .. } => {
+            if let Some(b) = s.boundary.as_mut() {
+                b.result = Some(result);
+            }
+            Vec::new()
+        }
+        Msg::Campbell { result, .. } => {
+            if let Some(c) = s.campbell.as_mut() {
+                c.result = Some(result);
+            }
+            Vec::new()
+        }
+        Msg::WorkerFailed(e) => {
+            s.worker_error = Some(e);
+            Vec::new()
+        }
+        Msg::InputClosed(e) => {
+            s.quit = true;
+            s.exit_error = Some(e);
+            vec![Effect::Quit]
+        }
+    }
+}

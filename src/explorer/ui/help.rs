@@ -1,0 +1,43 @@
+//! The help overlay, generated from the key table that handles the keys.
+
+use super::{centered, pane, Theme};
+use crate::explorer::keys::BINDINGS;
+use ratatui::layout::Rect;
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Clear, Paragraph, Wrap};
+use ratatui::Frame;
+
+pub fn render(theme: &Theme, frame: &mut Frame, area: Rect) {
+    let key_w = BINDINGS
+        .iter()
+        .map(|b| b.shown.chars().count())
+        .max()
+        .unwrap_or(0);
+    let mut lines: Vec<Line> = BINDINGS
+        .iter()
+        .map(|b| {
+            Line::from(vec![
+                Span::styled(format!(" {:<key_w$}  ", b.shown), theme.title()),
+                Span::raw(b.help),
+            ])
+        })
+        .collect();
+    lines.push(Line::from(""));
+    for note in [
+        " Parameters marked * differ from the preset. The margin in the status line comes from a",
+        " boundary search along the selected parameter (ply angle, wind, rotor speed or pitch),",
+        " run in the background. Root locus: σ on an asinh axis, ω on a log axis.",
+    ] {
+        lines.push(Line::styled(note, theme.dim()));
+    }
+    let width = lines.iter().map(|l| l.width() as u16).max().unwrap_or(40) + 3;
+    let height = lines.len() as u16 + 2;
+    let popup = centered(area, width, height);
+    frame.render_widget(Clear, popup);
+    frame.render_widget(
+        Paragraph::new(lines)
+            .wrap(Wrap { trim: false })
+            .block(pane(" Keys (? or Esc closes) ", theme)),
+        popup,
+    );
+}

@@ -1,0 +1,125 @@
+//! The modes table: frequency, damping ratio and growth rate of each structural mode, its label,
+//! and the trend (↑ ↓) since the last parameter change. The least-damped mode is highlighted.
+
+use super::{pane, sig, Theme};
+use crate::analysis::eigen::Mode;
+use crate::explorer::state::AppState;
+use ratatui::layout::{Constraint, Rect};
+use ratatui::style::Style;
+use ratatui::text::Line;
+use ratatui::widgets::{Cell, Paragraph, Row, Table};
+use ratatui::Frame;
+
+/// Changes smaller than this (relative for frequency, absolute for ζ) show no arrow.
+const TREND_TOL: f64 = 1e-6;
+
+/// ↑, ↓ or blank comparing `now` with `before`.
+pub fn trend(now: f64, before: Option<f64>, relative: bool) -> &'static str {
+    let Some(b) = before else {
+        return " ";
+    };
+    let tol = if relative {
+        TREND_TOL * b.abs().max(1e-300)
+    } else {
+        TREND_TOL
+    };
+    if now > b + tol {
+        "↑"
+    } else if now < b - tol {
+        "↓"
+    } else {
+        "·"
+    }
+}
+
+/// The mode of the same label before the last change.
+fn previous<'a>(prev: &'a [Mode], m: &Mode) -> Option<&'a Mode> {
+    prev.iter().find(|p| p.label == m.label)
+}
+
+pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
+    let Some(solved) = state.solved.as_ref() else {
+        let block = pane(" Modes ", theme);
+        frame.render_widget(
+            Paragraph::new(Line::styled("—", theme.dim())).block(block),
+            area,
+        );
+        return;
+    };
+    let stab = &solved.stability;
+    let title = if stab.aero_lags.is_empty() {
+        " Modes ".to_string()
+    } else {
+        format!(" Modes (+{} aero lags) ", stab.aero_lags.len())
+    };
+    let block = pane(title, theme);
+    let mut modes: Vec<&Mode> = stab.eigenvalues.iter().collect();
+    modes.sort_by(|a, b| a.frequency_hz.total_cmp(&b.frequency_hz));
+    let critical = stab
+        .eigenvalues
+        .iter()
+        .map(|m| m.re)
+        .fold(f64::NEG_INFINITY, f64::max);
+    let rows: Vec<Row> = modes
+        .iter()
+        .enumerate()
+        .map(|(i, m)| {
+            let p = previous(&state.prev_modes, m);
+            let style = if m.re >= 0.0 {
+                theme.flutter()
+            } else if m.re == critical {
+                theme.title()
+            } else {
+                Style::new()
+            };
+            let swatch = if theme.colored() {
+                Style::new().fg(theme.series(i))
+            } else {
+                Style::new()
+            };
+            Row::new(vec![
+                Cell::from(Line::styled(m.label.clone(), swatch)),
+                Cell::from(Line::from(sig(m.frequency_hz, 4)).right_aligned()),
+                Cell::from(trend(m.frequency_hz, p.map(|p| p.frequency_hz), true)),
+                Cell::from(Line::from(sig(m.damping_ratio, 3)).right_aligned()),
+                Cell::from(trend(m.damping_ratio, p.map(|p| p.damping_ratio), false)),
+            ])
+            .style(style)
+        })
+        .collect();
+    let header = Row::new(vec![
+        Cell::from("mode"),
+        Cell::from(Line::from("f Hz").right_aligned()),
+        Cell::from(""),
+        Cell::from(Line::from("ζ").right_aligned()),
+        Cell::from(""),
+    ])
+    .style(theme.dim());
+    let table = Table::new(
+        rows,
+        [
+            Constraint::Min(9),
+            Constraint::Length(9),
+            Constraint::Length(1),
+            Constraint::Length(9),
+            Constraint::Length(1),
+        ],
+    )
+    .header(header)
+    .column_spacing(1)
+    .block(block);
+    frame.render_widget(table, area);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn trend_arrows() {
+        assert_eq!(trend(2.0, Some(1.0), true), "↑");
+        assert_eq!(trend(1.0, Some(2.0), false), "↓");
+        assert_eq!(trend(1.0, Some(1.0), true), "·");
+        assert_eq!(trend(1.0, None, true), " ");
+    }
+}

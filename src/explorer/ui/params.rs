@@ -1,0 +1,71 @@
+//! The parameters pane: the varied parameters with units (the selected one highlighted) and the
+//! live section stiffnesses C22, C23, C33.
+
+use super::{pane, sig, Theme};
+use crate::explorer::state::{AppState, ParamKind, PARAMS};
+use crate::preset::SectionSource;
+use ratatui::layout::Rect;
+use ratatui::text::{Line, Span};
+use ratatui::widgets::Paragraph;
+use ratatui::Frame;
+
+/// Rows: the parameters, a blank, the section header and three stiffnesses, plus borders.
+pub const HEIGHT: u16 = PARAMS.len() as u16 + 5 + 2;
+
+pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
+    let name = &state.presets[state.preset_index].name;
+    let title = format!(
+        " Parameters · {name} [{}/{}] ",
+        state.preset_index + 1,
+        state.presets.len()
+    );
+    let block = pane(title, theme);
+    let inner_w = block.inner(area).width as usize;
+    let label_w = 12;
+    let value_w = inner_w.saturating_sub(label_w + 3);
+    let mut lines: Vec<Line> = Vec::new();
+    for (i, p) in PARAMS.iter().enumerate() {
+        let focused = i == state.focus;
+        let marker = if focused { "▸ " } else { "  " };
+        let value = state.param_text(p);
+        let changed = match p.kind {
+            ParamKind::Number { key, .. } => {
+                state.preset.get(key).ok() != state.presets[state.preset_index].preset.get(key).ok()
+            }
+            ParamKind::Aero => {
+                state.preset.aero.model != state.presets[state.preset_index].preset.aero.model
+            }
+        };
+        let text = format!(
+            "{marker}{:<label_w$}{}{value:>value_w$}",
+            p.label,
+            if changed { "*" } else { " " }
+        );
+        let style = if focused {
+            theme.focus()
+        } else {
+            Default::default()
+        };
+        lines.push(Line::styled(text, style));
+    }
+    lines.push(Line::from(""));
+    let source = match state.preset.section.source {
+        SectionSource::Direct => "direct: ply angle has no effect",
+        SectionSource::Table => "table",
+        SectionSource::Layup => "layup",
+    };
+    lines.push(Line::styled(format!("section ({source})"), theme.dim()));
+    let stiff = |name: &str, v: Option<f64>| {
+        let value = v.map(|v| sig(v, 4)).unwrap_or_else(|| "—".into());
+        Line::from(vec![
+            Span::raw(format!("  {name:<5}")),
+            Span::raw(format!("{value:>12}")),
+            Span::styled(" N·m²", theme.dim()),
+        ])
+    };
+    let sec = state.solved.as_ref().map(|s| s.section);
+    lines.push(stiff("C22", sec.map(|s| s.c22)));
+    lines.push(stiff("C23", sec.map(|s| s.c23)));
+    lines.push(stiff("C33", sec.map(|s| s.c33)));
+    frame.render_widget(Paragraph::new(lines).block(block), area);
+}

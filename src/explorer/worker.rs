@@ -1,0 +1,424 @@
+//! The background threads that own the solver. The event loop sends [`Effect`]s; results come back
+//! as [`Msg`]s on the loop's channel.
+//!
+//! Two threads, so a slow boundary search or Campbell sweep never delays the next solve:
+//! - the **solver** solves the latest parameters (pending requests are drained and only the newest
+//!   is solved), then restarts the tip simulation from them and streams sample batches in real
+//!   time, at most one batch per frame interval; paused, or after the response diverged, it blocks
+//!   on its channel (no polling);
+//! - the **jobs** thread runs the latest boundary search and the latest Campbell sweep.
+//!
+//! Every engine call runs under `catch_unwind`: an error or a panic becomes an `Err` result that the
+//! status line shows, and the thread keeps serving. If a thread dies anyway, the next send spawns
+//! it again and the state is told.
+
+use crate::analysis::simulate::RunStatus;
+use crate::explorer::engine::{Engine, Stream};
+use crate::explorer::state::{Effect, Msg};
+use crate::preset::Preset;
+use crossbeam_channel::{unbounded, Receiver, RecvTimeoutError, Sender};
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+/// Thread names; the terminal's panic hook keeps quiet for these (their panics are caught and
+/// shown in the status line instead of being printed over the screen).
+pub const SOLVER_THREAD: &str = "flutterscope-solver";
+pub const JOBS_THREAD: &str = "flutterscope-jobs";
+
+/// Longest stretch of simulated time caught up in one batch (after a stall or a slow frame), so a
+/// hiccup never turns into a burst of work.
+const MAX_CATCH_UP_S: f64 = 0.25;
+
+enum SolverReq {
+    Solve { gen: u64, preset: Arc<Preset> },
+    Kick { gen: u64, twist: f64, flap: f64 },
+    Pause(bool),
+    Quit,
+}
+
+enum JobReq {
+    Boundary {
+        gen: u64,
+        preset: Arc<Preset>,
+        key: &'static str,
+        from: f64,
+        to: f64,
+        points: usize,
+    },
+    Campbell {
+        gen: u64,
+        preset: Arc<Preset>,
+        grid: Vec<f64>,
+    },
+    Quit,
+}
+
+/// The text of a caught panic.
+pub fn panic_text(payload: &(dyn std::any::Any + Send)) -> String {
+    if let Some(s) = payload.downcast_ref::<&str>() {
+        (*s).to_string()
+    } else if let Some(s) = payload.downcast_ref::<String>() {
+        s.clone()
+    } else {
+        "unknown panic".to_string()
+    }
+}
+
+/// Run an engine call; errors and panics become the message shown to the user.
+pub fn guarded<T>(what: &str, f: impl FnOnce() -> crate::error::Result<T>) -> Result<T, String> {
+    match catch_unwind(AssertUnwindSafe(f)) {
+        Ok(Ok(v)) => Ok(v),
+        Ok(Err(e)) => Err(format!("{what}: {e}")),
+        Err(payload) => Err(format!("{what} panicked: {}", panic_text(&*payload))),
+    }
+}
+
+/// Handle to the worker threads.
+pub struct Worker {
+    engine: Arc<dyn Engine>,
+    out: Sender<Msg>,
+    batch_interval: Duration,
+    solver: Sender<SolverReq>,
+    jobs: Sender<JobReq>,
+    /// The last solve and pause requests, re-sent to a restarted solver.
+    last_solve: Option<(u64, Arc<Preset>)>,
+    paused: bool,
+}
+
+impl Worker {
+    /// Start the threads. Results go to `out`; sample batches are at most one per
+    /// `batch_interval` (the frame interval).
+    pub fn spawn(engine: Arc<dyn Engine>, out: Sender<Msg>, batch_interval: Duration) -> Worker {
+        let solver = spawn_solver(engine.clone(), out.clone(), batch_interval, false);
+        let jobs = spawn_jobs(engine.clone(), out.clone());
+        Worker {
+            engine,
+            out,
+            batch_interval,
+            solver,
+            jobs,
+            last_solve: None,
+            paused: false,
+        }
+    }
+
+    /// Carry out one effect.
+    pub fn send(&mut self, effect: Effect) {
+        match effect {
+            Effect::Solve { gen, preset } => {
+                self.last_solve = Some((gen, preset.clone()));
+                self.to_solver(SolverReq::Solve { gen, preset });
+            }
+            Effect::Kick {
+                gen,
+                twist_rad,
+                flap_m,
+            } => self.to_solver(SolverReq::Kick {
+                gen,
+                twist: twist_rad,
+                flap: flap_m,
+            }),
+            Effect::Pause(p) => {
+                self.paused = p;
+                self.to_solver(SolverReq::Pause(p));
+            }
+            Effect::Boundary {
+                gen,
+                preset,
+                key,
+                from,
+                to,
+                points,
+            } => self.to_jobs(JobReq::Boundary {
+                gen,
+                preset,
+                key,
+                from,
+                to,
+                points,
+            }),
+            Effect::Campbell { gen, preset, grid } => {
+                self.to_jobs(JobReq::Campbell { gen, preset, grid })
+            }
+            Effect::Quit => {
+                let _ = self.solver.send(SolverReq::Quit);
+                let _ = self.jobs.send(JobReq::Quit);
+            }
+        }
+    }
+
+    fn to_solver(&mut self, req: SolverReq) {
+        if let Err(failed) = self.solver.send(req) {
+            let _ = self.out.send(Msg::WorkerFailed(
+                "the solver thread stopped; restarted it".into(),
+            ));
+            self.solver = spawn_solver(
+                self.engine.clone(),
+                self.out.clone(),
+                self.batch_interval,
+                self.paused,
+            );
+            let req = failed.into_inner();
+            if !matches!(req, SolverReq::Solve { .. }) {
+                if let Some((gen, preset)) = self.last_solve.clone() {
+                    let _ = self.solver.send(SolverReq::Solve { gen, preset });
+                }
+            }
+            let _ = self.solver.send(req);
+        }
+    }
+
+    fn to_jobs(&mut self, req: JobReq) {
+        if let Err(failed) = self.jobs.send(req) {
+            let _ = self.out.send(Msg::WorkerFailed(
+                "the background-job thread stopped; restarted it".into(),
+            ));
+            self.jobs = spawn_jobs(self.engine.clone(), self.out.clone());
+            let _ = self.jobs.send(failed.into_inner());
+        }
+    }
+}
+
+fn spawn_solver(
+    engine: Arc<dyn Engine>,
+    out: Sender<Msg>,
+    batch_interval: Duration,
+    paused: bool,
+) -> Sender<SolverReq> {
+    let (tx, rx) = unbounded();
+    let spawned = std::thread::Builder::new()
+        .name(SOLVER_THREAD.into())
+        .spawn(move || {
+            let mut solver = Solver {
+                engine,
+                out,
+                batch_interval,
+                paused,
+                sim: None,
+            };
+            solver.run(&rx);
+        });
+    if let Err(e) = spawned {
+        // The receiver is gone with the closure: the next send fails and retries the spawn.
+        eprintln!("flutterscope: cannot start the solver thread: {e}");
+    }
+    tx
+}
+
+fn spawn_jobs(engine: Arc<dyn Engine>, out: Sender<Msg>) -> Sender<JobReq> {
+    let (tx, rx) = unbounded();
+    let spawned = std::thread::Builder::new()
+        .name(JOBS_THREAD.into())
+        .spawn(move || run_jobs(&*engine, &out, &rx));
+    if let Err(e) = spawned {
+        eprintln!("flutterscope: cannot start the background-job thread: {e}");
+    }
+    tx
+}
+
+/// The running tip simulation.
+struct Sim {
+    gen: u64,
+    stream: Box<dyn Stream>,
+    sample_rate: f64,
+    /// Samples owed but not yet produced (fractional part carried).
+    owed: f64,
+    last_tick: Instant,
+    done: bool,
+}
+
+struct Solver {
+    engine: Arc<dyn Engine>,
+    out: Sender<Msg>,
+    batch_interval: Duration,
+    paused: bool,
+    sim: Option<Sim>,
+}
+
+impl Solver {
+    fn streaming(&self) -> bool {
+        !self.paused && self.sim.as_ref().is_some_and(|s| !s.done)
+    }
+
+    fn run(&mut self, rx: &Receiver<SolverReq>) {
+        loop {
+            // Wait: for a request, or for the next batch when streaming.
+            let first = if self.streaming() {
+                match rx.recv_timeout(self.batch_interval) {
+                    Ok(r) => Some(r),
+                    Err(RecvTimeoutError::Timeout) => None,
+                    Err(RecvTimeoutError::Disconnected) => return,
+                }
+            } else {
+                match rx.recv() {
+                    Ok(r) => Some(r),
+                    Err(_) => return,
+                }
+            };
+            let mut reqs: Vec<SolverReq> = first.into_iter().collect();
+            reqs.extend(rx.try_iter());
+            // Latest wins: only the newest solve runs; kicks meant for a replaced simulation go.
+            let newest = reqs
+                .iter()
+                .rposition(|r| matches!(r, SolverReq::Solve { .. }));
+            for (i, req) in reqs.into_iter().enumerate() {
+                match req {
+                    SolverReq::Quit => return,
+                    SolverReq::Pause(p) => {
+                        self.paused = p;
+                        if let Some(sim) = self.sim.as_mut() {
+                            sim.last_tick = Instant::now();
+                        }
+                    }
+                    SolverReq::Solve { gen, preset } if Some(i) == newest => {
+                        self.solve(gen, &preset)
+                    }
+                    SolverReq::Solve { .. } => {}
+                    SolverReq::Kick { gen, twist, flap } => {
+                        if newest.is_some_and(|n| i < n) {
+                            continue;
+                        }
+                        if let Some(sim) = self.sim.as_mut().filter(|s| s.gen == gen) {
+                            let stream = &mut sim.stream;
+                            if let Err(e) = guarded("kick", || {
+                                stream.kick(twist, flap);
+                                Ok(())
+                            }) {
+                                let _ = self.out.send(Msg::SimFailed { gen, error: e });
+                                self.sim = None;
+                            }
+                        }
+                    }
+                }
+            }
+            self.stream_batch();
+        }
+    }
+
+    fn solve(&mut self, gen: u64, preset: &Preset) {
+        let engine = &self.engine;
+        let result = guarded("solve", || engine.solve(preset));
+        if self.out.send(Msg::Solved { gen, result }).is_err() {
+            return;
+        }
+        self.sim = None;
+        match guarded("simulation", || engine.stream(preset)) {
+            Ok(stream) => {
+                self.sim = Some(Sim {
+                    gen,
+                    stream,
+                    sample_rate: preset.simulation.sample_rate,
+                    owed: 0.0,
+                    last_tick: Instant::now(),
+                    done: false,
+                });
+            }
+            Err(error) => {
+                let _ = self.out.send(Msg::SimFailed { gen, error });
+            }
+        }
+    }
+
+    /// Produce the samples owed since the last batch (real time), if streaming.
+    fn stream_batch(&mut self) {
+        if !self.streaming() {
+            return;
+        }
+        let Some(sim) = self.sim.as_mut() else {
+            return;
+        };
+        let now = Instant::now();
+        let elapsed = now.duration_since(sim.last_tick).as_secs_f64();
+        if elapsed < self.batch_interval.as_secs_f64() * 0.5 {
+            return;
+        }
+        sim.last_tick = now;
+        sim.owed += elapsed.min(MAX_CATCH_UP_S) * sim.sample_rate;
+        let n = sim.owed.floor() as usize;
+        if n == 0 {
+            return;
+        }
+        sim.owed -= n as f64;
+        let stream = &mut sim.stream;
+        let batch = guarded("simulation", || {
+            let samples = stream.advance(n)?;
+            Ok((samples, stream.status()))
+        });
+        let gen = sim.gen;
+        match batch {
+            Ok((samples, status)) => {
+                sim.done = status == RunStatus::Diverging;
+                let _ = self.out.send(Msg::Samples {
+                    gen,
+                    samples,
+                    status,
+                });
+            }
+            Err(error) => {
+                self.sim = None;
+                let _ = self.out.send(Msg::SimFailed { gen, error });
+            }
+        }
+    }
+}
+
+fn run_jobs(engine: &dyn Engine, out: &Sender<Msg>, rx: &Receiver<JobReq>) {
+    let mut boundary: Option<JobReq> = None;
+    let mut campbell: Option<JobReq> = None;
+    loop {
+        if boundary.is_none() && campbell.is_none() {
+            match rx.recv() {
+                Ok(r) => {
+                    if !take(r, &mut boundary, &mut campbell) {
+                        return;
+                    }
+                }
+                Err(_) => return,
+            }
+        }
+        for r in rx.try_iter() {
+            if !take(r, &mut boundary, &mut campbell) {
+                return;
+            }
+        }
+        // One job, then look at the channel again: a newer request may have replaced the other.
+        let msg = if let Some(JobReq::Boundary {
+            gen,
+            preset,
+            key,
+            from,
+            to,
+            points,
+        }) = boundary.take()
+        {
+            Msg::Boundary {
+                gen,
+                key: key.to_string(),
+                result: guarded("boundary search", || {
+                    engine.boundary(&preset, key, from, to, points)
+                }),
+            }
+        } else if let Some(JobReq::Campbell { gen, preset, grid }) = campbell.take() {
+            Msg::Campbell {
+                gen,
+                result: guarded("Campbell sweep", || engine.campbell(&preset, &grid)),
+            }
+        } else {
+            continue;
+        };
+        if out.send(msg).is_err() {
+            return;
+        }
+    }
+}
+
+/// File a job request (latest wins); false on quit.
+fn take(r: JobReq, boundary: &mut Option<JobReq>, campbell: &mut Option<JobReq>) -> bool {
+    match r {
+        JobReq::Quit => return false,
+        b @ JobReq::Boundary { .. } => *boundary = Some(b),
+        c @ JobReq::Campbell { .. } => *campbell = Some(c),
+    }
+    true
+}

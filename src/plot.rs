@@ -1,0 +1,1003 @@
+//! Publication-quality plots: a small declarative figure model and one writer.
+//!
+//! The commands build a [`Figure`] from their results (this module computes no physics, it only
+//! draws the numbers it is given) and call [`write`], which picks SVG or PNG from the file's
+//! extension. A figure is a grid of [`Panel`]s (one column by default: stacked panels, e.g. a
+//! Campbell diagram with frequency above damping); each panel has axes with units, data
+//! [`Series`], reference [`Guide`] lines (1P/3P, a flutter boundary, zero damping), labelled
+//! [`Marker`]s and free-text notes.
+//!
+//! Rendering never needs a system font: DejaVu Sans is registered from bytes embedded in the
+//! binary (the `dejavu` crate) for plotters' `ab_glyph` text path. Figures are drawn in memory
+//! and written in one `std::fs::write`, so a bad path gives an [`Error::Io`] naming it and never
+//! leaves a half-written file from a drawing failure.
+//!
+//! SVG structure (the tests rely on it): every maximal run of finite, in-range points of a line
+//! series (`Mark::Line` or `Mark::LinePoints`) is exactly one `<polyline>`; legend swatches,
+//! frames and the grid are `<rect>`/`<line>`; guides are drawn as dashes (several short
+//! `<polyline>`s) and points as `<circle>`s.
+
+use crate::error::{Error, Result};
+use plotters::coord::types::RangedCoordf64;
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
+use std::path::Path;
+use std::sync::OnceLock;
+
+/// Default size of a figure of up to two rows and two columns, in pixels (PNG) or SVG units.
+pub const DEFAULT_SIZE: (u32, u32) = (1200, 800);
+/// Height given to each row beyond the second, and width to each column beyond the second.
+const ROW_HEIGHT: u32 = 420;
+const COLUMN_WIDTH: u32 = 640;
+/// Largest number of legend entries drawn; further series are summarised as "+ N more".
+pub const LEGEND_MAX: usize = 12;
+
+const FONT: &str = "sans-serif";
+const TITLE_SIZE: f64 = 34.0;
+const CAPTION_SIZE: f64 = 26.0;
+const AXIS_DESC_SIZE: f64 = 23.0;
+const TICK_SIZE: f64 = 20.0;
+const LEGEND_SIZE: f64 = 19.0;
+const NOTE_SIZE: f64 = 19.0;
+
+/// An sRGB colour.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Rgb(pub u8, pub u8, pub u8);
+
+/// Colour-blind-safe qualitative palette (Okabe–Ito, then Tableau tones); series without a
+/// colour take the next one in order.
+pub const PALETTE: [Rgb; 12] = [
+    Rgb(0, 114, 178),   // blue
+    Rgb(213, 94, 0),    // vermillion
+    Rgb(0, 158, 115),   // bluish green
+    Rgb(204, 121, 167), // reddish purple
+    Rgb(230, 159, 0),   // orange
+    Rgb(86, 180, 233),  // sky blue
+    Rgb(0, 0, 0),       // black
+    Rgb(140, 86, 75),   // brown
+    Rgb(127, 127, 127), // grey
+    Rgb(188, 189, 34),  // olive
+    Rgb(148, 103, 189), // purple
+    Rgb(23, 190, 207),  // cyan
+];
+
+/// How a series is drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Mark {
+    /// A solid line through the points.
+    Line,
+    /// Unconnected points (e.g. eigenvalues in the complex plane).
+    Points,
+    /// A solid line with a dot at every point (e.g. a quantity at a few ply angles).
+    LinePoints,
+}
+
+/// The look of a series.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Style {
+    pub mark: Mark,
+    /// `None`: the next palette colour.
+    pub color: Option<Rgb>,
+    /// Line width in pixels at the default size.
+    pub width: u32,
+}
+
+impl Style {
+    pub fn new(mark: Mark) -> Self {
+        Style {
+            mark,
+            color: None,
+            width: 2,
+        }
+    }
+}
+
+/// One named data series. Non-finite points are gaps (a line is broken there).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Series {
+    /// Legend entry; an empty name keeps the series out of the legend.
+    pub name: String,
+    pub points: Vec<(f64, f64)>,
+    pub style: Style,
+}
+
+impl Series {
+    pub fn new(name: impl Into<String>, points: Vec<(f64, f64)>, mark: Mark) -> Self {
+        Series {
+            name: name.into(),
+            points,
+            style: Style::new(mark),
+        }
+    }
+    pub fn line(name: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
+        Self::new(name, points, Mark::Line)
+    }
+    pub fn points(name: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
+        Self::new(name, points, Mark::Points)
+    }
+    pub fn line_points(name: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
+        Self::new(name, points, Mark::LinePoints)
+    }
+    /// Pair `xs` with `ys` (the shorter length wins).
+    pub fn from_xy(name: impl Into<String>, xs: &[f64], ys: &[f64], mark: Mark) -> Self {
+        Self::new(
+            name,
+            xs.iter().copied().zip(ys.iter().copied()).collect(),
+            mark,
+        )
+    }
+    pub fn with_color(mut self, color: Rgb) -> Self {
+        self.style.color = Some(color);
+        self
+    }
+    pub fn with_width(mut self, width: u32) -> Self {
+        self.style.width = width.max(1);
+        self
+    }
+}
+
+/// Where a reference line runs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum GuideKind {
+    /// x = const over the whole panel height; its x is kept inside the panel's range.
+    Vertical(f64),
+    /// y = const over the whole panel width; its y is kept inside the panel's range.
+    Horizontal(f64),
+    /// A straight segment in data coordinates, clipped to the panel; does not widen the range
+    /// (e.g. a 3P line on a Campbell diagram).
+    Segment { from: (f64, f64), to: (f64, f64) },
+}
+
+/// A dashed reference line with its label written beside it (not in the legend).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Guide {
+    pub kind: GuideKind,
+    pub label: String,
+    /// `None`: dark grey.
+    pub color: Option<Rgb>,
+}
+
+impl Guide {
+    pub fn vertical(x: f64, label: impl Into<String>) -> Self {
+        Guide {
+            kind: GuideKind::Vertical(x),
+            label: label.into(),
+            color: None,
+        }
+    }
+    pub fn horizontal(y: f64, label: impl Into<String>) -> Self {
+        Guide {
+            kind: GuideKind::Horizontal(y),
+            label: label.into(),
+            color: None,
+        }
+    }
+    pub fn segment(from: (f64, f64), to: (f64, f64), label: impl Into<String>) -> Self {
+        Guide {
+            kind: GuideKind::Segment { from, to },
+            label: label.into(),
+            color: None,
+        }
+    }
+    pub fn with_color(mut self, color: Rgb) -> Self {
+        self.color = Some(color);
+        self
+    }
+}
+
+/// A highlighted point with a label (e.g. the flutter boundary on the σ = 0 line).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Marker {
+    pub x: f64,
+    pub y: f64,
+    pub label: String,
+}
+
+impl Marker {
+    pub fn new(x: f64, y: f64, label: impl Into<String>) -> Self {
+        Marker {
+            x,
+            y,
+            label: label.into(),
+        }
+    }
+}
+
+/// One set of axes.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Panel {
+    /// Caption above the axes, e.g. "(a) classical flutter"; empty for none.
+    pub title: String,
+    /// Axis descriptions with their units, e.g. "rotor speed (rpm)".
+    pub x_label: String,
+    pub y_label: String,
+    pub series: Vec<Series>,
+    pub guides: Vec<Guide>,
+    pub markers: Vec<Marker>,
+    /// Free text lines written in a corner of the axes.
+    pub notes: Vec<String>,
+    /// Fixed axis ranges; `None`: fitted to the series, markers and vertical/horizontal guides.
+    pub x_range: Option<(f64, f64)>,
+    pub y_range: Option<(f64, f64)>,
+    /// Draw the legend (when at least one series has a name).
+    pub legend: bool,
+}
+
+impl Panel {
+    pub fn new(x_label: impl Into<String>, y_label: impl Into<String>) -> Self {
+        Panel {
+            x_label: x_label.into(),
+            y_label: y_label.into(),
+            legend: true,
+            ..Panel::default()
+        }
+    }
+    pub fn titled(mut self, title: impl Into<String>) -> Self {
+        self.title = title.into();
+        self
+    }
+    pub fn with_series(mut self, series: Series) -> Self {
+        self.series.push(series);
+        self
+    }
+    pub fn with_guide(mut self, guide: Guide) -> Self {
+        self.guides.push(guide);
+        self
+    }
+    pub fn with_marker(mut self, marker: Marker) -> Self {
+        self.markers.push(marker);
+        self
+    }
+    pub fn with_note(mut self, note: impl Into<String>) -> Self {
+        self.notes.push(note.into());
+        self
+    }
+    pub fn with_x_range(mut self, lo: f64, hi: f64) -> Self {
+        self.x_range = Some((lo, hi));
+        self
+    }
+    pub fn with_y_range(mut self, lo: f64, hi: f64) -> Self {
+        self.y_range = Some((lo, hi));
+        self
+    }
+}
+
+/// A titled grid of panels, filled row by row.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Figure {
+    pub title: String,
+    pub panels: Vec<Panel>,
+    /// Panels per row (1: stacked).
+    pub columns: usize,
+    /// Pixel size; `None`: 1200×800, grown by 420 px per row beyond two and 640 px per column
+    /// beyond two.
+    pub size: Option<(u32, u32)>,
+}
+
+impl Figure {
+    pub fn new(title: impl Into<String>) -> Self {
+        Figure {
+            title: title.into(),
+            panels: Vec::new(),
+            columns: 1,
+            size: None,
+        }
+    }
+    pub fn with_panel(mut self, panel: Panel) -> Self {
+        self.panels.push(panel);
+        self
+    }
+    pub fn with_columns(mut self, columns: usize) -> Self {
+        self.columns = columns;
+        self
+    }
+    pub fn with_size(mut self, width: u32, height: u32) -> Self {
+        self.size = Some((width, height));
+        self
+    }
+
+    /// Rows of the panel grid.
+    pub fn rows(&self) -> usize {
+        self.panels.len().div_ceil(self.columns.max(1))
+    }
+
+    /// The pixel size the figure is drawn at.
+    pub fn pixel_size(&self) -> (u32, u32) {
+        if let Some(size) = self.size {
+            return size;
+        }
+        let rows = self.rows() as u32;
+        let cols = self.columns.max(1) as u32;
+        (
+            DEFAULT_SIZE.0 + COLUMN_WIDTH * cols.saturating_sub(2),
+            DEFAULT_SIZE.1 + ROW_HEIGHT * rows.saturating_sub(2),
+        )
+    }
+}
+
+/// Output format, chosen by the file's extension.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Format {
+    Svg,
+    Png,
+}
+
+/// The format for `path` from its extension (case-insensitive): `.svg` or `.png`.
+pub fn format_for(path: &Path) -> Result<Format> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    match ext.as_deref() {
+        Some("svg") => Ok(Format::Svg),
+        Some("png") => Ok(Format::Png),
+        Some(other) => Err(Error::usage(format!(
+            "--plot '{}': unsupported extension '.{other}' (allowed: .svg, .png)",
+            path.display()
+        ))),
+        None => Err(Error::usage(format!(
+            "--plot '{}': no file extension (allowed: .svg, .png)",
+            path.display()
+        ))),
+    }
+}
+
+/// Draw `fig` and write it to `path` as SVG or PNG by the extension.
+pub fn write(fig: &Figure, path: &Path) -> Result<()> {
+    let format = format_for(path)?;
+    let bytes = match format {
+        Format::Svg => render_svg(fig)?.into_bytes(),
+        Format::Png => render_png(fig)?,
+    };
+    std::fs::write(path, bytes)
+        .map_err(|e| Error::Io(format!("cannot write plot '{}': {e}", path.display())))
+}
+
+/// The figure as an SVG document.
+pub fn render_svg(fig: &Figure) -> Result<String> {
+    check(fig)?;
+    let size = fig.pixel_size();
+    let mut out = String::new();
+    {
+        let root = SVGBackend::with_string(&mut out, size).into_drawing_area();
+        draw_figure(fig, &root)?;
+        root.present().map_err(draw_error)?;
+    }
+    Ok(out)
+}
+
+/// The figure as PNG bytes (8-bit RGB).
+pub fn render_png(fig: &Figure) -> Result<Vec<u8>> {
+    check(fig)?;
+    let (w, h) = fig.pixel_size();
+    let mut pixels = vec![255u8; w as usize * h as usize * 3];
+    {
+        let root = BitMapBackend::with_buffer(&mut pixels, (w, h)).into_drawing_area();
+        draw_figure(fig, &root)?;
+        root.present().map_err(draw_error)?;
+    }
+    let mut bytes = Vec::new();
+    {
+        let mut encoder = png::Encoder::new(&mut bytes, w, h);
+        encoder.set_color(png::ColorType::Rgb);
+        encoder.set_depth(png::BitDepth::Eight);
+        encoder.set_compression(png::Compression::Fast);
+        let mut writer = encoder.write_header().map_err(png_error)?;
+        writer.write_image_data(&pixels).map_err(png_error)?;
+        writer.finish().map_err(png_error)?;
+    }
+    Ok(bytes)
+}
+
+fn png_error(e: png::EncodingError) -> Error {
+    Error::Io(format!("cannot encode PNG: {e}"))
+}
+
+fn draw_error<E: std::error::Error + Send + Sync>(e: DrawingAreaErrorKind<E>) -> Error {
+    Error::Io(format!("cannot draw plot: {e}"))
+}
+
+fn check(fig: &Figure) -> Result<()> {
+    if fig.panels.is_empty() {
+        return Err(Error::usage(format!(
+            "plot '{}': the figure has no panels",
+            fig.title
+        )));
+    }
+    if fig.columns == 0 {
+        return Err(Error::usage(format!(
+            "plot '{}': a figure needs at least one column",
+            fig.title
+        )));
+    }
+    let (w, h) = fig.pixel_size();
+    if !(100..=20_000).contains(&w) || !(100..=20_000).contains(&h) {
+        return Err(Error::usage(format!(
+            "plot '{}': size {w}x{h} out of range (allowed: 100..20000 pixels each way)",
+            fig.title
+        )));
+    }
+    for (i, p) in fig.panels.iter().enumerate() {
+        for (axis, range) in [("x", p.x_range), ("y", p.y_range)] {
+            if let Some((lo, hi)) = range {
+                if !(lo.is_finite() && hi.is_finite() && lo < hi) {
+                    return Err(Error::usage(format!(
+                        "plot '{}', panel {}: {axis} range {lo}..{hi} must be finite and increasing",
+                        fig.title,
+                        i + 1
+                    )));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Register the embedded font once for every family name plotters may ask for.
+fn ensure_fonts() -> Result<()> {
+    static FONTS: OnceLock<std::result::Result<(), String>> = OnceLock::new();
+    FONTS
+        .get_or_init(|| {
+            let regular = dejavu::sans::regular();
+            for family in ["sans-serif", "serif", "monospace"] {
+                plotters::style::register_font(family, FontStyle::Normal, regular)
+                    .map_err(|_| "the embedded DejaVu Sans font could not be read".to_string())?;
+            }
+            Ok(())
+        })
+        .clone()
+        .map_err(Error::Io)
+}
+
+fn color(c: Rgb) -> RGBColor {
+    RGBColor(c.0, c.1, c.2)
+}
+
+const GUIDE_GREY: Rgb = Rgb(90, 90, 90);
+
+fn draw_figure<DB: DrawingBackend>(fig: &Figure, root: &DrawingArea<DB, Shift>) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    ensure_fonts()?;
+    root.fill(&WHITE).map_err(draw_error)?;
+    let body = if fig.title.is_empty() {
+        root.clone()
+    } else {
+        root.titled(&fig.title, (FONT, TITLE_SIZE).into_font().color(&BLACK))
+            .map_err(draw_error)?
+    };
+    let cols = fig.columns.max(1);
+    let areas = body.split_evenly((fig.rows(), cols));
+    for (panel, area) in fig.panels.iter().zip(areas.iter()) {
+        draw_panel(panel, area)?;
+    }
+    Ok(())
+}
+
+/// Axis range fitted to the data, widened by 5 % each side; a flat or empty range gets a
+/// sensible width.
+fn fit_range(values: impl Iterator<Item = f64>) -> (f64, f64) {
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for v in values.filter(|v| v.is_finite()) {
+        lo = lo.min(v);
+        hi = hi.max(v);
+    }
+    if lo > hi {
+        return (0.0, 1.0);
+    }
+    if hi - lo <= 1e-12 * lo.abs().max(hi.abs()).max(1e-300) {
+        let half = if lo == 0.0 { 1.0 } else { 0.1 * lo.abs() };
+        return (lo - half, hi + half);
+    }
+    let pad = 0.05 * (hi - lo);
+    (lo - pad, hi + pad)
+}
+
+fn panel_ranges(panel: &Panel) -> ((f64, f64), (f64, f64)) {
+    let x = panel.x_range.unwrap_or_else(|| {
+        fit_range(
+            panel
+                .series
+                .iter()
+                .flat_map(|s| s.points.iter().filter(|p| p.1.is_finite()).map(|p| p.0))
+                .chain(panel.markers.iter().map(|m| m.x))
+                .chain(panel.guides.iter().filter_map(|g| match g.kind {
+                    GuideKind::Vertical(x) => Some(x),
+                    _ => None,
+                })),
+        )
+    });
+    let y = panel.y_range.unwrap_or_else(|| {
+        let in_x = |px: f64| px >= x.0 && px <= x.1;
+        fit_range(
+            panel
+                .series
+                .iter()
+                .flat_map(|s| s.points.iter().filter(|p| in_x(p.0)).map(|p| p.1))
+                .chain(panel.markers.iter().map(|m| m.y))
+                .chain(panel.guides.iter().filter_map(|g| match g.kind {
+                    GuideKind::Horizontal(y) => Some(y),
+                    _ => None,
+                })),
+        )
+    });
+    (x, y)
+}
+
+/// Liang–Barsky: the part of segment a→b inside the box, if any.
+fn clip_segment(
+    a: (f64, f64),
+    b: (f64, f64),
+    (x0, x1): (f64, f64),
+    (y0, y1): (f64, f64),
+) -> Option<((f64, f64), (f64, f64))> {
+    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+    let (mut t0, mut t1) = (0.0f64, 1.0f64);
+    for (p, q) in [
+        (-dx, a.0 - x0),
+        (dx, x1 - a.0),
+        (-dy, a.1 - y0),
+        (dy, y1 - a.1),
+    ] {
+        if p == 0.0 {
+            if q < 0.0 {
+                return None;
+            }
+        } else {
+            let r = q / p;
+            if p < 0.0 {
+                t0 = t0.max(r);
+            } else {
+                t1 = t1.min(r);
+            }
+            if t0 > t1 {
+                return None;
+            }
+        }
+    }
+    Some((
+        (a.0 + t0 * dx, a.1 + t0 * dy),
+        (a.0 + t1 * dx, a.1 + t1 * dy),
+    ))
+}
+
+/// Split a polyline into runs that are finite and inside the box (clipping at the edges).
+pub fn visible_runs(points: &[(f64, f64)], xr: (f64, f64), yr: (f64, f64)) -> Vec<Vec<(f64, f64)>> {
+    let mut runs: Vec<Vec<(f64, f64)>> = Vec::new();
+    let mut current: Vec<(f64, f64)> = Vec::new();
+    let finite = |p: &(f64, f64)| p.0.is_finite() && p.1.is_finite();
+    for pair in points.windows(2) {
+        let (a, b) = (pair[0], pair[1]);
+        let clipped = if finite(&a) && finite(&b) {
+            clip_segment(a, b, xr, yr)
+        } else {
+            None
+        };
+        match clipped {
+            Some((ca, cb)) => {
+                if current.last() != Some(&ca) {
+                    if current.len() >= 2 {
+                        runs.push(std::mem::take(&mut current));
+                    }
+                    current.clear();
+                    current.push(ca);
+                }
+                current.push(cb);
+            }
+            None => {
+                if current.len() >= 2 {
+                    runs.push(std::mem::take(&mut current));
+                }
+                current.clear();
+            }
+        }
+    }
+    if current.len() >= 2 {
+        runs.push(current);
+    }
+    // A single visible point draws no line; `Mark::LinePoints` still shows it as a dot.
+    runs
+}
+
+/// Decimal places for tick labels over a span, or `None` for scientific notation.
+fn tick_decimals(lo: f64, hi: f64) -> Option<usize> {
+    let span = (hi - lo).abs();
+    let mag = lo.abs().max(hi.abs());
+    if !(span > 0.0) || mag >= 1e6 || mag < 1e-3 || span < 1e-4 * mag.max(1e-300) {
+        return None;
+    }
+    // One digit finer than the tick step's leading digit, so 0.25-type steps print exactly.
+    let step = span / 8.0;
+    Some((1.0 - step.log10().floor()).clamp(0.0, 9.0) as usize)
+}
+
+fn format_tick(v: f64, decimals: Option<usize>) -> String {
+    let v = if v.abs() < 1e-300 { 0.0 } else { v };
+    match decimals {
+        Some(d) => {
+            let s = format!("{v:.d$}");
+            if s.starts_with('-') && s[1..].chars().all(|c| c == '0' || c == '.') {
+                s[1..].to_string()
+            } else {
+                s
+            }
+        }
+        None if v == 0.0 => "0".to_string(),
+        None => format!("{v:.2e}"),
+    }
+}
+
+#[derive(Clone, Copy)]
+enum Corner {
+    UpperRight,
+    UpperLeft,
+    LowerRight,
+    LowerLeft,
+}
+
+/// The plot corner with the fewest data points under it (legend placement).
+fn emptiest_corner(panel: &Panel, xr: (f64, f64), yr: (f64, f64), avoid: Option<Corner>) -> Corner {
+    let mut counts = [0usize; 4];
+    let corners = [
+        Corner::UpperRight,
+        Corner::UpperLeft,
+        Corner::LowerRight,
+        Corner::LowerLeft,
+    ];
+    for s in &panel.series {
+        for &(x, y) in &s.points {
+            if !(x.is_finite() && y.is_finite()) {
+                continue;
+            }
+            let u = (x - xr.0) / (xr.1 - xr.0);
+            let v = (y - yr.0) / (yr.1 - yr.0);
+            if u > 0.55 && v > 0.55 {
+                counts[0] += 1;
+            }
+            if u < 0.45 && v > 0.55 {
+                counts[1] += 1;
+            }
+            if u > 0.55 && v < 0.45 {
+                counts[2] += 1;
+            }
+            if u < 0.45 && v < 0.45 {
+                counts[3] += 1;
+            }
+        }
+    }
+    if let Some(a) = avoid {
+        counts[a as usize] = usize::MAX;
+    }
+    let best = (0..4).min_by_key(|&i| counts[i]).unwrap_or(0);
+    corners[best]
+}
+
+fn draw_panel<DB: DrawingBackend>(panel: &Panel, area: &DrawingArea<DB, Shift>) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    let (xr, yr) = panel_ranges(panel);
+    let (xd, yd) = (tick_decimals(xr.0, xr.1), tick_decimals(yr.0, yr.1));
+    let y_label_chars = [yr.0, yr.1, 0.5 * (yr.0 + yr.1)]
+        .iter()
+        .map(|&v| format_tick(v, yd).chars().count())
+        .max()
+        .unwrap_or(4) as u32;
+    let y_area = 12 * y_label_chars + 44;
+
+    let mut builder = ChartBuilder::on(area);
+    builder
+        .margin(12)
+        .margin_right(24)
+        .x_label_area_size(62)
+        .y_label_area_size(y_area);
+    if !panel.title.is_empty() {
+        builder.caption(&panel.title, (FONT, CAPTION_SIZE));
+    }
+    let mut chart = builder
+        .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)
+        .map_err(draw_error)?;
+
+    let x_fmt = move |v: &f64| format_tick(*v, xd);
+    let y_fmt = move |v: &f64| format_tick(*v, yd);
+    chart
+        .configure_mesh()
+        .x_desc(panel.x_label.as_str())
+        .y_desc(panel.y_label.as_str())
+        .x_labels(8)
+        .y_labels(7)
+        .x_label_formatter(&x_fmt)
+        .y_label_formatter(&y_fmt)
+        .label_style((FONT, TICK_SIZE))
+        .axis_desc_style((FONT, AXIS_DESC_SIZE))
+        .bold_line_style(RGBColor(200, 200, 200).stroke_width(1))
+        .light_line_style(RGBColor(238, 238, 238).stroke_width(1))
+        .axis_style(BLACK.stroke_width(1))
+        .draw()
+        .map_err(draw_error)?;
+
+    // Guides first, so the data is drawn over them.
+    for guide in &panel.guides {
+        draw_guide(&mut chart, guide, xr, yr)?;
+    }
+
+    let mut palette = PALETTE.iter().cycle();
+    let mut named = 0usize;
+    let mut hidden = 0usize;
+    for series in &panel.series {
+        let c = color(
+            series
+                .style
+                .color
+                .unwrap_or_else(|| *palette.next().unwrap_or(&PALETTE[0])),
+        );
+        let width = series.style.width.max(1);
+        let line_style = c.stroke_width(width);
+        let mark = series.style.mark;
+        let mut anno_set = false;
+        let want_legend = panel.legend && !series.name.is_empty();
+        let in_legend = want_legend && named < LEGEND_MAX - 1;
+        if want_legend {
+            named += 1;
+            if !in_legend {
+                hidden += 1;
+            }
+        }
+
+        if matches!(mark, Mark::Line | Mark::LinePoints) {
+            let runs = visible_runs(&series.points, xr, yr);
+            for run in runs {
+                let anno = chart
+                    .draw_series(std::iter::once(PathElement::new(run, line_style)))
+                    .map_err(draw_error)?;
+                if in_legend && !anno_set {
+                    anno.label(series.name.as_str()).legend(move |(x, y)| {
+                        Rectangle::new([(x, y - 2), (x + 24, y + 2)], c.filled())
+                    });
+                    anno_set = true;
+                }
+            }
+        }
+        if matches!(mark, Mark::Points | Mark::LinePoints) {
+            let radius = if mark == Mark::Points { 5 } else { 4 };
+            let pts = series
+                .points
+                .iter()
+                .copied()
+                .filter(|&(x, y)| x >= xr.0 && x <= xr.1 && y >= yr.0 && y <= yr.1);
+            let anno = chart
+                .draw_series(pts.map(|p| Circle::new(p, radius, c.filled())))
+                .map_err(draw_error)?;
+            if in_legend && !anno_set {
+                anno.label(series.name.as_str())
+                    .legend(move |(x, y)| Circle::new((x + 12, y), radius, c.filled()));
+                anno_set = true;
+            }
+        }
+        if in_legend && !anno_set {
+            // Nothing visible (all points outside the range or non-finite): keep the entry.
+            chart
+                .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
+                .map_err(draw_error)?
+                .label(series.name.as_str())
+                .legend(move |(x, y)| Rectangle::new([(x, y - 2), (x + 24, y + 2)], c.filled()));
+        }
+    }
+    if hidden > 0 {
+        chart
+            .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
+            .map_err(draw_error)?
+            .label(format!("+ {hidden} more (not listed)"))
+            .legend(|(x, y)| EmptyElement::at((x, y)));
+    }
+
+    for m in &panel.markers {
+        if !(m.x.is_finite() && m.y.is_finite()) {
+            continue;
+        }
+        let p = (m.x, m.y);
+        chart
+            .draw_series(std::iter::once(
+                EmptyElement::at(p)
+                    + Circle::new((0, 0), 7, RGBColor(255, 255, 255).filled())
+                    + Circle::new((0, 0), 7, BLACK.stroke_width(2))
+                    + Circle::new((0, 0), 3, BLACK.filled()),
+            ))
+            .map_err(draw_error)?;
+        if !m.label.is_empty() {
+            // Write the label toward the middle of the plot so it stays inside it.
+            let right_half = (m.x - xr.0) / (xr.1 - xr.0) > 0.6;
+            let upper_half = (m.y - yr.0) / (yr.1 - yr.0) > 0.5;
+            let h = if right_half { HPos::Right } else { HPos::Left };
+            let v = if upper_half { VPos::Top } else { VPos::Bottom };
+            let dx = if right_half { -12 } else { 12 };
+            let dy = if upper_half { 10 } else { -10 };
+            let style = (FONT, NOTE_SIZE)
+                .into_font()
+                .color(&BLACK)
+                .pos(Pos::new(h, v));
+            chart
+                .draw_series(std::iter::once(
+                    EmptyElement::at(p) + Text::new(m.label.clone(), (dx, dy), style),
+                ))
+                .map_err(draw_error)?;
+        }
+    }
+
+    let notes_corner = if panel.notes.is_empty() {
+        None
+    } else {
+        Some(emptiest_corner(panel, xr, yr, None))
+    };
+    if let Some(corner) = notes_corner {
+        draw_notes(&chart, &panel.notes, corner)?;
+    }
+
+    if panel.legend && named > 0 {
+        let pos = match emptiest_corner(panel, xr, yr, notes_corner) {
+            Corner::UpperRight => SeriesLabelPosition::UpperRight,
+            Corner::UpperLeft => SeriesLabelPosition::UpperLeft,
+            Corner::LowerRight => SeriesLabelPosition::LowerRight,
+            Corner::LowerLeft => SeriesLabelPosition::LowerLeft,
+        };
+        chart
+            .configure_series_labels()
+            .position(pos)
+            .margin(10)
+            .legend_area_size(30)
+            .label_font((FONT, LEGEND_SIZE))
+            .background_style(WHITE.mix(0.85))
+            .border_style(RGBColor(160, 160, 160))
+            .draw()
+            .map_err(draw_error)?;
+    }
+    Ok(())
+}
+
+type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+fn draw_guide<DB: DrawingBackend>(
+    chart: &mut Chart<'_, DB>,
+    guide: &Guide,
+    xr: (f64, f64),
+    yr: (f64, f64),
+) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    let (a, b) = match guide.kind {
+        GuideKind::Vertical(x) => ((x, yr.0), (x, yr.1)),
+        GuideKind::Horizontal(y) => ((xr.0, y), (xr.1, y)),
+        GuideKind::Segment { from, to } => (from, to),
+    };
+    if !(a.0.is_finite() && a.1.is_finite() && b.0.is_finite() && b.1.is_finite()) {
+        return Ok(());
+    }
+    let Some((a, b)) = clip_segment(a, b, xr, yr) else {
+        return Ok(());
+    };
+    let c = color(guide.color.unwrap_or(GUIDE_GREY));
+    chart
+        .draw_series(DashedLineSeries::new(
+            [a, b],
+            10,
+            6,
+            c.stroke_width(2).into(),
+        ))
+        .map_err(draw_error)?;
+    if guide.label.is_empty() {
+        return Ok(());
+    }
+    // Label at the end of the line that lies furthest right/up, nudged inside the plot.
+    let end = if (b.0, b.1) >= (a.0, a.1) { b } else { a };
+    let (h, v, off) = match guide.kind {
+        GuideKind::Vertical(_) => (HPos::Left, VPos::Top, (6, 6)),
+        GuideKind::Horizontal(_) => (HPos::Right, VPos::Bottom, (-6, -4)),
+        GuideKind::Segment { .. } => {
+            let at_right = (end.0 - xr.0) / (xr.1 - xr.0) > 0.9;
+            if at_right {
+                (HPos::Right, VPos::Bottom, (-6, -4))
+            } else {
+                (HPos::Left, VPos::Top, (6, 6))
+            }
+        }
+    };
+    let style = (FONT, NOTE_SIZE).into_font().color(&c).pos(Pos::new(h, v));
+    chart
+        .draw_series(std::iter::once(
+            EmptyElement::at(end) + Text::new(guide.label.clone(), off, style),
+        ))
+        .map_err(draw_error)?;
+    Ok(())
+}
+
+fn draw_notes<DB: DrawingBackend>(
+    chart: &Chart<'_, DB>,
+    notes: &[String],
+    corner: Corner,
+) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    let area = chart.plotting_area().strip_coord_spec();
+    let (w, h) = area.dim_in_pixel();
+    let line = (NOTE_SIZE * 1.15) as i32;
+    let total = line * notes.len() as i32;
+    let (x, h_pos) = match corner {
+        Corner::UpperLeft | Corner::LowerLeft => (12, HPos::Left),
+        Corner::UpperRight | Corner::LowerRight => (w as i32 - 12, HPos::Right),
+    };
+    let y0 = match corner {
+        Corner::UpperLeft | Corner::UpperRight => 10,
+        Corner::LowerLeft | Corner::LowerRight => h as i32 - 10 - total,
+    };
+    let style = (FONT, NOTE_SIZE)
+        .into_font()
+        .color(&BLACK)
+        .pos(Pos::new(h_pos, VPos::Top));
+    for (i, note) in notes.iter().enumerate() {
+        area.draw(&Text::new(
+            note.as_str(),
+            (x, y0 + line * i as i32),
+            style.clone(),
+        ))
+        .map_err(draw_error)?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn clip_keeps_inside_and_cuts_at_edges() {
+        let r = (0.0, 1.0);
+        assert_eq!(
+            clip_segment((0.2, 0.2), (0.8, 0.8), r, r),
+            Some(((0.2, 0.2), (0.8, 0.8)))
+        );
+        let (a, b) = clip_segment((-1.0, 0.5), (2.0, 0.5), r, r).unwrap();
+        assert_eq!((a, b), ((0.0, 0.5), (1.0, 0.5)));
+        assert_eq!(clip_segment((2.0, 2.0), (3.0, 3.0), r, r), None);
+    }
+
+    #[test]
+    fn runs_break_at_gaps_and_outside() {
+        let pts = [
+            (0.0, 0.0),
+            (0.5, 0.5),
+            (f64::NAN, 0.0),
+            (0.6, 0.6),
+            (0.7, 0.7),
+            (0.8, 5.0),
+            (0.9, 0.1),
+        ];
+        let runs = visible_runs(&pts, (0.0, 1.0), (0.0, 1.0));
+        assert_eq!(runs.len(), 3, "{runs:?}");
+        assert_eq!(runs[0], vec![(0.0, 0.0), (0.5, 0.5)]);
+        assert_eq!(runs[1].first(), Some(&(0.6, 0.6)));
+        assert!((runs[1].last().unwrap().1 - 1.0).abs() < 1e-12);
+        assert!((runs[2][0].1 - 1.0).abs() < 1e-12);
+        assert_eq!(runs[2].last(), Some(&(0.9, 0.1)));
+    }
+
+    #[test]
+    fn ranges_pad_data_and_handle_flat_or_empty() {
+        assert_eq!(fit_range([].into_iter()), (0.0, 1.0));
+        let (lo, hi) = fit_range([2.0, 2.0].into_iter());
+        assert!(lo < 2.0 && hi > 2.0);
+        let (lo, hi) = fit_range([0.0, 10.0, f64::NAN].into_iter());
+        assert_eq!((lo, hi), (-0.5, 10.5));
+    }
+
+    #[test]
+    fn tick_labels_are_short() {
+        assert_eq!(format_tick(12.5, tick_decimals(0.0, 100.0)), "12");
+        assert_eq!(format_tick(0.125, tick_decimals(0.0, 1.0)), "0.13");
+        assert_eq!(format_tick(-0.0001, tick_decimals(0.0, 1.0)), "0.00");
+        assert_eq!(format_tick(2.5e-6, tick_decimals(0.0, 1e-5)), "2.50e-6");
+    }
+}

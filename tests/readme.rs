@@ -1,0 +1,42 @@
+//! The README is the user's reference: keep it true to the code.
+
+use flutterscope::preset::{builtin_names, KEYS};
+
+fn readme() -> String {
+    std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap()
+}
+
+#[test]
+fn every_numeric_key_is_documented_with_its_range() {
+    let text = readme();
+    for spec in KEYS {
+        let row = text
+            .lines()
+            .find(|l| l.starts_with(&format!("| `{}` |", spec.key)))
+            .unwrap_or_else(|| panic!("README.md lacks a row for {}", spec.key));
+        assert!(
+            row.contains(&format!("{}", spec.max)) || row.contains(&format!("{:e}", spec.max)),
+            "README row for {} does not show its upper bound {}: {row}",
+            spec.key,
+            spec.max
+        );
+    }
+}
+
+#[test]
+fn every_builtin_preset_is_documented() {
+    let text = readme();
+    for name in builtin_names() {
+        assert!(
+            text.contains(&format!("`{name}`")),
+            "README.md does not mention preset {name}"
+        );
+    }
+}
+
+#[test]
+fn readme_shows_the_two_commands() {
+    let text = readme();
+    assert!(text.contains("cargo run --release"));
+    assert!(text.contains("cargo test"));
+}
