@@ -465,7 +465,9 @@ where
     let body = if fig.title.is_empty() {
         root.clone()
     } else {
-        root.titled(&fig.title, (FONT, TITLE_SIZE).into_font().color(&BLACK))
+        // A top margin keeps the title's ascenders inside the image.
+        root.margin(10, 0, 0, 0)
+            .titled(&fig.title, (FONT, TITLE_SIZE).into_font().color(&BLACK))
             .map_err(draw_error)?
     };
     let cols = fig.columns.max(1);
@@ -601,16 +603,43 @@ pub fn visible_runs(points: &[(f64, f64)], xr: (f64, f64), yr: (f64, f64)) -> Ve
     runs
 }
 
-/// Decimal places for tick labels over a span, or `None` for scientific notation.
-fn tick_decimals(lo: f64, hi: f64) -> Option<usize> {
-    let span = (hi - lo).abs();
+/// Tick labels asked of plotters per axis (its maximum number of key points).
+const X_TICKS: usize = 8;
+const Y_TICKS: usize = 7;
+
+/// The tick step plotters picks for a range: the smallest of 1, 2, 5 × 10^k giving at most
+/// `max_points` ticks (the rule of plotters' `compute_f64_key_points`).
+fn tick_step(lo: f64, hi: f64, max_points: usize) -> f64 {
+    let span = hi - lo;
+    let mut exp = span.log10().floor() as i32 + 1;
+    let mut best = 10f64.powi(exp);
+    loop {
+        for mult in [5.0, 2.0, 1.0] {
+            let step = mult * 10f64.powi(exp - 1);
+            let count = (hi / step).floor() - (lo / step).ceil() + 1.0;
+            if count > max_points as f64 || exp < -320 {
+                return best;
+            }
+            best = step;
+        }
+        exp -= 1;
+    }
+}
+
+/// Decimal places for tick labels over a range, or `None` for scientific notation.
+fn tick_decimals(lo: f64, hi: f64, max_points: usize) -> Option<usize> {
+    let span = hi - lo;
     let mag = lo.abs().max(hi.abs());
-    if !(span > 0.0) || mag >= 1e6 || mag < 1e-3 || span < 1e-4 * mag.max(1e-300) {
+    if !(span.is_finite() && span > 0.0) || !(1e-3..1e5).contains(&mag) {
         return None;
     }
-    // One digit finer than the tick step's leading digit, so 0.25-type steps print exactly.
-    let step = span / 8.0;
-    Some((1.0 - step.log10().floor()).clamp(0.0, 9.0) as usize)
+    let step = tick_step(lo, hi, max_points);
+    let decimals = -(step.log10() + 1e-9).floor();
+    if decimals > 9.0 {
+        None
+    } else {
+        Some(decimals.max(0.0) as usize)
+    }
 }
 
 fn format_tick(v: f64, decimals: Option<usize>) -> String {
@@ -637,41 +666,116 @@ enum Corner {
     LowerLeft,
 }
 
-/// The plot corner with the fewest data points under it (legend placement).
-fn emptiest_corner(panel: &Panel, xr: (f64, f64), yr: (f64, f64), avoid: Option<Corner>) -> Corner {
-    let mut counts = [0usize; 4];
-    let corners = [
-        Corner::UpperRight,
-        Corner::UpperLeft,
-        Corner::LowerRight,
-        Corner::LowerLeft,
-    ];
-    for s in &panel.series {
-        for &(x, y) in &s.points {
-            if !(x.is_finite() && y.is_finite()) {
-                continue;
+const CORNERS: [Corner; 4] = [
+    Corner::UpperRight,
+    Corner::UpperLeft,
+    Corner::LowerRight,
+    Corner::LowerLeft,
+];
+
+/// What a box in a corner of the plot would cover: the series drawn there (lines sampled
+/// every few pixels), markers and guide labels. Used to place the legend and the notes.
+struct Occupancy {
+    /// Samples in pixel coordinates of the plotting area (y down).
+    data: Vec<(f64, f64)>,
+    /// Label anchors in pixel coordinates; they weigh more than a data sample.
+    labels: Vec<(f64, f64)>,
+    size: (f64, f64),
+}
+
+impl Occupancy {
+    fn new(panel: &Panel, xr: (f64, f64), yr: (f64, f64), size: (u32, u32)) -> Self {
+        let (w, h) = (size.0 as f64, size.1 as f64);
+        let px = |(x, y): (f64, f64)| {
+            (
+                (x - xr.0) / (xr.1 - xr.0) * w,
+                (yr.1 - y) / (yr.1 - yr.0) * h,
+            )
+        };
+        let mut data = Vec::new();
+        for s in &panel.series {
+            if matches!(s.style.mark, Mark::Line | Mark::LinePoints) {
+                for run in visible_runs(&s.points, xr, yr) {
+                    for pair in run.windows(2) {
+                        let (a, b) = (px(pair[0]), px(pair[1]));
+                        let len = ((b.0 - a.0).powi(2) + (b.1 - a.1).powi(2)).sqrt();
+                        let n = (len / 4.0).ceil().clamp(1.0, 400.0) as usize;
+                        for k in 0..n {
+                            let t = k as f64 / n as f64;
+                            data.push((a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1)));
+                        }
+                    }
+                }
             }
-            let u = (x - xr.0) / (xr.1 - xr.0);
-            let v = (y - yr.0) / (yr.1 - yr.0);
-            if u > 0.55 && v > 0.55 {
-                counts[0] += 1;
-            }
-            if u < 0.45 && v > 0.55 {
-                counts[1] += 1;
-            }
-            if u > 0.55 && v < 0.45 {
-                counts[2] += 1;
-            }
-            if u < 0.45 && v < 0.45 {
-                counts[3] += 1;
+            for &p in &s.points {
+                if p.0.is_finite() && p.1.is_finite() {
+                    data.push(px(p));
+                }
             }
         }
+        let mut labels: Vec<(f64, f64)> = panel.markers.iter().map(|m| px((m.x, m.y))).collect();
+        for g in &panel.guides {
+            let at = match g.kind {
+                GuideKind::Vertical(x) => Some((x, yr.1)),
+                GuideKind::Horizontal(y) => Some((xr.1, y)),
+                GuideKind::Segment { from, to } => clip_segment(from, to, xr, yr)
+                    .map(|(a, b)| if (b.0, b.1) >= (a.0, a.1) { b } else { a }),
+            };
+            if let (Some(at), false) = (at, g.label.is_empty()) {
+                labels.push(px(at));
+            }
+        }
+        Occupancy {
+            data,
+            labels,
+            size: (w, h),
+        }
     }
-    if let Some(a) = avoid {
-        counts[a as usize] = usize::MAX;
+
+    /// The box of `size` pixels placed in `corner` (with a 10 px margin).
+    fn rect(&self, corner: Corner, size: (f64, f64)) -> (f64, f64, f64, f64) {
+        let (w, h) = self.size;
+        let m = 10.0;
+        let (x0, y0) = match corner {
+            Corner::UpperRight => (w - m - size.0, m),
+            Corner::UpperLeft => (m, m),
+            Corner::LowerRight => (w - m - size.0, h - m - size.1),
+            Corner::LowerLeft => (m, h - m - size.1),
+        };
+        (x0, y0, x0 + size.0, y0 + size.1)
     }
-    let best = (0..4).min_by_key(|&i| counts[i]).unwrap_or(0);
-    corners[best]
+
+    fn cost(&self, rect: (f64, f64, f64, f64)) -> usize {
+        let inside = |&(x, y): &(f64, f64)| x >= rect.0 && x <= rect.2 && y >= rect.1 && y <= rect.3;
+        // Labels are padded by their approximate text extent.
+        let near = |&(x, y): &(f64, f64)| {
+            x >= rect.0 - 160.0 && x <= rect.2 + 20.0 && y >= rect.1 - 25.0 && y <= rect.3 + 25.0
+        };
+        self.data.iter().filter(|p| inside(p)).count()
+            + 200 * self.labels.iter().filter(|p| near(p)).count()
+    }
+
+    /// The corner where a box of `size` covers least, avoiding `taken` boxes.
+    fn best_corner(&self, size: (f64, f64), taken: &[(f64, f64, f64, f64)]) -> Corner {
+        let overlaps = |a: (f64, f64, f64, f64), b: &(f64, f64, f64, f64)| {
+            a.0 < b.2 && b.0 < a.2 && a.1 < b.3 && b.1 < a.3
+        };
+        CORNERS
+            .iter()
+            .copied()
+            .min_by_key(|&c| {
+                let r = self.rect(c, size);
+                let clash = taken.iter().any(|t| overlaps(r, t));
+                (clash, self.cost(r))
+            })
+            .unwrap_or(Corner::UpperRight)
+    }
+}
+
+/// Approximate pixel width of `text` at `size` (DejaVu Sans averages ~0.55 em per character;
+/// plotters' font size is 1.24 × the em).
+fn text_width(text: &str, size: f64) -> f64 {
+    text.chars().count() as f64 * 0.55 * size / 1.24 * 1.1
 }
 
 fn draw_panel<DB: DrawingBackend>(panel: &Panel, area: &DrawingArea<DB, Shift>) -> Result<()>
@@ -679,7 +783,10 @@ where
     DB::ErrorType: 'static,
 {
     let (xr, yr) = panel_ranges(panel);
-    let (xd, yd) = (tick_decimals(xr.0, xr.1), tick_decimals(yr.0, yr.1));
+    let (xd, yd) = (
+        tick_decimals(xr.0, xr.1, X_TICKS),
+        tick_decimals(yr.0, yr.1, Y_TICKS),
+    );
     let y_label_chars = [yr.0, yr.1, 0.5 * (yr.0 + yr.1)]
         .iter()
         .map(|&v| format_tick(v, yd).chars().count())
@@ -706,8 +813,8 @@ where
         .configure_mesh()
         .x_desc(panel.x_label.as_str())
         .y_desc(panel.y_label.as_str())
-        .x_labels(8)
-        .y_labels(7)
+        .x_labels(X_TICKS)
+        .y_labels(Y_TICKS)
         .x_label_formatter(&x_fmt)
         .y_label_formatter(&y_fmt)
         .label_style((FONT, TICK_SIZE))
@@ -724,6 +831,11 @@ where
     }
 
     let mut palette = PALETTE.iter().cycle();
+    let total_named = if panel.legend {
+        panel.series.iter().filter(|s| !s.name.is_empty()).count()
+    } else {
+        0
+    };
     let mut named = 0usize;
     let mut hidden = 0usize;
     for series in &panel.series {
@@ -738,7 +850,12 @@ where
         let mark = series.style.mark;
         let mut anno_set = false;
         let want_legend = panel.legend && !series.name.is_empty();
-        let in_legend = want_legend && named < LEGEND_MAX - 1;
+        let listed = if total_named <= LEGEND_MAX {
+            LEGEND_MAX
+        } else {
+            LEGEND_MAX - 1
+        };
+        let in_legend = want_legend && named < listed;
         if want_legend {
             named += 1;
             if !in_legend {
@@ -826,17 +943,42 @@ where
         }
     }
 
-    let notes_corner = if panel.notes.is_empty() {
-        None
-    } else {
-        Some(emptiest_corner(panel, xr, yr, None))
-    };
-    if let Some(corner) = notes_corner {
+    let occupancy = Occupancy::new(
+        panel,
+        xr,
+        yr,
+        chart.plotting_area().strip_coord_spec().dim_in_pixel(),
+    );
+    let mut taken = Vec::new();
+    if !panel.notes.is_empty() {
+        let width = panel
+            .notes
+            .iter()
+            .map(|n| text_width(n, NOTE_SIZE))
+            .fold(0.0, f64::max);
+        let size = (width + 8.0, NOTE_SIZE * 1.15 * panel.notes.len() as f64 + 8.0);
+        let corner = occupancy.best_corner(size, &[]);
+        taken.push(occupancy.rect(corner, size));
         draw_notes(&chart, &panel.notes, corner)?;
     }
 
     if panel.legend && named > 0 {
-        let pos = match emptiest_corner(panel, xr, yr, notes_corner) {
+        let entries: Vec<&str> = panel
+            .series
+            .iter()
+            .filter(|s| !s.name.is_empty())
+            .map(|s| s.name.as_str())
+            .take(LEGEND_MAX)
+            .chain((hidden > 0).then_some("+ 99 more (not listed)"))
+            .collect();
+        let width = entries
+            .iter()
+            .map(|n| text_width(n, LEGEND_SIZE))
+            .fold(0.0, f64::max)
+            + 60.0;
+        let rows = entries.len().min(LEGEND_MAX) as f64;
+        let size = (width, rows * LEGEND_SIZE * 1.3 + 16.0);
+        let pos = match occupancy.best_corner(size, &taken) {
             Corner::UpperRight => SeriesLabelPosition::UpperRight,
             Corner::UpperLeft => SeriesLabelPosition::UpperLeft,
             Corner::LowerRight => SeriesLabelPosition::LowerRight,
@@ -995,9 +1137,13 @@ mod tests {
 
     #[test]
     fn tick_labels_are_short() {
-        assert_eq!(format_tick(12.5, tick_decimals(0.0, 100.0)), "12");
-        assert_eq!(format_tick(0.125, tick_decimals(0.0, 1.0)), "0.13");
-        assert_eq!(format_tick(-0.0001, tick_decimals(0.0, 1.0)), "0.00");
-        assert_eq!(format_tick(2.5e-6, tick_decimals(0.0, 1e-5)), "2.50e-6");
+        // Steps 20, 0.2, 0.05 for eight ticks: as many decimals as the step needs.
+        assert_eq!(tick_step(0.0, 100.0, 8), 20.0);
+        assert_eq!(format_tick(40.0, tick_decimals(0.0, 100.0, 8)), "40");
+        assert_eq!(format_tick(0.4, tick_decimals(0.0, 1.0, 8)), "0.4");
+        assert_eq!(format_tick(0.15, tick_decimals(0.0, 0.3, 8)), "0.15");
+        assert_eq!(format_tick(-0.0001, tick_decimals(0.0, 1.0, 8)), "0.0");
+        assert_eq!(format_tick(2.5e-6, tick_decimals(0.0, 1e-5, 8)), "2.50e-6");
+        assert_eq!(format_tick(2.0e5, tick_decimals(0.0, 3e5, 8)), "2.00e5");
     }
 }

@@ -488,3 +488,229 @@ fn state_counts_and_generalized_force() {
     assert_eq!(qp, vec![1.0 - 0.75, 1.5]);
     assert_eq!(qu, vec![0.25, 0.5 + 2.0]);
 }
+
+// ---------------------------------------------------------------------------------------------
+// The model as the system sees it (`StripModel`)
+// ---------------------------------------------------------------------------------------------
+
+use flutterscope::physics::aero::onera::OneraModel;
+use flutterscope::physics::aero::theodorsen::Theodorsen;
+use flutterscope::physics::aero::{Kinematics, SteadyStates, StripEval, StripModel, StripSection};
+use flutterscope::physics::inflow::Station;
+
+fn paper_station(alpha_r: f64) -> Station {
+    let s = paper_strip(alpha_r);
+    Station {
+        x: 6.0,
+        weight: 0.7,
+        radius: 6.0,
+        v0: s.v0,
+        psi: s.psi,
+        alpha_r,
+    }
+}
+
+fn paper_section() -> StripSection {
+    StripSection {
+        chord: 0.01833,
+        ea_offset: -0.01833 / 4.0,
+        air_density: 1.225,
+        lift_slope: 2.0 * std::f64::consts::PI,
+        drag_coefficient: 0.0,
+    }
+}
+
+fn model(forcing: OneraForcing, coef: Coefficients) -> OneraModel {
+    OneraModel::new(paper_section(), coef, forcing)
+}
+
+/// Every partial the model reports (loads and rates on kinematics and states) against central
+/// differences of its own values.
+fn check_model_jacobian(m: &OneraModel, st: &Station, k: Kinematics, z: &[f64]) {
+    let ns = m.states_per_station();
+    let mut exact = StripEval::new(ns);
+    m.evaluate(st, &k, z, &mut exact, true);
+    let eval = |k: Kinematics, z: &[f64]| {
+        let mut e = StripEval::new(ns);
+        m.evaluate(st, &k, z, &mut e, false);
+        e
+    };
+    type KSet = fn(&mut Kinematics, f64);
+    let axes: [(KSet, f64); 4] = [
+        (|k, v| k.phi = v, k.phi),
+        (|k, v| k.u = v, k.u),
+        (|k, v| k.phi_dot = v, k.phi_dot),
+        (|k, v| k.u_dot = v, k.u_dot),
+    ];
+    for (j, (set, x0)) in axes.into_iter().enumerate() {
+        let at = |x: f64| {
+            let mut kk = k;
+            set(&mut kk, x);
+            eval(kk, z)
+        };
+        for l in 0..2 {
+            check_partial(
+                &format!("{} ∂load{l}/∂k{j}", m.name()),
+                exact.dloads_dk[l][j],
+                |x| at(x).loads[l],
+                x0,
+                1e-2,
+            );
+        }
+        for i in 0..ns {
+            check_partial(
+                &format!("∂ż{i}/∂k{j}"),
+                exact.dzdot_dk[i][j],
+                |x| at(x).zdot[i],
+                x0,
+                1e-2,
+            );
+        }
+    }
+    for j in 0..ns {
+        let at = |x: f64| {
+            let mut zz = z.to_vec();
+            zz[j] = x;
+            eval(k, &zz)
+        };
+        for l in 0..2 {
+            check_partial(
+                &format!("∂load{l}/∂z{j}"),
+                exact.dloads_dz[l][j],
+                |x| at(x).loads[l],
+                z[j],
+                1e-3,
+            );
+        }
+        for i in 0..ns {
+            check_partial(
+                &format!("∂ż{i}/∂z{j}"),
+                exact.dzdot_dz[i * ns + j],
+                |x| at(x).zdot[i],
+                z[j],
+                1e-3,
+            );
+        }
+    }
+}
+
+#[test]
+fn strip_model_jacobians_match_central_differences() {
+    let k = Kinematics {
+        phi: 0.04,
+        u: 0.3,
+        phi_dot: 2.0,
+        u_dot: 0.3,
+    };
+    let st = paper_station(0.3);
+    let coupled_z = [1e-4, -2e-5, -0.3, 40.0, -0.05, 3.0, 0.06, -7.0];
+    check_model_jacobian(
+        &model(OneraForcing::Coupled, busy_coefficients()),
+        &st,
+        k,
+        &coupled_z,
+    );
+    let rigid_z = [0.9, -0.3, 40.0, -0.05, 3.0, 0.06, -7.0];
+    check_model_jacobian(
+        &model(OneraForcing::Rigid, busy_coefficients()),
+        &st,
+        k,
+        &rigid_z,
+    );
+}
+
+#[test]
+fn strip_model_steady_states_are_fixed_points_with_exact_slopes() {
+    for forcing in [OneraForcing::Coupled, OneraForcing::Rigid] {
+        let m = model(forcing, busy_coefficients());
+        let ns = m.states_per_station();
+        let st = paper_station(0.3);
+        for phi in [-0.2, 0.0, 0.1, 0.2, 0.4] {
+            let mut steady = SteadyStates::new(ns);
+            m.steady_states(&st, phi, 0.1, &mut steady);
+            let mut e = StripEval::new(ns);
+            let k = Kinematics {
+                phi,
+                u: 0.1,
+                ..Kinematics::default()
+            };
+            m.evaluate(&st, &k, &steady.z, &mut e, false);
+            assert!(
+                e.zdot.iter().all(|r| r.abs() < 1e-9),
+                "{forcing:?} φ = {phi}: ż = {:?}",
+                e.zdot
+            );
+            for i in 0..ns {
+                check_partial(
+                    &format!("{forcing:?} dz{i}/dφ at φ = {phi}"),
+                    steady.dz_dk[i][0],
+                    |x| {
+                        let mut s = SteadyStates::new(ns);
+                        m.steady_states(&st, x, 0.1, &mut s);
+                        s.z[i]
+                    },
+                    phi,
+                    1e-2,
+                );
+                assert_eq!(steady.dz_dk[i][1], 0.0);
+            }
+        }
+    }
+}
+
+#[test]
+fn coupled_model_below_stall_without_drag_equals_theodorsen_model() {
+    let coef = Coefficients {
+        cd0: 0.0,
+        drag_polynomial: (0.0, 0.0, 0.0),
+        ..defaults()
+    };
+    let m = model(OneraForcing::Coupled, coef);
+    let t = Theodorsen::new(paper_section());
+    let st = paper_station(0.1);
+    assert_eq!(m.apparent_mass(&st), t.apparent_mass(&st));
+    let k = Kinematics {
+        phi: 0.02,
+        u: 0.5,
+        phi_dot: 1.0,
+        u_dot: -0.3,
+    };
+    let z = [2e-4, -1e-4, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+    let (mut eo, mut et) = (StripEval::new(8), StripEval::new(2));
+    m.evaluate(&st, &k, &z, &mut eo, true);
+    t.evaluate(&st, &k, &z[..2], &mut et, true);
+    for l in 0..2 {
+        assert!(close(eo.loads[l], et.loads[l], 1e-12), "load {l}");
+        for j in 0..4 {
+            assert!(
+                close(eo.dloads_dk[l][j], et.dloads_dk[l][j], 1e-12),
+                "∂load{l}/∂k{j}"
+            );
+        }
+    }
+    assert!(close(eo.zdot[0], et.zdot[0], 1e-12) && close(eo.zdot[1], et.zdot[1], 1e-12));
+    // The rigid form has no apparent mass.
+    assert_eq!(
+        model(OneraForcing::Rigid, defaults()).apparent_mass(&st),
+        [[0.0; 2]; 2]
+    );
+}
+
+#[test]
+fn rigid_model_rates_do_not_depend_on_the_structure() {
+    let m = model(OneraForcing::Rigid, busy_coefficients());
+    let st = paper_station(0.25);
+    let z = [0.9, -0.3, 40.0, -0.05, 3.0, 0.06, -7.0];
+    let mut a = StripEval::new(7);
+    m.evaluate(&st, &Kinematics::default(), &z, &mut a, true);
+    let mut b = StripEval::new(7);
+    let k = Kinematics {
+        phi: 0.3,
+        u: 1.0,
+        phi_dot: -5.0,
+        u_dot: 2.0,
+    };
+    m.evaluate(&st, &k, &z, &mut b, true);
+    assert_eq!(a.zdot, b.zdot);
+    assert!(b.dzdot_dk.iter().all(|row| row.iter().all(|v| *v == 0.0)));
+}

@@ -2,8 +2,9 @@
 //!
 //! Input: the state matrix `A` at equilibrium ([`LinearSystem`]). Output: every root
 //! `λ = σ ± iω` (one entry per conjugate pair) with frequency `ω/2π`, damping ratio `ζ = −σ/|λ|`,
-//! a label from its eigenvector's Galerkin coefficients, the share of the eigenvector in the
-//! structural coordinates (aero-lag roots are reported apart), and the stability verdict.
+//! a label from its eigenvector's Galerkin coefficients, its structural share (the participation
+//! of `q, q̇` in the root, from left and right eigenvectors; roots with share < ½ are aero lags,
+//! reported apart), and the stability verdict.
 //!
 //! Eigenvectors come from faer's dense real eigendecomposition (Hessenberg reduction, Francis
 //! double-shift QR with an iteration cap, back-substitution for the vectors). Why not inverse
@@ -78,13 +79,37 @@ impl Stability {
     }
 }
 
-/// Eigenvalues and right eigenvectors of a real square matrix, one entry per real root and one
-/// per complex-conjugate pair (the member with ω ≥ 0).
+/// Eigenvalues with right and left eigenvectors of a real square matrix, one entry per real
+/// root and one per complex-conjugate pair (the member with ω ≥ 0).
 #[derive(Debug, Clone)]
 pub struct Roots {
     pub values: Vec<Complex<f64>>,
-    /// Column k is the eigenvector of `values[k]`.
+    /// Column k is the right eigenvector of `values[k]`: `A r = λ r`.
     pub vectors: DMatrix<Complex<f64>>,
+    /// Column k is the left eigenvector of `values[k]`: `lᴴ A = λ lᴴ`.
+    pub left: DMatrix<Complex<f64>>,
+}
+
+impl Roots {
+    /// Participation of state `i` in root `k`, `|l_i| |r_i|`, normalised over the states.
+    /// Unlike eigenvector magnitudes, participation factors do not depend on the units or scaling
+    /// of the states, so they tell a structural root from an aerodynamic-lag root without
+    /// arbitrary weights.
+    pub fn participation(&self, k: usize) -> Vec<f64> {
+        let raw: Vec<f64> = self
+            .vectors
+            .column(k)
+            .iter()
+            .zip(self.left.column(k).iter())
+            .map(|(r, l)| r.norm() * l.norm())
+            .collect();
+        let total: f64 = raw.iter().sum();
+        if total > 0.0 {
+            raw.iter().map(|p| p / total).collect()
+        } else {
+            raw
+        }
+    }
 }
 
 /// A root counts as unstable when σ exceeds this fraction of the spectral scale `max |λ|`:
@@ -113,12 +138,8 @@ pub fn analyse_system(ls: &LinearSystem) -> Result<Stability> {
     for (k, lambda) in roots.values.iter().enumerate() {
         let v = roots.vectors.column(k);
         let q: Vec<Complex<f64>> = v.rows(0, nq).iter().copied().collect();
-        let q_energy: f64 = q.iter().map(|c| c.norm_sqr()).sum();
-        let aero_energy: f64 = (0..ls.n_aero)
-            .map(|i| (ls.aero_weights[i] * v[2 * nq + i].norm()).powi(2))
-            .sum();
-        let total = q_energy + aero_energy;
-        let share = if total > 0.0 { q_energy / total } else { 0.0 };
+        // Structural states are q and q̇, the first 2·nq.
+        let share: f64 = roots.participation(k)[..2 * nq].iter().sum();
         let im = if lambda.im.abs() <= tol {
             0.0
         } else {
@@ -145,8 +166,13 @@ pub fn analyse_system(ls: &LinearSystem) -> Result<Stability> {
             lags.push(mode);
         }
     }
-    // Labels count modes of each kind in frequency order.
-    structural.sort_by(|a, b| a.0.im.total_cmp(&b.0.im).then(b.0.re.total_cmp(&a.0.re)));
+    // Labels count modes of each kind in order of natural frequency |λ| (= ω_n for a damped
+    // oscillator), not of ω: heavily damped or overdamped modes (stiffness-proportional damping
+    // on a blade whose torsion is far above its flap) would otherwise jump to the front.
+    structural.sort_by(|a, b| {
+        let (la, lb) = (a.0.re.hypot(a.0.im), b.0.re.hypot(b.0.im));
+        la.total_cmp(&lb).then(b.0.re.total_cmp(&a.0.re))
+    });
     let shares: Vec<f64> = structural.iter().map(|(_, t)| *t).collect();
     let labels = mode_labels(&shares);
     let mut eigenvalues: Vec<Mode> = structural
@@ -231,17 +257,19 @@ pub fn eigen_decomposition(a: &DMatrix<f64>) -> Result<Roots> {
         return Ok(Roots {
             values: Vec::new(),
             vectors: DMatrix::zeros(0, 0),
+            left: DMatrix::zeros(0, 0),
         });
     }
     let fa = faer::Mat::<f64>::from_fn(n, n, |i, j| a[(i, j)]);
     let mut s_re = faer::diag::Diag::<f64>::zeros(n);
     let mut s_im = faer::diag::Diag::<f64>::zeros(n);
     let mut u = faer::Mat::<f64>::zeros(n, n);
+    let mut ul = faer::Mat::<f64>::zeros(n, n);
     // Sequential: the matrices are small and sweeps already use every core across points.
     let par = faer::Par::Seq;
     let mut buffer = MemBuffer::new(evd::evd_scratch::<f64>(
         n,
-        ComputeEigenvectors::No,
+        ComputeEigenvectors::Yes,
         ComputeEigenvectors::Yes,
         par,
         Default::default(),
@@ -250,7 +278,7 @@ pub fn eigen_decomposition(a: &DMatrix<f64>) -> Result<Roots> {
         fa.as_ref(),
         s_re.as_mut(),
         s_im.as_mut(),
-        None,
+        Some(ul.as_mut()),
         Some(u.as_mut()),
         par,
         MemStack::new(&mut buffer),
@@ -259,40 +287,44 @@ pub fn eigen_decomposition(a: &DMatrix<f64>) -> Result<Roots> {
     .map_err(|e| Error::numerical(format!("eigenvalue iteration failed: {e:?}")))?;
 
     let mut values = Vec::with_capacity(n);
-    let mut columns: Vec<Vec<Complex<f64>>> = Vec::with_capacity(n);
+    let mut right: Vec<Vec<Complex<f64>>> = Vec::with_capacity(n);
+    let mut left: Vec<Vec<Complex<f64>>> = Vec::with_capacity(n);
     let mut j = 0;
     while j < n {
         let (re, im) = (s_re[j], s_im[j]);
         if im == 0.0 || j + 1 == n {
             values.push(Complex::new(re, 0.0));
-            columns.push((0..n).map(|i| Complex::new(u[(i, j)], 0.0)).collect());
+            right.push((0..n).map(|i| Complex::new(u[(i, j)], 0.0)).collect());
+            left.push((0..n).map(|i| Complex::new(ul[(i, j)], 0.0)).collect());
             j += 1;
         } else {
             // A complex pair occupies columns j (real part) and j + 1 (imaginary part) for the
-            // eigenvalue re + i·s_im[j]; keep the member with ω > 0.
+            // eigenvalue re + i·s_im[j] (left and right alike); keep the member with ω > 0.
             let sign = im.signum();
             values.push(Complex::new(re, im.abs()));
-            columns.push(
+            let pack = |m: &faer::Mat<f64>| -> Vec<Complex<f64>> {
                 (0..n)
-                    .map(|i| Complex::new(u[(i, j)], sign * u[(i, j + 1)]))
-                    .collect(),
-            );
+                    .map(|i| Complex::new(m[(i, j)], sign * m[(i, j + 1)]))
+                    .collect()
+            };
+            right.push(pack(&u));
+            left.push(pack(&ul));
             j += 2;
         }
     }
-    let vectors = DMatrix::from_fn(n, columns.len(), |i, k| columns[k][i]);
-    if values
-        .iter()
-        .any(|l| !l.re.is_finite() || !l.im.is_finite())
-        || vectors
-            .iter()
-            .any(|c| !c.re.is_finite() || !c.im.is_finite())
-    {
+    let vectors = DMatrix::from_fn(n, right.len(), |i, k| right[k][i]);
+    let left = DMatrix::from_fn(n, left.len(), |i, k| left[k][i]);
+    let finite = |c: &Complex<f64>| c.re.is_finite() && c.im.is_finite();
+    if !values.iter().all(finite) || !vectors.iter().all(finite) || !left.iter().all(finite) {
         return Err(Error::numerical(
             "eigen-analysis produced non-finite eigenvalues or eigenvectors",
         ));
     }
-    Ok(Roots { values, vectors })
+    Ok(Roots {
+        values,
+        vectors,
+        left,
+    })
 }
 
 #[cfg(test)]
@@ -313,13 +345,20 @@ mod tests {
         let osc = r.values.iter().find(|l| l.im > 0.0).unwrap();
         assert!((osc.re + z * w).abs() < 1e-12);
         assert!((osc.im - w * (1.0 - z * z).sqrt()).abs() < 1e-12);
-        // A v = λ v for every returned pair.
+        // A r = λ r and lᴴ A = λ lᴴ for every returned root.
         let ac = a.map(|v| Complex::new(v, 0.0));
         for (k, l) in r.values.iter().enumerate() {
             let v = r.vectors.column(k);
             let res = &ac * v - v * *l;
             assert!(res.norm() < 1e-10 * v.norm());
+            let w = r.left.column(k);
+            let res = w.adjoint() * &ac - w.adjoint() * *l;
+            assert!(res.norm() < 1e-10 * w.norm());
         }
+        // The real root lives in the third state only.
+        let k = r.values.iter().position(|l| l.im == 0.0).unwrap();
+        let p = r.participation(k);
+        assert!((p[2] - 1.0).abs() < 1e-12);
     }
 
     #[test]

@@ -6,10 +6,12 @@
 //! and the crossing is placed by linear interpolation of `σ_max` inside the final bracket.
 //! Bisection rather than Brent: `σ_max` is the upper envelope of several roots, so it has kinks
 //! where the critical mode changes, and a guaranteed halving per step is worth the few extra
-//! solves (≈ 10 for a 40-point grid). The kind (flutter or divergence), frequency and mode come
-//! from the critical root just past the crossing.
+//! solves (≈ 10 for a 40-point grid). The kind (flutter or divergence) and frequency come from
+//! the critical root just past the crossing; its mode label is the one it had at the start of the
+//! range, tracked by MAC along the grid.
 
 use crate::analysis::eigen::{analyse, Mode, Stability, NEUTRAL_TOLERANCE};
+use crate::analysis::tracking::track_modes;
 use crate::error::{Error, Result};
 use crate::preset::{key_spec, Preset};
 use rayon::prelude::*;
@@ -162,10 +164,11 @@ pub fn flutter_search(p: &Preset, key: &str, from: f64, to: f64, points: usize) 
     } else {
         hi
     };
-    let crossing = s_hi
+    let mut crossing = s_hi
         .critical()
         .cloned()
         .ok_or_else(|| Error::numerical("flutter: no roots at the crossing"))?;
+    crossing.label = tracked_label(&results[..first], &s_hi, &crossing);
     let kind = if crossing.im > 0.0 {
         BoundaryKind::Flutter
     } else {
@@ -193,6 +196,26 @@ pub fn flutter_search(p: &Preset, key: &str, from: f64, to: f64, points: usize) 
         },
         message: what,
     })
+}
+
+/// The crossing mode's label where the search started: near a coalescence the two flutter
+/// partners mix and a label read off the eigenvector there is ambiguous, so the mode is tracked
+/// by MAC from the first grid point (well separated modes) to the crossing.
+fn tracked_label(stable_side: &[Stability], crossing_point: &Stability, crossing: &Mode) -> String {
+    let Some(index) = crossing_point
+        .eigenvalues
+        .iter()
+        .position(|m| m.re == crossing.re && m.im == crossing.im)
+    else {
+        // An aero-lag root: no structural identity to track.
+        return crossing.label.clone();
+    };
+    let mut lists: Vec<Vec<Mode>> = stable_side.iter().map(|s| s.eigenvalues.clone()).collect();
+    lists.push(crossing_point.eigenvalues.clone());
+    track_modes(&lists)
+        .into_iter()
+        .find(|t| t.index.last() == Some(&Some(index)))
+        .map_or_else(|| crossing.label.clone(), |t| t.label)
 }
 
 fn describe(m: &Mode) -> String {

@@ -1,5 +1,70 @@
+//! `flutterscope modes`: coupled natural frequencies of the blade structure (MODEL.md §3–§4), no
+//! aerodynamics, at the preset's rotor speed.
+
 use crate::error::{Error, Result};
-use crate::preset::Preset;
-pub fn run(_p: &Preset, _json: bool) -> Result<()> {
-    Err(Error::usage("modes: not available yet"))
+use crate::physics::structure::{assemble, NaturalMode};
+use crate::preset::{Form, Preset};
+
+pub fn run(p: &Preset, json: bool) -> Result<()> {
+    let model = assemble(p)?;
+    let modes = model.natural_modes()?;
+    if json {
+        return super::print_json(&serde_json::json!({ "modes": modes }));
+    }
+    print_text(&render(p, &modes))
+}
+
+/// Write a report to stdout. A reader that closed the pipe early (`| head`) has what it wanted:
+/// that is not an error, and must not be the panic `print!` turns it into.
+pub(crate) fn print_text(text: &str) -> Result<()> {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => {
+            Err(Error::Io(format!("cannot write to stdout: {e}")))
+        }
+        _ => Ok(()),
+    }
+}
+
+/// The human-readable table.
+fn render(p: &Preset, modes: &[NaturalMode]) -> String {
+    let form = match p.structure.form {
+        Form::Weak => "weak",
+        Form::Strong => "strong",
+    };
+    let mut out = format!(
+        "{}: natural modes at {} rpm, N = {} per field, {} form\n\n",
+        p.display_name(),
+        p.operating.rotor_speed,
+        p.structure.modes,
+        form
+    );
+    out.push_str(&format!(
+        "{:>4}  {:<12} {:>14}  {:>13}\n",
+        "#", "mode", "frequency (Hz)", "torsion share"
+    ));
+    for (k, m) in modes.iter().enumerate() {
+        out.push_str(&format!(
+            "{:>4}  {:<12} {:>14}  {:>13.4}\n",
+            k + 1,
+            m.label,
+            format_hz(m.frequency_hz),
+            m.torsion_share
+        ));
+    }
+    out
+}
+
+/// Frequencies span 1e-2 to 1e4 Hz on the paper's blade: fixed decimals where they read well,
+/// scientific notation otherwise, always 5 significant digits.
+fn format_hz(f: f64) -> String {
+    if f == 0.0 {
+        "0".into()
+    } else if (1e-3..1e5).contains(&f.abs()) {
+        let decimals = (4 - f.abs().log10().floor() as i32).clamp(0, 7) as usize;
+        format!("{f:.decimals$}")
+    } else {
+        format!("{f:.4e}")
+    }
 }

@@ -1,6 +1,253 @@
+//! `flutterscope section`: the layup section (MODEL.md §2.1) of a preset, whatever its
+//! `section.source` says — laminate A matrices, reduced wall stiffnesses, C22/C23/C33 and the mass
+//! properties; with `--vary KEY=A:B:STEP`, C22/C23/C33 over a grid like the paper's Table 1.
+
+use crate::commands::{parse_vary, print_json};
 use crate::error::{Error, Result};
-use crate::preset::Preset;
+use crate::physics::laminate::{layup_section, LayupSection, Stiffness3, WallLaminate};
+use crate::preset::{ContourShape, Preset, SectionSource};
+use serde::Serialize;
 use std::path::Path;
-pub fn run(_p: &Preset, _vary: Option<&str>, _json: bool, _plot: Option<&Path>) -> Result<()> {
-    Err(Error::usage("section: not available yet"))
+
+/// The header line's note: this command evaluates the layup even when the model does not.
+fn source_note(p: &Preset) -> String {
+    let source = source_name(p.section.source);
+    if p.section.source == SectionSource::Layup {
+        "section.source = \"layup\": these are the properties the model uses".into()
+    } else {
+        format!(
+            "always evaluated from the layup; the model uses section.source = \"{source}\", not these"
+        )
+    }
+}
+
+fn source_name(s: SectionSource) -> &'static str {
+    match s {
+        SectionSource::Direct => "direct",
+        SectionSource::Table => "table",
+        SectionSource::Layup => "layup",
+    }
+}
+
+#[derive(Serialize)]
+struct SectionReport<'a> {
+    preset: &'a str,
+    evaluated: &'static str,
+    preset_section_source: &'static str,
+    section: LayupSection,
+}
+
+#[derive(Serialize)]
+struct VaryReport<'a> {
+    preset: &'a str,
+    evaluated: &'static str,
+    preset_section_source: &'static str,
+    key: String,
+    values: Vec<f64>,
+    sections: Vec<LayupSection>,
+}
+
+pub fn run(p: &Preset, vary: Option<&str>, json: bool, plot: Option<&Path>) -> Result<()> {
+    if plot.is_some() {
+        return Err(Error::usage("section --plot: not available yet"));
+    }
+    match vary {
+        None => {
+            let s = layup_section(p)?;
+            if json {
+                print_json(&SectionReport {
+                    preset: p.display_name(),
+                    evaluated: "layup",
+                    preset_section_source: source_name(p.section.source),
+                    section: s,
+                })
+            } else {
+                print!("{}", section_text(p, &s));
+                Ok(())
+            }
+        }
+        Some(spec) => {
+            let (key, values) = parse_vary(spec)?;
+            let sections = vary_sections(p, &key, &values)?;
+            if json {
+                print_json(&VaryReport {
+                    preset: p.display_name(),
+                    evaluated: "layup",
+                    preset_section_source: source_name(p.section.source),
+                    key,
+                    values,
+                    sections,
+                })
+            } else {
+                print!("{}", vary_text(p, &key, &values, &sections));
+                Ok(())
+            }
+        }
+    }
+}
+
+/// The layup section at every grid value of `key` (range- and cross-checked like `--set`).
+pub fn vary_sections(p: &Preset, key: &str, values: &[f64]) -> Result<Vec<LayupSection>> {
+    values
+        .iter()
+        .map(|&v| {
+            let mut q = p.clone();
+            q.set(key, v)?;
+            q.validate()?;
+            layup_section(&q)
+        })
+        .collect()
+}
+
+fn matrix_lines(out: &mut String, title: &str, a: &Stiffness3) {
+    out.push_str(&format!("  {title}\n"));
+    for row in a {
+        out.push_str(&format!(
+            "    {:>13.5e} {:>13.5e} {:>13.5e}\n",
+            row[0], row[1], row[2]
+        ));
+    }
+}
+
+fn wall_line(name: &str, w: &WallLaminate) -> String {
+    format!(
+        "  {name:<22} K11 = {:>12.5e}  K12 = {:>12.5e}  K22 = {:>12.5e}\n",
+        w.k.k11, w.k.k12, w.k.k22
+    )
+}
+
+fn contour_description(p: &Preset) -> String {
+    let c = &p.section.contour;
+    match c.shape {
+        ContourShape::Box => format!(
+            "box {:.4} × {:.4} mm (mid-line)",
+            c.width * 1e3,
+            c.height * 1e3
+        ),
+        ContourShape::Ellipse => format!(
+            "ellipse a = {:.4} mm, b = {:.4} mm (mid-line)",
+            c.a * 1e3,
+            c.b * 1e3
+        ),
+        ContourShape::Paper => format!(
+            "paper Eq. (1) mid-line, e = chord/4 = {:.4} mm",
+            p.section.chord / 4.0 * 1e3
+        ),
+    }
+}
+
+/// The single-section report.
+pub fn section_text(p: &Preset, s: &LayupSection) -> String {
+    let mut o = String::new();
+    let m = &s.material;
+    let sp = &s.props;
+    o.push_str(&format!(
+        "section of {} — layup (CLT + thin-walled closed contour, MODEL.md §2.1)\n  {}\n\n",
+        p.display_name(),
+        source_note(p)
+    ));
+    o.push_str(&format!(
+        "ply        E11 = {:.4} GPa  E22 = {:.4} GPa  ν12 = {}  G12 = {:.4} GPa  ρ = {} kg/m³\n",
+        m.e11 * 1e-9,
+        m.e22 * 1e-9,
+        m.nu12,
+        m.g12 * 1e-9,
+        s.density
+    ));
+    o.push_str(&format!(
+        "laminate   {} × {:.4} mm plies, wall t = {:.4} mm; CAS [{:+}]{} upper (z ≥ 0), [{:+}]{} lower (z < 0);\n           side walls split at z = 0, each half with its side's angle\n",
+        s.plies,
+        s.ply_thickness * 1e3,
+        s.wall_thickness * 1e3,
+        s.upper.angle_deg,
+        s.plies,
+        s.lower.angle_deg,
+        s.plies
+    ));
+    o.push_str(&format!(
+        "Q (Pa)     Q11 = {:.5e}  Q22 = {:.5e}  Q12 = {:.5e}  Q66 = {:.5e}\n\n",
+        s.q.q11, s.q.q22, s.q.q12, s.q.q66
+    ));
+    o.push_str("membrane stiffness A (N/m), order (x, s, xs)\n");
+    matrix_lines(
+        &mut o,
+        &format!("upper wall [{:+}]", s.upper.angle_deg),
+        &s.upper.a,
+    );
+    matrix_lines(
+        &mut o,
+        &format!("lower wall [{:+}]", s.lower.angle_deg),
+        &s.lower.a,
+    );
+    o.push_str("reduced wall stiffness, hoop resultant free (N/m)\n");
+    o.push_str(&wall_line(
+        &format!("upper [{:+}]", s.upper.angle_deg),
+        &s.upper,
+    ));
+    o.push_str(&wall_line(
+        &format!("lower [{:+}]", s.lower.angle_deg),
+        &s.lower,
+    ));
+    o.push('\n');
+    o.push_str(&format!(
+        "contour    {}\n           perimeter ∮ds = {:.6e} m, enclosed area A_e = {:.6e} m², {} polyline segments\n\n",
+        contour_description(p),
+        s.contour.perimeter,
+        s.contour.enclosed_area,
+        s.contour.segments
+    ));
+    o.push_str(&format!(
+        "stiffness  C22 = {:>12.5e} N·m²  (torsion)\n           C23 = {:>12.5e} N·m²  (bending–twist; paper's sign)\n           C33 = {:>12.5e} N·m²  (flap bending)\n\n",
+        sp.c22, sp.c23, sp.c33
+    ));
+    o.push_str(&format!(
+        "mass       m = {:.5e} kg/m (walls {:.5e}, non-structural {:.5e}), wall area A0 = {:.5e} m²\n",
+        sp.m,
+        s.structural_mass,
+        sp.m - s.structural_mass,
+        s.wall_area
+    ));
+    o.push_str(&format!(
+        "           I = {:.5e} kg·m about the elastic axis (= contour centroid)\n           K_A² = {:.5e} m²  K_m1² = {:.5e} m²  K_m2² = {:.5e} m²\n",
+        sp.i, sp.ka2, sp.km1_2, sp.km2_2
+    ));
+    o.push_str(&format!(
+        "           chord = {} m  e_a = {} m  d = {:.5e} m\n",
+        sp.chord, sp.ea_offset, sp.cg_offset
+    ));
+    o
+}
+
+/// The Table-1-like grid: one column per value, rows C22, C23, C33.
+pub fn vary_text(p: &Preset, key: &str, values: &[f64], sections: &[LayupSection]) -> String {
+    let mut o = format!(
+        "section of {} over {key} — layup (MODEL.md §2.1)\n  {}\n\n",
+        p.display_name(),
+        source_note(p)
+    );
+    let unit = crate::preset::key_spec(key).map(|k| k.unit).unwrap_or("");
+    let head = if unit.is_empty() {
+        key.to_string()
+    } else {
+        format!("{key} ({unit})")
+    };
+    o.push_str(&format!("{head:<26}"));
+    for v in values {
+        o.push_str(&format!("{:>13}", format!("{v}")));
+    }
+    o.push('\n');
+    type Pick = fn(&LayupSection) -> f64;
+    let rows: [(&str, Pick); 3] = [
+        ("C22 (N·m²)", |s| s.props.c22),
+        ("C23 (N·m²)", |s| s.props.c23),
+        ("C33 (N·m²)", |s| s.props.c33),
+    ];
+    for (name, pick) in rows {
+        o.push_str(&format!("{name:<26}"));
+        for s in sections {
+            o.push_str(&format!("{:>13.5e}", pick(s)));
+        }
+        o.push('\n');
+    }
+    o
 }

@@ -44,3 +44,47 @@ pub trait Engine: Send + Sync {
     /// A new tip simulation of `p` from its start state.
     fn stream(&self, p: &Preset) -> Result<Box<dyn Stream>>;
 }
+
+/// The real engine: the analysis layer, unchanged.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Physics;
+
+impl Stream for crate::analysis::simulate::Simulator {
+    fn advance(&mut self, samples: usize) -> Result<Vec<TipSample>> {
+        crate::analysis::simulate::Simulator::advance(self, samples)
+    }
+    fn kick(&mut self, twist_rad: f64, flap_m: f64) {
+        crate::analysis::simulate::Simulator::kick(self, twist_rad, flap_m)
+    }
+    fn status(&self) -> RunStatus {
+        crate::analysis::simulate::Simulator::status(self)
+    }
+}
+
+impl Engine for Physics {
+    fn solve(&self, p: &Preset) -> Result<Solved> {
+        Ok(Solved {
+            section: crate::physics::section::section_properties(p)?,
+            stability: crate::analysis::eigen::analyse(p)?,
+        })
+    }
+
+    fn boundary(
+        &self,
+        p: &Preset,
+        key: &str,
+        from: f64,
+        to: f64,
+        points: usize,
+    ) -> Result<Boundary> {
+        crate::analysis::flutter::flutter_boundary(p, key, from, to, points)
+    }
+
+    fn campbell(&self, p: &Preset, grid: &[f64]) -> Result<TrackedSweep> {
+        crate::analysis::sweep::track(p, "operating.rotor_speed", grid)
+    }
+
+    fn stream(&self, p: &Preset) -> Result<Box<dyn Stream>> {
+        Ok(Box::new(crate::analysis::simulate::Simulator::new(p)?))
+    }
+}

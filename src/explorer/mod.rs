@@ -15,5 +15,5 @@ pub mod terminal;
 pub mod ui;
 pub mod worker;
 
-pub use engine::{Engine, Solved, Stream};
+pub use engine::{Engine, Physics, Solved, Stream};
 pub use state::{AppState, Effect, Msg, Options};

@@ -41,20 +41,10 @@ pub fn section_properties(p: &Preset) -> Result<SectionProps> {
             with_preset_mass(p, [s.c22, s.c23, s.c33])
         }
         SectionSource::Table => with_preset_mass(p, table1_stiffness(p.section.ply_angle)?),
-        SectionSource::Layup => layup_properties(p)?,
+        SectionSource::Layup => crate::physics::laminate::layup_section_props(p)?,
     };
     check_finite(&props)?;
     Ok(props)
-}
-
-/// The layup source (MODEL.md §2.1) lives in `laminate.rs`.
-fn layup_properties(p: &Preset) -> Result<SectionProps> {
-    Err(Error::Invalid {
-        origin: p.origin.clone(),
-        message: "section.source = \"layup\": layup source not available yet; use \"table\" or \
-                  \"direct\""
-            .into(),
-    })
 }
 
 /// Stiffness `[C22, C23, C33]` with the mass, inertia and geometry given in the preset (the

@@ -535,3 +535,19 @@ pub fn mode_labels(torsion_shares_in_frequency_order: &[f64]) -> Vec<String> {
         })
         .collect()
 }
+
+/// The paper's "approximate calculation" (AC, Eq. 13) for the n-th row of Table 2 (Hz), as MODEL.md
+/// §8 and §9.7 read it: λ = i k₁ with `k₁ = (2n−1)π/2L`, the lower root. With `λ² = −k²` Eq. 13
+/// becomes `ω² = [S ∓ √(S² − 4mIΔk⁶)]/(2mI)`, `S = C22 m k² + C33 I k⁴`, `Δ = C22C33 − C23²`; the
+/// lower root is evaluated as `2Δk⁶/(S + √(S² − 4mIΔk⁶))`, which does not cancel when I is small
+/// (the paper's blade has `mI·k⁴` some 1e-9 of `S²`).
+pub fn ac_frequency_hz(section: &SectionProps, length: f64, n: usize) -> f64 {
+    let s = section;
+    let k = torsion_wavenumber(n.max(1), length);
+    let k2 = k * k;
+    let delta = s.c22 * s.c33 - s.c23 * s.c23;
+    let sum = s.c22 * s.m * k2 + s.c33 * s.i * k2 * k2;
+    let disc = (sum * sum - 4.0 * s.m * s.i * delta * k2 * k2 * k2).max(0.0);
+    let omega2 = 2.0 * delta * k2 * k2 * k2 / (sum + disc.sqrt());
+    omega2.max(0.0).sqrt() / (2.0 * std::f64::consts::PI)
+}

@@ -42,7 +42,6 @@ pub struct System {
     n: usize,
     /// States per station.
     ns: usize,
-    span: f64,
 }
 
 /// Generalised loads and aero-state rates at one state, with their Jacobians when asked.
@@ -68,9 +67,6 @@ pub struct LinearSystem {
     /// Structural coordinates 2N (q); the state is `[q (2N), q̇ (2N), z (n_aero)]`.
     pub nq: usize,
     pub n_aero: usize,
-    /// Weight of each aero state next to `q` when measuring a mode's structural share: its
-    /// angle-of-attack contribution per unit state times `√(w_s/L)` (the station's share of span).
-    pub aero_weights: DVector<f64>,
     /// Tip twist φ(L) = `tip_twist · q` and tip flap u(L) = `tip_flap · q` (2N each).
     pub tip_twist: DVector<f64>,
     pub tip_flap: DVector<f64>,
@@ -128,7 +124,6 @@ impl System {
         check_finite("damping matrix", &structure.damping)?;
         let damping = structure.damping.clone();
         let ns = model.states_per_station();
-        let span = structure.basis.length;
         Ok(System {
             structure: Arc::new(structure),
             stations,
@@ -141,7 +136,6 @@ impl System {
             damping,
             n,
             ns,
-            span,
         })
     }
 
@@ -263,21 +257,11 @@ impl System {
         let x_eq = self.equilibrium()?;
         let a = self.jacobian(&x_eq);
         check_finite("state matrix", &a)?;
-        let mut aero_weights = DVector::zeros(self.n_aero());
-        let mut w = vec![0.0; self.ns];
-        for (si, s) in self.stations.iter().enumerate() {
-            self.model.state_weights(s, &mut w);
-            let share = (s.weight / self.span).sqrt();
-            for (i, wi) in w.iter().enumerate() {
-                aero_weights[si * self.ns + i] = wi * share;
-            }
-        }
         Ok(LinearSystem {
             a,
             x_eq,
             nq: self.nq(),
             n_aero: self.n_aero(),
-            aero_weights,
             tip_twist: embed(&self.structure.tip_twist_row(), 0, self.nq()),
             tip_flap: embed(&self.structure.tip_flap_row(), self.n, self.nq()),
             structure: Arc::clone(&self.structure),

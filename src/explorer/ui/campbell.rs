@@ -16,25 +16,78 @@ const MAX_SHOWN: usize = 8;
 /// rotor speed, if higher) are left off the frequency scale so the low modes stay readable.
 const SCALE_FACTOR: f64 = 5.0;
 
+/// Where a tracked mode oscillates: a finite, positive frequency (tracked modes are NaN where
+/// they have no partner and 0 Hz where the pair split into real roots).
+fn oscillates(f: f64) -> bool {
+    f.is_finite() && f > 0.0
+}
+
+/// A mode's typical frequency: the median of its oscillating points (`None` if it never does).
+fn typical(m: &TrackedMode) -> Option<f64> {
+    let mut f: Vec<f64> = m.frequency_hz.iter().copied().filter(|f| oscillates(*f)).collect();
+    if f.is_empty() {
+        return None;
+    }
+    f.sort_by(f64::total_cmp);
+    Some(f[f.len() / 2])
+}
+
 /// The modes worth drawing, lowest first, and how many were left off.
 pub fn shown_modes(sweep: &TrackedSweep) -> (Vec<(usize, &TrackedMode)>, usize) {
-    let lo = |m: &TrackedMode| m.frequency_hz.iter().copied().fold(f64::INFINITY, f64::min);
-    let hi = |m: &TrackedMode| m.frequency_hz.iter().copied().fold(0.0, f64::max);
-    let mut order: Vec<(usize, &TrackedMode)> = sweep.modes.iter().enumerate().collect();
-    order.sort_by(|a, b| lo(a.1).total_cmp(&lo(b.1)));
+    let mut order: Vec<(usize, &TrackedMode, f64)> = sweep
+        .modes
+        .iter()
+        .enumerate()
+        .filter_map(|(i, m)| typical(m).map(|t| (i, m, t)))
+        .collect();
+    order.sort_by(|a, b| a.2.total_cmp(&b.2));
+    let total = sweep.modes.len();
     let Some(first) = order.first() else {
-        return (order, 0);
+        return (Vec::new(), total);
+    };
+    let top = |m: &TrackedMode| {
+        m.frequency_hz
+            .iter()
+            .copied()
+            .filter(|f| oscillates(*f))
+            .fold(0.0, f64::max)
     };
     let rpm_max = sweep.values.iter().copied().fold(0.0, f64::max);
-    let limit = (SCALE_FACTOR * hi(first.1)).max(3.0 * rpm_max / 60.0);
-    let total = order.len();
-    let shown: Vec<_> = order
+    let limit = (SCALE_FACTOR * top(first.1)).max(3.0 * rpm_max / 60.0);
+    let shown: Vec<(usize, &TrackedMode)> = order
         .into_iter()
-        .filter(|(_, m)| lo(m) <= limit)
+        .filter(|(_, _, t)| *t <= limit)
         .take(MAX_SHOWN)
+        .map(|(i, m, _)| (i, m))
         .collect();
     let left = total - shown.len();
     (shown, left)
+}
+
+/// The pieces of a curve where the mode oscillates, as separate polylines (no line is drawn
+/// across a gap).
+fn segments(x: &[f64], f: &[f64], y: &[f64]) -> Vec<Vec<(f64, f64)>> {
+    let mut out: Vec<Vec<(f64, f64)>> = Vec::new();
+    let mut cur: Vec<(f64, f64)> = Vec::new();
+    for ((&x, &f), &y) in x.iter().zip(f).zip(y) {
+        if oscillates(f) && y.is_finite() {
+            cur.push((x, y));
+        } else if !cur.is_empty() {
+            out.push(std::mem::take(&mut cur));
+        }
+    }
+    if !cur.is_empty() {
+        out.push(cur);
+    }
+    out
+}
+
+fn polyline(data: &[(f64, f64)], style: Style, mk: ratatui::symbols::Marker) -> Dataset<'_> {
+    Dataset::default()
+        .marker(mk)
+        .graph_type(GraphType::Line)
+        .style(style)
+        .data(data)
 }
 
 pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
@@ -57,7 +110,7 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
         }
     };
     let (shown, left_off) = shown_modes(sweep);
-    let rpm: Vec<f64> = sweep.values.clone();
+    let rpm = &sweep.values;
     let rpm_max = rpm.iter().copied().fold(0.0, f64::max).max(1e-9);
     let now = state.preset.operating.rotor_speed;
     let colors: Vec<Color> = shown.iter().map(|(i, _)| theme.series(*i)).collect();
@@ -68,37 +121,29 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
             Style::new()
         }
     };
-    let legend: Vec<Span> = shown
+    let dim = theme.dim();
+    let mut legend: Vec<Span> = shown
         .iter()
         .zip(&colors)
-        .flat_map(|((_, m), c)| {
-            [
-                Span::styled(format!(" {}", m.label), style_of(*c)),
-                Span::raw(" "),
-            ]
-        })
+        .flat_map(|((_, m), c)| [Span::raw(" "), Span::styled(m.label.clone(), style_of(*c))])
         .collect();
+    legend.push(Span::styled("  · grey: 1P, 3P, now", dim));
+    if left_off > 0 {
+        legend.push(Span::styled(format!(" · {left_off} more off scale"), dim));
+    }
+    legend.push(Span::raw(" "));
 
-    let freq: Vec<Vec<(f64, f64)>> = shown
+    let freq: Vec<Vec<Vec<(f64, f64)>>> = shown
         .iter()
-        .map(|(_, m)| {
-            rpm.iter()
-                .copied()
-                .zip(m.frequency_hz.iter().copied())
-                .collect()
-        })
+        .map(|(_, m)| segments(rpm, &m.frequency_hz, &m.frequency_hz))
         .collect();
-    let zeta: Vec<Vec<(f64, f64)>> = shown
+    let zeta: Vec<Vec<Vec<(f64, f64)>>> = shown
         .iter()
-        .map(|(_, m)| {
-            rpm.iter()
-                .copied()
-                .zip(m.damping_ratio.iter().copied())
-                .collect()
-        })
+        .map(|(_, m)| segments(rpm, &m.frequency_hz, &m.damping_ratio))
         .collect();
     let f_max = freq
         .iter()
+        .flatten()
         .flatten()
         .map(|p| p.1)
         .fold(0.0, f64::max)
@@ -107,8 +152,8 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
     let (z_lo, z_hi) = zeta
         .iter()
         .flatten()
+        .flatten()
         .map(|p| p.1)
-        .filter(|z| z.is_finite())
         .fold((0.0f64, 0.0f64), |a, z| (a.0.min(z), a.1.max(z)));
     let z_pad = 0.08 * (z_hi - z_lo).max(1e-6);
     let z = [z_lo - z_pad, z_hi + z_pad];
@@ -119,101 +164,50 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
     let zero = [(0.0, 0.0), (rpm_max, 0.0)];
     let mk = marker(state.opts.marker);
     let guide = style_of(theme.guide());
-    let dim = theme.dim();
+    let line = |data, style| polyline(data, style, mk);
     let x_axis = || {
         Axis::default()
-            .title(Span::styled("rotor speed (rpm)", dim))
             .bounds([0.0, rpm_max])
             .style(dim)
             .labels([
-                Span::raw("0"),
-                Span::raw(sig(rpm_max / 2.0, 3)),
-                Span::raw(sig(rpm_max, 3)),
+                Span::raw("0 rpm"),
+                Span::styled("rotor speed", theme.title()),
+                Span::raw(format!("{} rpm", sig(rpm_max, 3))),
             ])
     };
-
-    let mut f_sets: Vec<Dataset> = vec![
-        Dataset::default()
-            .marker(mk)
-            .graph_type(GraphType::Line)
-            .style(guide)
-            .data(&one_p),
-        Dataset::default()
-            .marker(mk)
-            .graph_type(GraphType::Line)
-            .style(guide)
-            .data(&three_p),
-        Dataset::default()
-            .marker(mk)
-            .graph_type(GraphType::Line)
-            .style(guide)
-            .data(&now_f),
+    let mut f_sets = vec![
+        line(&one_p, guide),
+        line(&three_p, guide),
+        line(&now_f, guide),
     ];
-    let mut z_sets: Vec<Dataset> = vec![
-        Dataset::default()
-            .marker(mk)
-            .graph_type(GraphType::Line)
-            .style(guide)
-            .data(&zero),
-        Dataset::default()
-            .marker(mk)
-            .graph_type(GraphType::Line)
-            .style(guide)
-            .data(&now_z),
-    ];
+    let mut z_sets = vec![line(&zero, guide), line(&now_z, guide)];
     for ((f, zz), c) in freq.iter().zip(&zeta).zip(&colors) {
-        f_sets.push(
-            Dataset::default()
-                .marker(mk)
-                .graph_type(GraphType::Line)
-                .style(style_of(*c))
-                .data(f),
-        );
-        z_sets.push(
-            Dataset::default()
-                .marker(mk)
-                .graph_type(GraphType::Line)
-                .style(style_of(*c))
-                .data(zz),
-        );
+        f_sets.extend(f.iter().map(|seg| line(seg, style_of(*c))));
+        z_sets.extend(zz.iter().map(|seg| line(seg, style_of(*c))));
     }
-    let mut f_title = vec![Span::raw(" Campbell diagram: frequency ")];
-    f_title.push(Span::styled(
-        "(1P, 3P and the current rotor speed in grey",
-        dim,
-    ));
-    if left_off > 0 {
-        f_title.push(Span::styled(
-            format!("; {left_off} higher modes off scale"),
-            dim,
-        ));
-    }
-    f_title.push(Span::styled(") ", dim));
     let [f_area, z_area] =
         Layout::vertical([Constraint::Percentage(58), Constraint::Percentage(42)]).areas(area);
     let f_chart = Chart::new(f_sets)
-        .block(pane(Line::from(f_title), theme).title_bottom(Line::from(legend.clone())))
-        .x_axis(x_axis())
-        .y_axis(
-            Axis::default()
-                .title(Span::styled("f (Hz)", dim))
-                .bounds([0.0, f_max])
-                .style(dim)
-                .labels([
-                    Span::raw("0"),
-                    Span::raw(sig(f_max / 2.0, 3)),
-                    Span::raw(sig(f_max, 3)),
-                ]),
-        );
-    let z_chart = Chart::new(z_sets)
         .block(
-            pane(" damping ratio ζ (flutter where a mode crosses 0) ", theme)
+            pane(" Campbell diagram: frequency against rotor speed ", theme)
                 .title_bottom(Line::from(legend)),
         )
         .x_axis(x_axis())
         .y_axis(
             Axis::default()
-                .title(Span::styled("ζ", dim))
+                .bounds([0.0, f_max])
+                .style(dim)
+                .labels([
+                    Span::raw("0 Hz"),
+                    Span::raw(format!("{} Hz", sig(f_max / 2.0, 3))),
+                    Span::raw(format!("{} Hz", sig(f_max, 3))),
+                ]),
+        );
+    let z_chart = Chart::new(z_sets)
+        .block(pane(" damping ratio ζ (a mode below 0 is unstable) ", theme))
+        .x_axis(x_axis())
+        .y_axis(
+            Axis::default()
                 .bounds(z)
                 .style(dim)
                 .labels([
@@ -237,6 +231,14 @@ mod tests {
             damping_ratio: vec![0.01; 3],
             re: vec![-0.1; 3],
         }
+    }
+
+    #[test]
+    fn gaps_split_curves() {
+        let x = [0.0, 1.0, 2.0, 3.0, 4.0];
+        let f = [1.0, f64::NAN, 2.0, 3.0, 0.0];
+        let segs = segments(&x, &f, &f);
+        assert_eq!(segs, vec![vec![(0.0, 1.0)], vec![(2.0, 2.0), (3.0, 3.0)]]);
     }
 
     #[test]

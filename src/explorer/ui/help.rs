@@ -22,11 +22,11 @@ pub fn render(theme: &Theme, frame: &mut Frame, area: Rect) {
             ])
         })
         .collect();
-    lines.push(Line::from(""));
     for note in [
-        " Parameters marked * differ from the preset. The margin in the status line comes from a",
-        " boundary search along the selected parameter (ply angle, wind, rotor speed or pitch),",
-        " run in the background. Root locus: σ on an asinh axis, ω on a log axis.",
+        " * marks parameters changed from the preset.",
+        " The margin comes from a background search along the selected parameter",
+        " (ply angle, wind speed, rotor speed or pitch).",
+        " Root locus: σ on an asinh axis (linear near 0), ω on a log axis.",
     ] {
         lines.push(Line::styled(note, theme.dim()));
     }

@@ -5,7 +5,7 @@
 //! Structural roots of one blade span decades (flap near 1P, torsion far above), so ω is on a log
 //! axis and σ on an asinh axis: linear within ±σ₀ around the stability line (σ₀ = the least-damped
 //! oscillatory mode's |σ|), logarithmic beyond, so the critical pole and the heavily damped ones
-//! are all visible. Real roots (ω = 0) sit on a separate bottom row.
+//! are all visible. Real roots (ω = 0) sit on a separate bottom row, labelled at its right end.
 
 use super::{marker, pane, short_label, sig, Theme};
 use crate::explorer::state::AppState;
@@ -146,14 +146,22 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
     sets.extend(trails.iter().map(|t| t.as_slice()));
     let ax = Axes::fit(&sets);
 
-    let bottom = format!(
-        " σ 1/s: {} … 0 … {}  (linear within ±{})   ω rad/s, log ",
+    let (lo, hi, lin) = (
         sig(ax.sigma_at(ax.x[0]), 2),
         sig(ax.sigma_at(ax.x[1]), 2),
-        sig(ax.s0, 2)
+        sig(ax.s0, 2),
     );
-    let block =
-        pane(TextLine::from(title), theme).title_bottom(TextLine::styled(bottom, theme.dim()));
+    let inner_w = area.width.saturating_sub(2);
+    let long = format!(" σ 1/s: {lo} … 0 … {hi}  (linear within ±{lin})   ω rad/s, log ");
+    let bottom = if long.chars().count() + 2 <= inner_w as usize {
+        long
+    } else {
+        format!(" σ {lo}…{hi} 1/s (asinh) · ω rad/s (log) ")
+    };
+    let block = pane(TextLine::from(title), theme)
+        .title_bottom(TextLine::styled(bottom, theme.dim()));
+    // Canvas units per terminal column, to right-align the ω = 0 label.
+    let per_col = (ax.x[1] - ax.x[0]) / f64::from(inner_w.max(1));
 
     let guide = theme.guide();
     let dim = theme.dim();
@@ -201,15 +209,6 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
                 y2: ax.y[1],
                 color: guide,
             });
-            if has_real {
-                ctx.draw(&Line {
-                    x1: ax.x[0],
-                    y1: ax.y_real,
-                    x2: ax.x[1],
-                    y2: ax.y_real,
-                    color: guide,
-                });
-            }
             // Oldest trails first so newer ones draw over them.
             for (pts, color) in trail_pts.iter().zip(&trail_colors).rev() {
                 ctx.draw(&Points {
@@ -228,7 +227,7 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
                 d += 1;
             }
             if has_real {
-                ctx.print(ax.x[0], ax.y_real, TextLine::styled("ω=0", dim));
+                ctx.print(ax.x[1] - 3.5 * per_col, ax.y_real, TextLine::styled("ω=0", dim));
             }
             ctx.print(0.0, ax.y[1], TextLine::styled("σ=0", dim));
             for (i, &(x, y)) in pole_pts.iter().enumerate() {

@@ -54,7 +54,14 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
     };
     let block = pane(title, theme);
     let mut modes: Vec<&Mode> = stab.eigenvalues.iter().collect();
-    modes.sort_by(|a, b| a.frequency_hz.total_cmp(&b.frequency_hz));
+    // Oscillatory modes by frequency, then the real (overdamped or divergent) roots.
+    modes.sort_by(|a, b| {
+        let real = |m: &Mode| m.frequency_hz <= 0.0;
+        real(a)
+            .cmp(&real(b))
+            .then(a.frequency_hz.total_cmp(&b.frequency_hz))
+            .then(b.re.total_cmp(&a.re))
+    });
     let critical = stab
         .eigenvalues
         .iter()

@@ -67,7 +67,13 @@ struct Series<'a> {
     color: ratatui::style::Color,
 }
 
-fn chart<'a>(s: Series<'a>, t: [f64; 2], state: &AppState, theme: &Theme) -> Chart<'a> {
+fn chart<'a>(
+    s: Series<'a>,
+    t: [f64; 2],
+    tall: bool,
+    state: &AppState,
+    theme: &Theme,
+) -> Chart<'a> {
     let Series {
         data,
         name,
@@ -87,22 +93,23 @@ fn chart<'a>(s: Series<'a>, t: [f64; 2], state: &AppState, theme: &Theme) -> Cha
         .style(style)
         .data(data);
     let dim = theme.dim();
+    // The name and unit sit under the time axis, where they stay visible at any height.
+    let y_labels: Vec<Span> = if tall {
+        vec![
+            Span::raw(sig(y[0], 3)),
+            Span::raw(sig(0.5 * (y[0] + y[1]), 3)),
+            Span::raw(sig(y[1], 3)),
+        ]
+    } else {
+        vec![Span::raw(sig(y[0], 3)), Span::raw(sig(y[1], 3))]
+    };
     Chart::new(vec![ds])
         .x_axis(Axis::default().bounds(t).style(dim).labels([
             Span::raw(format!("{} s", sig(t[0], 3))),
+            Span::styled(format!("{name} ({unit})"), theme.title()),
             Span::raw(format!("{} s", sig(t[1], 3))),
         ]))
-        .y_axis(
-            Axis::default()
-                .title(Span::styled(format!("{name} ({unit})"), dim))
-                .bounds(y)
-                .style(dim)
-                .labels([
-                    Span::raw(sig(y[0], 3)),
-                    Span::raw(sig(0.5 * (y[0] + y[1]), 3)),
-                    Span::raw(sig(y[1], 3)),
-                ]),
-        )
+        .y_axis(Axis::default().bounds(y).style(dim).labels(y_labels))
 }
 
 pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
@@ -145,7 +152,9 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
     };
     let side_by_side = body.width >= 100;
     let [twist_area, flap_area] = if side_by_side {
-        Layout::horizontal([Constraint::Percentage(50), Constraint::Percentage(50)]).areas(body)
+        Layout::horizontal([Constraint::Percentage(50), Constraint::Percentage(50)])
+            .spacing(2)
+            .areas(body)
     } else {
         Layout::vertical([Constraint::Percentage(50), Constraint::Percentage(50)]).areas(body)
     };
@@ -172,8 +181,9 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
         floor: 1e-9,
         color: theme.series(1),
     };
-    frame.render_widget(chart(twist, t, state, theme), twist_area);
-    frame.render_widget(chart(flap, t, state, theme), flap_area);
+    let tall = twist_area.height >= 8;
+    frame.render_widget(chart(twist, t, tall, state, theme), twist_area);
+    frame.render_widget(chart(flap, t, tall, state, theme), flap_area);
     if let Some(note) = note {
         frame.render_widget(
             Paragraph::new(Line::styled(

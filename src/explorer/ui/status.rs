@@ -8,7 +8,7 @@ use crate::analysis::flutter::BoundaryKind;
 use crate::explorer::state::ParamKind;
 use crate::explorer::state::{unit, AppState, ViewMode, PARAMS};
 use ratatui::layout::{Constraint, Layout, Rect};
-use ratatui::style::Style;
+use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::Paragraph;
 use ratatui::Frame;
@@ -111,7 +111,7 @@ pub fn error_text(state: &AppState) -> Option<String> {
 pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
     let [top, bottom] =
         Layout::vertical([Constraint::Length(1), Constraint::Length(1)]).areas(area);
-    let mut spans: Vec<Span> = Vec::new();
+    let width = area.width as usize;
     let (badge, style): (&str, Style) = match (&state.solved, &state.solve_error) {
         (_, Some(_)) => (" ERROR ", theme.error()),
         (None, None) => (" SOLVING… ", theme.dim()),
@@ -121,25 +121,39 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
             Verdict::Divergence => (" DIVERGENCE ", theme.divergence()),
         },
     };
-    spans.push(Span::styled(
-        badge,
-        style.add_modifier(ratatui::style::Modifier::REVERSED),
-    ));
-    if let (Some(s), None) = (&state.solved, &state.solve_error) {
-        if let Some(m) = s.stability.critical() {
-            spans.push(Span::raw(format!(
-                " least damped: {} {} Hz, ζ = {}",
-                m.label,
-                sig(m.frequency_hz, 3),
-                sig(m.damping_ratio, 2)
-            )));
+    let least = match (&state.solved, &state.solve_error) {
+        (Some(s), None) => s.stability.critical().map(|m| {
+            (
+                format!(
+                    " least damped: {} {} Hz, ζ = {}",
+                    m.label,
+                    sig(m.frequency_hz, 3),
+                    sig(m.damping_ratio, 2)
+                ),
+                format!(" {} ζ = {}", m.label, sig(m.damping_ratio, 2)),
+            )
+        }),
+        _ => None,
+    };
+    let margin = margin_text(state).map(|m| format!("margin along {m}"));
+    let solving = state.solving() && state.solved.is_some();
+    // The badge and the margin always; the least-damped mode in the room that is left.
+    let used = badge.chars().count()
+        + margin.as_ref().map_or(0, |m| m.chars().count() + 5)
+        + if solving { 10 } else { 0 };
+    let mut spans = vec![Span::styled(badge, style.add_modifier(Modifier::REVERSED))];
+    if let Some((long, short)) = least {
+        if used + long.chars().count() <= width {
+            spans.push(Span::raw(long));
+        } else if used + short.chars().count() <= width {
+            spans.push(Span::raw(short));
         }
     }
-    if let Some(margin) = margin_text(state) {
-        spans.push(Span::styled("  │  margin ", theme.dim()));
+    if let Some(margin) = margin {
+        spans.push(Span::styled("  │  ", theme.dim()));
         spans.push(Span::styled(margin, theme.accent()));
     }
-    if state.solving() && state.solved.is_some() {
+    if solving {
         spans.push(Span::styled("  solving…", theme.dim()));
     }
     frame.render_widget(Paragraph::new(Line::from(spans)), top);
@@ -149,13 +163,24 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
     } else if let Some(n) = &state.notice {
         Line::styled(n.clone(), theme.accent())
     } else {
-        let mut hints = String::from(
-            "←→ adjust  S-←→ coarse  ↑↓ select  a aero  k kick  f boundary  c Campbell  space pause  ? help  q quit",
-        );
+        let hints = HINTS
+            .iter()
+            .find(|h| h.chars().count() + if state.paused { 8 } else { 0 } <= width)
+            .unwrap_or(&HINTS[HINTS.len() - 1]);
+        let mut spans = Vec::new();
         if state.paused {
-            hints = format!("PAUSED  {hints}");
+            spans.push(Span::styled("PAUSED", theme.title()));
+            spans.push(Span::raw("  "));
         }
-        Line::styled(hints, theme.dim())
+        spans.push(Span::styled(*hints, theme.dim()));
+        Line::from(spans)
     };
     frame.render_widget(Paragraph::new(line), bottom);
 }
+
+/// The key hints, longest first; the first that fits is shown.
+const HINTS: [&str; 3] = [
+    "←→ adjust  S-←→ coarse  ↑↓ select  a aero  k kick  f boundary  c Campbell  space pause  ? help  q quit",
+    "←→ adjust  ↑↓ select  a aero  k kick  f boundary  c Campbell  space pause  ? help  q quit",
+    "←→ adjust ↑↓ select a aero k kick c Campbell ? help q quit",
+];

@@ -150,10 +150,12 @@ pub trait StripModel: Send + Sync + std::fmt::Debug {
     /// motion, and their derivative with respect to `[φ, u]`.
     fn steady_states(&self, s: &Station, phi: f64, u: f64, out: &mut SteadyStates);
 
-    /// How much each state counts next to the structural coordinates when a mode's structural
-    /// share is measured: its contribution to the effective angle of attack per unit state
-    /// (rad per state unit). Zero-length for stateless models.
-    fn state_weights(&self, s: &Station, out: &mut [f64]);
+    /// Optional scale of each state (its angle-of-attack contribution per unit state). Not used
+    /// by the eigen-analysis, which measures structural shares by participation factors (scale
+    /// free); kept so models may document their state scaling. Default: zeros.
+    fn state_weights(&self, _s: &Station, out: &mut [f64]) {
+        out.fill(0.0);
+    }
 }
 
 /// `aero.model = "none"`: the structure alone, no loads, no states.
@@ -171,7 +173,6 @@ impl StripModel for NoAero {
         out.clear();
     }
     fn steady_states(&self, _: &Station, _: f64, _: f64, _: &mut SteadyStates) {}
-    fn state_weights(&self, _: &Station, _: &mut [f64]) {}
 }
 
 /// The model a preset selects.

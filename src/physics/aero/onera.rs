@@ -476,23 +476,26 @@ pub mod rigid {
             flap: qc * cos_psi,
             twist: -e * qc * cos_g,
         };
-        let mut p = LoadPartials::<STATES>::default();
-        // dα_g/dφ = −1: d(cos α_g)/dφ = sin α_g, d(sin α_g)/dφ = −cos α_g.
-        p.twist = Loads {
-            flap: 0.0,
-            twist: -e * (lift * sin_g - drag * cos_g),
-        };
-        p.states[C1L] = lift_load;
-        p.states[STALL] = lift_load;
-        p.states[STALL + 2] = Loads {
+        let mut states = [Loads::default(); STATES];
+        states[C1L] = lift_load;
+        states[STALL] = lift_load;
+        states[STALL + 2] = Loads {
             flap: 0.0,
             twist: -qc * strip.chord,
         };
-        p.states[STALL + 4] = Loads {
+        states[STALL + 4] = Loads {
             flap: qc * sin_psi,
             twist: -e * qc * sin_g,
         };
-        p
+        LoadPartials {
+            // dα_g/dφ = −1: d(cos α_g)/dφ = sin α_g, d(sin α_g)/dφ = −cos α_g.
+            twist: Loads {
+                flap: 0.0,
+                twist: -e * (lift * sin_g - drag * cos_g),
+            },
+            states,
+            ..LoadPartials::default()
+        }
     }
 }
 
@@ -685,34 +688,36 @@ pub mod coupled {
         };
         let dw = downwash_partials(strip);
         let through_downwash = |dw_dx: f64| lift_unit.scaled(gw * dw_dx);
-        let mut p = LoadPartials::<STATES>::default();
         let twist_c = through_downwash(dw.twist);
-        // dα_g/dφ = −1 in the drag's arm: d(sin α_g)/dφ = −cos α_g.
-        p.twist = Loads {
-            flap: twist_c.flap,
-            twist: twist_c.twist + e * drag * cos_g,
-        };
         let rate_c = through_downwash(dw.twist_rate);
         let rate_nc = apparent(rate);
-        p.twist_rate = Loads {
-            flap: rate_c.flap + rate_nc.flap,
-            twist: rate_c.twist + rate_nc.twist,
-        };
-        p.twist_accel = apparent(accel);
-        p.flap_rate = through_downwash(dw.flap_rate);
-        p.flap_accel = apparent(flap_accel);
-        p.states[LAG] = lift_unit.scaled(gz[0]);
-        p.states[LAG + 1] = lift_unit.scaled(gz[1]);
-        p.states[STALL] = lift_unit.scaled(qc);
-        p.states[STALL + 2] = Loads {
+        let mut states = [Loads::default(); STATES];
+        states[LAG] = lift_unit.scaled(gz[0]);
+        states[LAG + 1] = lift_unit.scaled(gz[1]);
+        states[STALL] = lift_unit.scaled(qc);
+        states[STALL + 2] = Loads {
             flap: 0.0,
             twist: -qc * strip.chord,
         };
-        p.states[STALL + 4] = Loads {
+        states[STALL + 4] = Loads {
             flap: qc * sin_psi,
             twist: -e * qc * sin_g,
         };
-        p
+        LoadPartials {
+            // dα_g/dφ = −1 in the drag's arm: d(sin α_g)/dφ = −cos α_g.
+            twist: Loads {
+                flap: twist_c.flap,
+                twist: twist_c.twist + e * drag * cos_g,
+            },
+            twist_rate: Loads {
+                flap: rate_c.flap + rate_nc.flap,
+                twist: rate_c.twist + rate_nc.twist,
+            },
+            twist_accel: apparent(accel),
+            flap_rate: through_downwash(dw.flap_rate),
+            flap_accel: apparent(flap_accel),
+            states,
+        }
     }
 }
 
@@ -769,7 +774,14 @@ impl OneraModel {
         }
     }
 
-    fn evaluate_rigid(&self, strip: &Strip, k: &Kinematics, z: &[f64], out: &mut StripEval, jac: bool) {
+    fn evaluate_rigid(
+        &self,
+        strip: &Strip,
+        k: &Kinematics,
+        z: &[f64],
+        out: &mut StripEval,
+        jac: bool,
+    ) {
         let s: [f64; rigid::STATES] = state_array(z);
         let c = &self.coefficients;
         let loads = rigid::loads(c, strip, k.phi, &s);
@@ -784,7 +796,14 @@ impl OneraModel {
         write_rate_jacobian(&rigid::rate_jacobian(c, strip), out);
     }
 
-    fn evaluate_coupled(&self, strip: &Strip, k: &Kinematics, z: &[f64], out: &mut StripEval, jac: bool) {
+    fn evaluate_coupled(
+        &self,
+        strip: &Strip,
+        k: &Kinematics,
+        z: &[f64],
+        out: &mut StripEval,
+        jac: bool,
+    ) {
         let s: [f64; coupled::STATES] = state_array(z);
         let c = &self.coefficients;
         let motion = Self::motion(k);
@@ -858,7 +877,14 @@ impl StripModel for OneraModel {
         }
     }
 
-    fn evaluate(&self, s: &Station, k: &Kinematics, z: &[f64], out: &mut StripEval, jacobian: bool) {
+    fn evaluate(
+        &self,
+        s: &Station,
+        k: &Kinematics,
+        z: &[f64],
+        out: &mut StripEval,
+        jacobian: bool,
+    ) {
         let strip = self.strip(s);
         match self.forcing {
             OneraForcing::Rigid => self.evaluate_rigid(&strip, k, z, out, jacobian),
@@ -894,36 +920,6 @@ impl StripModel for OneraModel {
                     *row = [d * dw_dphi, 0.0];
                 }
             }
-        }
-    }
-
-    /// Angle-of-attack equivalents: a Jones lag adds `A_i ε_i z_i / b` (as in §5.2); a
-    /// coefficient state counts as the angle that gives the same lift on the attached slope
-    /// (`1/a_0L`), its rate over the reduced time `1/ω_r` as well (`1/(a_0L ω_r)`).
-    fn state_weights(&self, s: &Station, out: &mut [f64]) {
-        let strip = self.strip(s);
-        let per_coefficient = 1.0 / self.coefficients.a0l.max(f64::MIN_POSITIVE);
-        let per_rate = if strip.omega_r() > 0.0 {
-            per_coefficient / strip.omega_r()
-        } else {
-            0.0
-        };
-        let stall_at = match self.forcing {
-            OneraForcing::Rigid => {
-                out[rigid::C1L] = per_coefficient;
-                rigid::STALL
-            }
-            OneraForcing::Coupled => {
-                let b = strip.semichord();
-                for (i, (amp, eps)) in JONES.iter().enumerate() {
-                    out[coupled::LAG + i] = amp * eps / b;
-                }
-                coupled::STALL
-            }
-        };
-        for pair in out[stall_at..stall_at + STALL_STATES].chunks_exact_mut(2) {
-            pair[0] = per_coefficient;
-            pair[1] = per_rate;
         }
     }
 }

@@ -81,8 +81,6 @@ impl StripModel for QuasiSteady {
     }
 
     fn steady_states(&self, _: &Station, _: f64, _: f64, _: &mut SteadyStates) {}
-
-    fn state_weights(&self, _: &Station, _: &mut [f64]) {}
 }
 
 #[cfg(test)]

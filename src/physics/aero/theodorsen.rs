@@ -132,14 +132,6 @@ impl StripModel for Theodorsen {
             out.dz_dk[i] = [-b / eps, 0.0];
         }
     }
-
-    /// A lag state adds `A_i ε_i z_i / b` to the effective angle of attack `w_eff / V`.
-    fn state_weights(&self, _: &Station, out: &mut [f64]) {
-        let b = self.section.semichord();
-        for (o, (amp, eps)) in out.iter_mut().zip(JONES) {
-            *o = amp * eps / b;
-        }
-    }
 }
 
 #[cfg(test)]

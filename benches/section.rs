@@ -1,0 +1,30 @@
+//! One layup section evaluation (MODEL.md §2.1): CLT, contour moments, stiffness and mass.
+//! Target (issue 5): under 100 µs, so dragging the ply angle re-solves within one frame.
+
+use flutterscope::physics::laminate::layup_section_props;
+use flutterscope::preset::{ContourShape, Preset};
+
+fn main() {
+    divan::main();
+}
+
+fn preset(shape: ContourShape) -> Preset {
+    let mut p = Preset::default();
+    p.section.contour.shape = shape;
+    p.section.ply_angle = 30.0;
+    p
+}
+
+/// The paper's Table 1 box (exact with four corners): the default layup section.
+#[divan::bench]
+fn layup_box(b: divan::Bencher) {
+    let p = preset(ContourShape::Box);
+    b.bench(|| layup_section_props(divan::black_box(&p)).unwrap());
+}
+
+/// Smooth contours: two polylines (512 and 1024 segments) Richardson-combined.
+#[divan::bench(args = [ContourShape::Ellipse, ContourShape::Paper])]
+fn layup_smooth(b: divan::Bencher, shape: ContourShape) {
+    let p = preset(shape);
+    b.bench(|| layup_section_props(divan::black_box(&p)).unwrap());
+}

@@ -1,0 +1,193 @@
+//! The headless binary end to end: `modes`, `reproduce table1|table2`, and bad input (issue 2
+//! item 4): every failure exits non-zero with a message naming file, key, value and range, and
+//! never panics.
+
+use assert_cmd::cargo::cargo_bin_cmd;
+use std::path::PathBuf;
+
+struct Run {
+    code: Option<i32>,
+    stdout: String,
+    stderr: String,
+}
+
+fn run(args: &[&str]) -> Run {
+    let out = cargo_bin_cmd!("flutterscope").args(args).output().unwrap();
+    Run {
+        code: out.status.code(),
+        stdout: String::from_utf8_lossy(&out.stdout).into_owned(),
+        stderr: String::from_utf8_lossy(&out.stderr).into_owned(),
+    }
+}
+
+/// A failure with a clear message: non-zero exit, no panic, every `needles` in stderr.
+fn assert_fails_naming(r: &Run, needles: &[&str]) {
+    assert!(r.code.is_some_and(|c| c != 0), "exit {:?}; stderr: {}", r.code, r.stderr);
+    assert!(!r.stderr.contains("panicked"), "panic: {}", r.stderr);
+    for n in needles {
+        assert!(r.stderr.contains(n), "stderr lacks {n:?}: {}", r.stderr);
+    }
+}
+
+/// A scratch preset file unique to this test.
+fn preset_file(name: &str, text: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("flutterscope-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+fn json(r: &Run) -> serde_json::Value {
+    assert_eq!(r.code, Some(0), "stderr: {}", r.stderr);
+    serde_json::from_str(&r.stdout).unwrap()
+}
+
+#[test]
+fn modes_json_is_sorted_and_labelled() {
+    let v = json(&run(&["modes", "--preset", "liu2017", "--json"]));
+    let modes = v["modes"].as_array().unwrap();
+    assert_eq!(modes.len(), 10);
+    let f: Vec<f64> = modes.iter().map(|m| m["frequency_hz"].as_f64().unwrap()).collect();
+    assert!(f.windows(2).all(|w| w[0] <= w[1]), "{f:?}");
+    assert!(f[0] > 0.0);
+    assert_eq!(modes[0]["label"], "flap 1");
+    let torsion = modes.iter().filter(|m| m["label"].as_str().unwrap().starts_with("torsion"));
+    assert_eq!(torsion.count(), 5);
+    for m in modes {
+        let share = m["torsion_share"].as_f64().unwrap();
+        assert!((0.0..=1.0).contains(&share));
+        assert_eq!(m["label"].as_str().unwrap().starts_with("torsion"), share > 0.5);
+    }
+}
+
+#[test]
+fn modes_follow_set_overrides() {
+    let still = json(&run(&["modes", "--json", "--set", "operating.rotor_speed=0"]));
+    let spinning = json(&run(&["modes", "--json", "--set", "operating.rotor_speed=120"]));
+    let f = |v: &serde_json::Value| v["modes"][0]["frequency_hz"].as_f64().unwrap();
+    assert!(f(&spinning) > 2.0 * f(&still));
+    let n8 = json(&run(&["modes", "--json", "--set", "structure.modes=8"]));
+    assert_eq!(n8["modes"].as_array().unwrap().len(), 16);
+}
+
+#[test]
+fn modes_text_lists_every_mode() {
+    let r = run(&["modes", "--set", "structure.form=strong"]);
+    assert_eq!(r.code, Some(0), "{}", r.stderr);
+    assert!(r.stdout.contains("strong form"));
+    for k in 1..=5 {
+        assert!(r.stdout.contains(&format!("flap {k}")));
+        assert!(r.stdout.contains(&format!("torsion {k}")));
+    }
+}
+
+#[test]
+fn reproduce_table1_carries_paper_and_ours() {
+    let v = json(&run(&["reproduce", "table1", "--json"]));
+    let rows = v["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), 7);
+    let at45 = &rows[3];
+    assert_eq!(at45["ply_angle_deg"], 45.0);
+    assert_eq!(at45["paper_printed"]["c22"], 9.0509e5);
+    let si = at45["paper_si"]["c22"].as_f64().unwrap();
+    assert!((si - 0.90509).abs() < 1e-12);
+    // The table source is exact at the nodes.
+    assert!((at45["ours_table"]["c23"].as_f64().unwrap() + 0.15919).abs() < 1e-12);
+    let text = run(&["reproduce", "table1"]);
+    assert!(text.stdout.contains("C22") && text.stdout.contains("ours: layup"));
+}
+
+#[test]
+fn reproduce_table2_meets_model_targets() {
+    let v = json(&run(&["reproduce", "table2", "--json"]));
+    let entries = v["entries"].as_array().unwrap();
+    assert_eq!(entries.len(), 35);
+    for e in entries {
+        let g = |k: &str| e[k].as_f64().unwrap();
+        assert!(g("ac_abs_diff").abs() <= 1e-4, "{e}");
+        assert!(g("strong_rel_diff").abs() <= 0.01, "{e}");
+        assert!((g("ours_ac") - g("paper_ac") - g("ac_abs_diff")).abs() < 1e-12);
+    }
+    let text = run(&["reproduce", "table2"]);
+    assert!(text.stdout.contains("paper Present") && text.stdout.contains("ours AC (Eq. 13)"));
+}
+
+#[test]
+fn reproduce_figures_are_not_there_yet() {
+    for fig in ["fig2", "fig3", "fig4", "fig5"] {
+        assert_fails_naming(&run(&["reproduce", fig]), &[fig, "not available"]);
+    }
+}
+
+// ---- bad input (issue 2 item 4) ----
+
+#[test]
+fn malformed_toml_names_the_file() {
+    let path = preset_file("malformed.toml", "[blade]\nlength = = 3\n");
+    let p = path.to_str().unwrap();
+    assert_fails_naming(&run(&["modes", "--preset", p]), &[p, "line 2"]);
+}
+
+#[test]
+fn unknown_field_names_file_and_field() {
+    let path = preset_file("unknown.toml", "[blade]\nlength = 3.0\nwingspan = 4.0\n");
+    let p = path.to_str().unwrap();
+    assert_fails_naming(&run(&["modes", "--preset", p]), &[p, "wingspan"]);
+}
+
+#[test]
+fn negative_length_names_key_value_and_range() {
+    let path = preset_file("negative.toml", "[blade]\nlength = -2.5\n");
+    let p = path.to_str().unwrap();
+    assert_fails_naming(
+        &run(&["modes", "--preset", p]),
+        &[p, "blade.length", "-2.5", "(0, 500] m"],
+    );
+}
+
+#[test]
+fn nan_is_rejected_with_its_key() {
+    assert_fails_naming(
+        &run(&["modes", "--set", "section.c33=nan"]),
+        &["section.c33", "NaN", "allowed"],
+    );
+    assert_fails_naming(
+        &run(&["modes", "--set", "operating.rotor_speed=inf"]),
+        &["operating.rotor_speed", "inf"],
+    );
+}
+
+#[test]
+fn set_without_equals_is_a_usage_error() {
+    let r = run(&["modes", "--set", "section.ply_angle"]);
+    assert_fails_naming(&r, &["key=value", "section.ply_angle"]);
+    assert_eq!(r.code, Some(2));
+}
+
+#[test]
+fn out_of_range_ply_angle_names_range() {
+    assert_fails_naming(
+        &run(&["modes", "--set", "section.ply_angle=120"]),
+        &["section.ply_angle", "120", "[0, 90] deg", "liu2017"],
+    );
+}
+
+#[test]
+fn missing_file_names_the_path() {
+    let p = "/nonexistent/dir/blade.toml";
+    assert_fails_naming(&run(&["modes", "--preset", p]), &[p, "cannot read"]);
+}
+
+#[test]
+fn unknown_preset_name_lists_the_builtins() {
+    assert_fails_naming(&run(&["modes", "--preset", "no-such-blade"]), &["no-such-blade", "liu2017"]);
+}
+
+#[test]
+fn wrong_type_names_the_key() {
+    assert_fails_naming(
+        &run(&["modes", "--set", "structure.modes=many"]),
+        &["modes", "many"],
+    );
+}

@@ -1,0 +1,803 @@
+//! The interactive explorer without a terminal: key sequences through `state::update`, the
+//! worker's latest-wins and error handling with a counting test engine, and insta snapshots of
+//! the real app (real engine) on a TestBackend.
+
+use crossbeam_channel::{bounded, unbounded, Receiver, Sender};
+use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
+use flutterscope::analysis::eigen::{Mode, Stability, Verdict};
+use flutterscope::analysis::flutter::{Boundary, BoundaryKind};
+use flutterscope::analysis::simulate::{RunStatus, TipSample};
+use flutterscope::analysis::sweep::{TrackedMode, TrackedSweep};
+use flutterscope::cli::{MarkerKind, ViewKind};
+use flutterscope::error::{Error, Result};
+use flutterscope::explorer::headless::{
+    self, parse_size, preset_entries, render_text, settle, settled_state,
+};
+use flutterscope::explorer::keys::{action_for, Action, BINDINGS};
+use flutterscope::explorer::state::{
+    update, AppState, Effect, Msg, Options, ViewMode, PARAMS,
+};
+use flutterscope::explorer::worker::Worker;
+use flutterscope::explorer::{Engine, Physics, Solved, Stream};
+use flutterscope::physics::section::SectionProps;
+use flutterscope::preset::{AeroModel, Preset, BUILTIN, DEFAULT_PRESET};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+// ---------------------------------------------------------------------------------------------
+// A test engine: simple closed-form "results" that depend on the parameters, so tests can see
+// which parameters were solved. It lives here only; the explorer never sees it outside tests.
+// ---------------------------------------------------------------------------------------------
+
+#[derive(Default)]
+struct TestEngine {
+    solves: AtomicUsize,
+    /// Rotor speed of every preset solved, in order.
+    solved_rpm: Mutex<Vec<f64>>,
+    /// When set, the first solve waits for a message here before returning.
+    gate: Mutex<Option<Receiver<()>>>,
+    started: AtomicUsize,
+    fail_solve: bool,
+    panic_solve_at_rpm: Option<f64>,
+    boundaries: AtomicUsize,
+    campbells: AtomicUsize,
+}
+
+fn mode(label: &str, re: f64, im: f64) -> Mode {
+    let abs = (re * re + im * im).sqrt();
+    Mode {
+        re,
+        im,
+        frequency_hz: im / (2.0 * std::f64::consts::PI),
+        damping_ratio: -re / abs,
+        label: label.into(),
+        structural_share: 1.0,
+        shape: Vec::new(),
+    }
+}
+
+fn test_stability(p: &Preset) -> Stability {
+    let rpm = p.operating.rotor_speed;
+    let flap_sigma = -0.05 + 0.01 * p.operating.wind_speed - 0.1;
+    let eigenvalues = vec![
+        mode("flap 1", flap_sigma, 2.0 * std::f64::consts::PI * (1.0 + rpm / 60.0)),
+        mode("torsion 1", -3.0, 2.0 * std::f64::consts::PI * 80.0),
+    ];
+    let stable = eigenvalues.iter().all(|m| m.re < 0.0);
+    Stability {
+        stable,
+        verdict: if stable {
+            Verdict::Stable
+        } else {
+            Verdict::Flutter
+        },
+        eigenvalues,
+        aero_lags: Vec::new(),
+    }
+}
+
+struct TestStream {
+    t: f64,
+    rate: f64,
+}
+
+impl Stream for TestStream {
+    fn advance(&mut self, samples: usize) -> Result<Vec<TipSample>> {
+        Ok((0..samples)
+            .map(|_| {
+                let s = TipSample {
+                    t: self.t,
+                    tip_twist: 0.01 * (3.0 * self.t).sin(),
+                    tip_flap: 0.1 * (0.5 * self.t).cos(),
+                };
+                self.t += 1.0 / self.rate;
+                s
+            })
+            .collect())
+    }
+    fn kick(&mut self, _twist_rad: f64, _flap_m: f64) {}
+    fn status(&self) -> RunStatus {
+        RunStatus::Ok
+    }
+}
+
+impl Engine for TestEngine {
+    fn solve(&self, p: &Preset) -> Result<Solved> {
+        self.started.fetch_add(1, Ordering::SeqCst);
+        if let Some(gate) = self.gate.lock().unwrap().take() {
+            gate.recv().ok();
+        }
+        if self.panic_solve_at_rpm == Some(p.operating.rotor_speed) {
+            panic!("test engine: deliberate panic at {} rpm", p.operating.rotor_speed);
+        }
+        self.solves.fetch_add(1, Ordering::SeqCst);
+        self.solved_rpm.lock().unwrap().push(p.operating.rotor_speed);
+        if self.fail_solve {
+            return Err(Error::numerical("test engine: eigenvalue solver did not converge"));
+        }
+        Ok(Solved {
+            section: SectionProps {
+                m: 0.06,
+                i: 2e-6,
+                ka2: 3e-5,
+                km1_2: 1e-6,
+                km2_2: 3e-5,
+                chord: 0.018,
+                ea_offset: -0.0045,
+                cg_offset: 0.0,
+                c22: 0.9,
+                c23: -0.16,
+                c33: 0.46,
+            },
+            stability: test_stability(p),
+        })
+    }
+
+    fn boundary(&self, p: &Preset, key: &str, from: f64, to: f64, _points: usize) -> Result<Boundary> {
+        self.boundaries.fetch_add(1, Ordering::SeqCst);
+        // Flutter where the flap σ of `test_stability` crosses zero along the wind speed.
+        let critical = if key == "operating.wind_speed" {
+            Some(15.0).filter(|c| (from..=to).contains(c))
+        } else {
+            None
+        };
+        let _ = p;
+        Ok(Boundary {
+            parameter: key.into(),
+            critical,
+            frequency_hz: critical.map(|_| 1.0),
+            kind: critical.map(|_| BoundaryKind::Flutter),
+            mode: critical.map(|_| "flap 1".into()),
+        })
+    }
+
+    fn campbell(&self, p: &Preset, grid: &[f64]) -> Result<TrackedSweep> {
+        self.campbells.fetch_add(1, Ordering::SeqCst);
+        let modes = ["flap 1", "torsion 1"]
+            .iter()
+            .enumerate()
+            .map(|(k, label)| {
+                let stab: Vec<Stability> = grid
+                    .iter()
+                    .map(|&r| {
+                        let mut q = p.clone();
+                        q.operating.rotor_speed = r;
+                        test_stability(&q)
+                    })
+                    .collect();
+                TrackedMode {
+                    label: label.to_string(),
+                    frequency_hz: stab.iter().map(|s| s.eigenvalues[k].frequency_hz).collect(),
+                    damping_ratio: stab.iter().map(|s| s.eigenvalues[k].damping_ratio).collect(),
+                    re: stab.iter().map(|s| s.eigenvalues[k].re).collect(),
+                }
+            })
+            .collect();
+        Ok(TrackedSweep {
+            parameter: "operating.rotor_speed".into(),
+            values: grid.to_vec(),
+            modes,
+        })
+    }
+
+    fn stream(&self, p: &Preset) -> Result<Box<dyn Stream>> {
+        Ok(Box::new(TestStream {
+            t: 0.0,
+            rate: p.simulation.sample_rate,
+        }))
+    }
+}
+
+fn default_preset() -> Preset {
+    Preset::load(DEFAULT_PRESET, &[]).expect("default preset loads")
+}
+
+fn fresh_state() -> (AppState, Vec<Effect>) {
+    let (entries, index) = preset_entries(DEFAULT_PRESET, default_preset());
+    let mut s = AppState::new(entries, index, Options::default());
+    let effects = s.start();
+    (s, effects)
+}
+
+fn settled(engine: &TestEngine) -> AppState {
+    let (mut s, effects) = fresh_state();
+    settle(&mut s, engine, effects);
+    s
+}
+
+fn solve_gens(effects: &[Effect]) -> Vec<u64> {
+    effects
+        .iter()
+        .filter_map(|e| match e {
+            Effect::Solve { gen, .. } => Some(*gen),
+            _ => None,
+        })
+        .collect()
+}
+
+fn key(code: KeyCode, mods: KeyModifiers) -> Msg {
+    Msg::Action(action_for(&KeyEvent::new(code, mods)).expect("bound key"))
+}
+
+// ---------------------------------------------------------------------------------------------
+// Key sequences (no terminal, no worker)
+// ---------------------------------------------------------------------------------------------
+
+#[test]
+fn start_requests_one_solve_then_a_boundary_search() {
+    let (mut s, effects) = fresh_state();
+    assert_eq!(solve_gens(&effects), vec![1]);
+    assert!(s.solving());
+    let engine = TestEngine::default();
+    let Effect::Solve { gen, preset } = &effects[0] else {
+        panic!("first effect is a solve")
+    };
+    let follow = update(
+        &mut s,
+        Msg::Solved {
+            gen: *gen,
+            result: engine.solve(preset).map_err(|e| e.to_string()),
+        },
+    );
+    assert!(!s.solving());
+    assert!(
+        matches!(follow.as_slice(), [Effect::Boundary { key: "operating.rotor_speed", .. }]),
+        "{follow:?}"
+    );
+}
+
+#[test]
+fn arrows_adjust_the_focused_parameter_with_fine_and_coarse_steps() {
+    let engine = TestEngine::default();
+    let mut s = settled(&engine);
+    assert_eq!(PARAMS[s.focus].label, "ply angle");
+    let ply0 = s.preset.section.ply_angle;
+    let e = update(&mut s, key(KeyCode::Right, KeyModifiers::NONE));
+    assert_eq!(s.preset.section.ply_angle, ply0 + 1.0);
+    assert_eq!(solve_gens(&e), vec![s.gen]);
+    let e = update(&mut s, key(KeyCode::Char('H'), KeyModifiers::SHIFT));
+    // Coarse steps snap to the coarse grid: 46 → 45.
+    assert_eq!(s.preset.section.ply_angle, 45.0);
+    assert_eq!(solve_gens(&e).len(), 1);
+    update(&mut s, key(KeyCode::Left, KeyModifiers::SHIFT));
+    assert_eq!(s.preset.section.ply_angle, 40.0);
+    // vi keys: j selects the next parameter, l increases it.
+    update(&mut s, key(KeyCode::Char('j'), KeyModifiers::NONE));
+    assert_eq!(PARAMS[s.focus].label, "wind speed");
+    let w0 = s.preset.operating.wind_speed;
+    update(&mut s, key(KeyCode::Char('l'), KeyModifiers::NONE));
+    assert_eq!(s.preset.operating.wind_speed, w0 + 0.5);
+    // The base preset is untouched (reset goes back to it).
+    assert_eq!(s.presets[s.preset_index].preset.section.ply_angle, ply0);
+}
+
+#[test]
+fn slider_limits_stop_without_a_solve() {
+    let engine = TestEngine::default();
+    let mut s = settled(&engine);
+    s.preset.section.ply_angle = 0.0;
+    let e = update(&mut s, Msg::Action(Action::Decrease));
+    assert!(e.is_empty());
+    assert!(s.notice.as_deref().unwrap().contains("minimum"), "{:?}", s.notice);
+    // Rotor speed stops at view.rotor_speed_max.
+    s.focus = PARAMS.iter().position(|p| p.label == "rotor speed").unwrap();
+    s.preset.operating.rotor_speed = s.preset.view.rotor_speed_max;
+    assert!(update(&mut s, Msg::Action(Action::IncreaseCoarse)).is_empty());
+    assert_eq!(s.preset.operating.rotor_speed, s.preset.view.rotor_speed_max);
+}
+
+#[test]
+fn stale_results_are_ignored() {
+    let engine = TestEngine::default();
+    let mut s = settled(&engine);
+    let gen_before = s.gen;
+    let old = s.solved.clone().unwrap();
+    update(&mut s, Msg::Action(Action::Increase));
+    update(&mut s, Msg::Action(Action::Increase));
+    assert_eq!(s.gen, gen_before + 2);
+    // A result for the intermediate generation arrives late: dropped, still solving.
+    let e = update(
+        &mut s,
+        Msg::Solved {
+            gen: gen_before + 1,
+            result: Ok(old.clone()),
+        },
+    );
+    assert!(e.is_empty());
+    assert!(s.solving());
+    s.dirty = false;
+    update(
+        &mut s,
+        Msg::Samples {
+            gen: gen_before + 1,
+            samples: vec![TipSample {
+                t: 0.0,
+                tip_twist: 1.0,
+                tip_flap: 1.0,
+            }],
+            status: RunStatus::Diverging,
+        },
+    );
+    assert!(!s.response.diverging);
+    assert!(!s.dirty, "a stale message must not cause a redraw");
+    update(
+        &mut s,
+        Msg::Solved {
+            gen: gen_before + 2,
+            result: Ok(old),
+        },
+    );
+    assert!(!s.solving());
+}
+
+#[test]
+fn aero_key_cycles_models_and_reset_restores_the_preset() {
+    let engine = TestEngine::default();
+    let mut s = settled(&engine);
+    let m0 = s.preset.aero.model;
+    let e = update(&mut s, key(KeyCode::Char('a'), KeyModifiers::NONE));
+    assert_eq!(s.preset.aero.model, m0.next());
+    assert_eq!(solve_gens(&e).len(), 1);
+    for _ in 0..AeroModel::ALL.len() - 1 {
+        update(&mut s, Msg::Action(Action::CycleAero));
+    }
+    assert_eq!(s.preset.aero.model, m0);
+    update(&mut s, Msg::Action(Action::IncreaseCoarse));
+    assert_ne!(s.preset, s.presets[s.preset_index].preset);
+    let e = update(&mut s, key(KeyCode::Char('r'), KeyModifiers::NONE));
+    assert_eq!(s.preset, s.presets[s.preset_index].preset);
+    assert_eq!(solve_gens(&e), vec![s.gen]);
+}
+
+#[test]
+fn pause_kick_help_campbell_marker_and_quit() {
+    let engine = TestEngine::default();
+    let mut s = settled(&engine);
+    let e = update(&mut s, key(KeyCode::Char(' '), KeyModifiers::NONE));
+    assert!(s.paused);
+    assert!(matches!(e.as_slice(), [Effect::Pause(true)]));
+    // A kick resumes streaming and kicks the current simulation.
+    let e = update(&mut s, key(KeyCode::Char('k'), KeyModifiers::NONE));
+    assert!(!s.paused);
+    let gen = s.gen;
+    let (tw, fl) = s.kick_amounts();
+    assert!(tw > 0.0 && fl > 0.0);
+    assert!(
+        matches!(e.as_slice(), [Effect::Pause(false), Effect::Kick { gen: g, .. }] if *g == gen),
+        "{e:?}"
+    );
+    update(&mut s, key(KeyCode::Char('?'), KeyModifiers::SHIFT));
+    assert!(s.help);
+    update(&mut s, key(KeyCode::Esc, KeyModifiers::NONE));
+    assert!(!s.help);
+    let e = update(&mut s, key(KeyCode::Char('c'), KeyModifiers::NONE));
+    assert_eq!(s.view, ViewMode::Campbell);
+    assert!(matches!(e.as_slice(), [Effect::Campbell { .. }]), "{e:?}");
+    update(&mut s, key(KeyCode::Esc, KeyModifiers::NONE));
+    assert_eq!(s.view, ViewMode::Main);
+    update(&mut s, key(KeyCode::Char('m'), KeyModifiers::NONE));
+    assert_eq!(s.opts.marker, MarkerKind::Halfblock);
+    let e = update(&mut s, key(KeyCode::Char('c'), KeyModifiers::CONTROL));
+    assert!(s.quit);
+    assert!(matches!(e.as_slice(), [Effect::Quit]));
+}
+
+#[test]
+fn campbell_is_recomputed_for_new_parameters_but_not_for_rotor_speed() {
+    let engine = TestEngine::default();
+    let mut s = settled(&engine);
+    headless::press(&mut s, &engine, &[Action::ToggleCampbell]);
+    assert_eq!(engine.campbells.load(Ordering::SeqCst), 1);
+    s.focus = PARAMS.iter().position(|p| p.label == "rotor speed").unwrap();
+    headless::press(&mut s, &engine, &[Action::Increase, Action::Increase]);
+    assert_eq!(engine.campbells.load(Ordering::SeqCst), 1, "rotor speed is the axis");
+    s.focus = PARAMS.iter().position(|p| p.label == "wind speed").unwrap();
+    headless::press(&mut s, &engine, &[Action::Increase]);
+    assert_eq!(engine.campbells.load(Ordering::SeqCst), 2);
+    // Back in the main view, changes do not sweep.
+    headless::press(&mut s, &engine, &[Action::Back, Action::Increase]);
+    assert_eq!(engine.campbells.load(Ordering::SeqCst), 2);
+}
+
+#[test]
+fn boundary_follows_the_selected_parameter() {
+    let engine = TestEngine::default();
+    let mut s = settled(&engine);
+    assert_eq!(s.boundary_key, "operating.rotor_speed");
+    // Select wind speed: a new search along it, from the current value up to view.wind_speed_max.
+    s.focus = 0;
+    let e = update(&mut s, Msg::Action(Action::FocusNext));
+    let Some(Effect::Boundary { key, from, to, .. }) = e.first() else {
+        panic!("{e:?}")
+    };
+    assert_eq!(*key, "operating.wind_speed");
+    assert_eq!(*from, s.preset.operating.wind_speed);
+    assert_eq!(*to, s.preset.view.wind_speed_max);
+    settle(&mut s, &engine, e);
+    let text = flutterscope::explorer::ui::status::margin_text(&s).unwrap();
+    // The test engine's flap mode is unstable at the preset's 20 m/s, so the search looks below
+    // and finds the onset at 15 m/s.
+    assert_eq!(text, "wind speed: flutter from 15.0 m/s, -25 % (flap 1)");
+    // The aero-model row keeps the last numeric key.
+    let n = engine.boundaries.load(Ordering::SeqCst);
+    headless::press(&mut s, &engine, &[Action::FocusNext, Action::FocusNext, Action::FocusNext]);
+    assert_eq!(PARAMS[s.focus].label, "aero model");
+    assert_eq!(s.boundary_key, "operating.pitch");
+    headless::press(&mut s, &engine, &[Action::FocusNext]);
+    assert_eq!(s.boundary_key, "operating.pitch");
+    assert_eq!(engine.boundaries.load(Ordering::SeqCst), n + 2);
+    // f recomputes.
+    headless::press(&mut s, &engine, &[Action::Boundary]);
+    assert_eq!(engine.boundaries.load(Ordering::SeqCst), n + 3);
+}
+
+#[test]
+fn margin_reads_like_a_sentence() {
+    let engine = TestEngine::default();
+    let mut s = settled(&engine);
+    s.focus = PARAMS.iter().position(|p| p.label == "wind speed").unwrap();
+    s.boundary_key = "operating.wind_speed";
+    s.preset.operating.wind_speed = 10.0; // the test engine's flap σ < 0 below 15 m/s
+    let e = update(&mut s, Msg::Action(Action::Decrease));
+    settle(&mut s, &engine, e);
+    assert_eq!(s.preset.operating.wind_speed, 9.5);
+    let text = flutterscope::explorer::ui::status::margin_text(&s).unwrap();
+    assert_eq!(text, "wind speed: flutter at 15.0 m/s, +58 % (flap 1)");
+}
+
+#[test]
+fn engine_errors_show_in_the_status_and_the_explorer_keeps_going() {
+    let engine = TestEngine {
+        fail_solve: true,
+        ..TestEngine::default()
+    };
+    let mut s = settled(&engine);
+    assert!(s.solved.is_none());
+    assert!(s.solve_error.as_deref().unwrap().contains("did not converge"));
+    let text = render_text(&s, 100, 30);
+    assert!(text.contains("ERROR"), "{text}");
+    assert!(text.contains("did not converge"), "{text}");
+    // Keys still work.
+    headless::press(&mut s, &engine, &[Action::Increase]);
+    assert_eq!(engine.solves.load(Ordering::SeqCst), 2);
+}
+
+#[test]
+fn preset_keys_cycle_through_the_builtins() {
+    let engine = TestEngine::default();
+    let mut s = settled(&engine);
+    assert_eq!(s.presets.len(), BUILTIN.len());
+    headless::press(&mut s, &engine, &[Action::NextPreset]);
+    if BUILTIN.len() > 1 {
+        assert_eq!(s.preset_index, 1 % BUILTIN.len());
+        assert_eq!(s.preset, s.presets[s.preset_index].preset);
+        headless::press(&mut s, &engine, &[Action::PrevPreset]);
+        assert_eq!(s.preset_index, 0);
+    } else {
+        assert!(s.notice.is_some());
+    }
+}
+
+#[test]
+fn a_preset_file_joins_the_cycle_in_front() {
+    let mut p = default_preset();
+    p.meta.name = "my blade".into();
+    let (entries, index) = preset_entries("blades/mine.toml", p);
+    assert_eq!(index, 0);
+    assert_eq!(entries[0].name, "my blade");
+    assert_eq!(entries.len(), BUILTIN.len() + 1);
+}
+
+#[test]
+fn help_lists_every_binding() {
+    let engine = TestEngine::default();
+    let mut s = settled(&engine);
+    headless::press(&mut s, &engine, &[Action::ToggleHelp]);
+    let text = render_text(&s, 120, 40);
+    for b in BINDINGS {
+        assert!(text.contains(b.help), "help misses '{}'\n{text}", b.help);
+    }
+}
+
+#[test]
+fn tiny_windows_say_so_and_never_panic() {
+    let engine = TestEngine::default();
+    let s = settled(&engine);
+    let text = render_text(&s, 79, 24);
+    assert!(text.contains("window too small"), "{text}");
+    for (w, h) in [(1, 1), (10, 3), (80, 23), (200, 5)] {
+        render_text(&s, w, h);
+    }
+    let text = render_text(&s, 80, 24);
+    assert!(!text.contains("window too small"));
+}
+
+#[test]
+fn size_argument_is_checked() {
+    assert_eq!(parse_size("120x40").unwrap(), (120, 40));
+    assert_eq!(parse_size("80X24").unwrap(), (80, 24));
+    for bad in ["10x5", "abc", "120", "120x", "x40", "-1x30", "2000x40", "79x24"] {
+        let e = parse_size(bad).unwrap_err().to_string();
+        assert!(e.contains("COLSxROWS"), "{bad}: {e}");
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// The worker
+// ---------------------------------------------------------------------------------------------
+
+fn solve_effect(gen: u64, rpm: f64) -> Effect {
+    let mut p = default_preset();
+    p.operating.rotor_speed = rpm;
+    Effect::Solve {
+        gen,
+        preset: Arc::new(p),
+    }
+}
+
+/// Receive until `done` says stop, or fail after a generous timeout.
+fn collect_until(rx: &Receiver<Msg>, mut done: impl FnMut(&Msg) -> bool) -> Vec<Msg> {
+    let deadline = Instant::now() + Duration::from_secs(10);
+    let mut out = Vec::new();
+    loop {
+        let left = deadline.saturating_duration_since(Instant::now());
+        let m = rx.recv_timeout(left).expect("worker answered in time");
+        let stop = done(&m);
+        out.push(m);
+        if stop {
+            return out;
+        }
+    }
+}
+
+fn wait_for(cond: impl Fn() -> bool) {
+    let deadline = Instant::now() + Duration::from_secs(10);
+    while !cond() {
+        assert!(Instant::now() < deadline, "condition not reached in time");
+        std::thread::sleep(Duration::from_millis(1));
+    }
+}
+
+#[test]
+fn worker_solves_only_the_latest_of_a_flood() {
+    let (gate_tx, gate_rx): (Sender<()>, Receiver<()>) = bounded(0);
+    let engine = Arc::new(TestEngine {
+        gate: Mutex::new(Some(gate_rx)),
+        ..TestEngine::default()
+    });
+    let (tx, rx) = unbounded();
+    let mut worker = Worker::spawn(engine.clone(), tx, Duration::from_millis(20));
+    worker.send(solve_effect(1, 1.0));
+    // The first solve is now blocked inside the engine; flood while it is busy.
+    wait_for(|| engine.started.load(Ordering::SeqCst) == 1);
+    for g in 2..=200u64 {
+        worker.send(solve_effect(g, g as f64));
+    }
+    gate_tx.send(()).unwrap();
+    let msgs = collect_until(&rx, |m| matches!(m, Msg::Solved { gen: 200, .. }));
+    let solved: Vec<u64> = msgs
+        .iter()
+        .filter_map(|m| match m {
+            Msg::Solved { gen, .. } => Some(*gen),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(solved, vec![1, 200]);
+    assert_eq!(engine.solves.load(Ordering::SeqCst), 2);
+    assert_eq!(*engine.solved_rpm.lock().unwrap(), vec![1.0, 200.0]);
+    worker.send(Effect::Quit);
+}
+
+#[test]
+fn worker_streams_samples_and_stops_when_paused() {
+    let engine = Arc::new(TestEngine::default());
+    let (tx, rx) = unbounded();
+    let mut worker = Worker::spawn(engine, tx, Duration::from_millis(10));
+    worker.send(solve_effect(1, 60.0));
+    let mut samples = 0;
+    collect_until(&rx, |m| {
+        if let Msg::Samples { gen: 1, samples: s, .. } = m {
+            samples += s.len();
+        }
+        samples >= 4
+    });
+    worker.send(Effect::Pause(true));
+    // Let batches already on their way arrive, then nothing more may come.
+    std::thread::sleep(Duration::from_millis(60));
+    while rx.try_recv().is_ok() {}
+    assert!(
+        rx.recv_timeout(Duration::from_millis(150)).is_err(),
+        "paused worker kept sending"
+    );
+    worker.send(Effect::Pause(false));
+    collect_until(&rx, |m| matches!(m, Msg::Samples { gen: 1, .. }));
+    worker.send(Effect::Quit);
+}
+
+#[test]
+fn worker_survives_an_engine_panic() {
+    let engine = Arc::new(TestEngine {
+        panic_solve_at_rpm: Some(13.0),
+        ..TestEngine::default()
+    });
+    let (tx, rx) = unbounded();
+    let mut worker = Worker::spawn(engine.clone(), tx, Duration::from_millis(20));
+    worker.send(solve_effect(1, 13.0));
+    let msgs = collect_until(&rx, |m| matches!(m, Msg::Solved { gen: 1, .. }));
+    let Some(Msg::Solved { result: Err(e), .. }) = msgs.last() else {
+        panic!("expected an error result")
+    };
+    assert!(e.contains("panicked") && e.contains("deliberate panic"), "{e}");
+    // The same worker keeps serving.
+    worker.send(solve_effect(2, 20.0));
+    let msgs = collect_until(&rx, |m| matches!(m, Msg::Solved { gen: 2, .. }));
+    assert!(matches!(msgs.last(), Some(Msg::Solved { result: Ok(_), .. })));
+    // And the state shows the panic in the status line.
+    let (mut s, _) = fresh_state();
+    update(
+        &mut s,
+        Msg::Solved {
+            gen: 1,
+            result: Err(e.clone()),
+        },
+    );
+    let text = render_text(&s, 120, 40);
+    assert!(text.contains("deliberate panic"), "{text}");
+    worker.send(Effect::Quit);
+}
+
+#[test]
+fn worker_jobs_run_the_latest_request() {
+    let engine = Arc::new(TestEngine::default());
+    let (tx, rx) = unbounded();
+    let mut worker = Worker::spawn(engine.clone(), tx, Duration::from_millis(20));
+    let p = Arc::new(default_preset());
+    for g in 1..=50u64 {
+        worker.send(Effect::Boundary {
+            gen: g,
+            preset: p.clone(),
+            key: "operating.wind_speed",
+            from: 0.0,
+            to: 40.0,
+            points: 41,
+        });
+    }
+    collect_until(&rx, |m| matches!(m, Msg::Boundary { gen: 50, .. }));
+    // At most the first one (already running) and the last one.
+    assert!(engine.boundaries.load(Ordering::SeqCst) <= 2);
+    worker.send(Effect::Quit);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Snapshots of the real app (real engine), deterministic: headless, fixed simulation length.
+// ---------------------------------------------------------------------------------------------
+
+fn snapshot_of(name: &str, view: ViewKind, cols: u16, rows: u16) -> String {
+    let p = Preset::load(name, &[]).expect("preset loads");
+    let s = settled_state(name, p, &Physics, view, MarkerKind::Braille);
+    render_text(&s, cols, rows)
+}
+
+#[test]
+fn snapshot_every_builtin_preset() {
+    for (name, _) in BUILTIN {
+        let text = snapshot_of(name, ViewKind::Main, 120, 40);
+        assert!(!text.contains("ERROR"), "{name}:\n{text}");
+        insta::assert_snapshot!(format!("main_{name}"), text);
+    }
+}
+
+#[test]
+fn snapshot_help_overlay() {
+    insta::assert_snapshot!("help", snapshot_of(DEFAULT_PRESET, ViewKind::Help, 120, 40));
+}
+
+#[test]
+fn snapshot_campbell_view() {
+    insta::assert_snapshot!(
+        "campbell",
+        snapshot_of(DEFAULT_PRESET, ViewKind::Campbell, 120, 40)
+    );
+}
+
+#[test]
+fn snapshot_small_window() {
+    insta::assert_snapshot!("small_80x24", snapshot_of(DEFAULT_PRESET, ViewKind::Main, 80, 24));
+}
+
+#[test]
+fn snapshot_large_window() {
+    insta::assert_snapshot!("large_160x48", snapshot_of(DEFAULT_PRESET, ViewKind::Main, 160, 48));
+}
+
+/// The real engine, except that solving fails: what a user sees when the solver gives up.
+struct FailingSolve;
+
+impl Engine for FailingSolve {
+    fn solve(&self, _p: &Preset) -> Result<Solved> {
+        Err(Error::numerical(
+            "eigenvalues of the state matrix did not converge (test)",
+        ))
+    }
+    fn boundary(&self, p: &Preset, key: &str, from: f64, to: f64, points: usize) -> Result<Boundary> {
+        Physics.boundary(p, key, from, to, points)
+    }
+    fn campbell(&self, p: &Preset, grid: &[f64]) -> Result<TrackedSweep> {
+        Physics.campbell(p, grid)
+    }
+    fn stream(&self, p: &Preset) -> Result<Box<dyn Stream>> {
+        Physics.stream(p)
+    }
+}
+
+#[test]
+fn snapshot_error_state() {
+    let p = default_preset();
+    let s = settled_state(DEFAULT_PRESET, p, &FailingSolve, ViewKind::Main, MarkerKind::Braille);
+    let text = render_text(&s, 120, 40);
+    assert!(text.contains("did not converge"), "{text}");
+    insta::assert_snapshot!("error_state", text);
+}
+
+#[test]
+fn snapshots_are_deterministic() {
+    let a = snapshot_of(DEFAULT_PRESET, ViewKind::Main, 120, 40);
+    let b = snapshot_of(DEFAULT_PRESET, ViewKind::Main, 120, 40);
+    assert_eq!(a, b);
+}
+
+#[test]
+fn every_marker_renders() {
+    let p = default_preset();
+    for m in [MarkerKind::Braille, MarkerKind::Halfblock, MarkerKind::Block, MarkerKind::Dot] {
+        let s = settled_state(DEFAULT_PRESET, p.clone(), &TestEngine::default(), ViewKind::Main, m);
+        let text = render_text(&s, 120, 40);
+        assert!(text.contains("Root locus"), "{m:?}");
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// The binary
+// ---------------------------------------------------------------------------------------------
+
+#[test]
+fn tui_without_a_terminal_points_to_the_headless_commands() {
+    let out = assert_cmd::Command::cargo_bin("flutterscope")
+        .unwrap()
+        .arg("tui")
+        .write_stdin("")
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("needs a terminal") && err.contains("snapshot"), "{err}");
+}
+
+#[test]
+fn snapshot_command_checks_its_size() {
+    for bad in ["10x5", "abc"] {
+        let out = assert_cmd::Command::cargo_bin("flutterscope")
+            .unwrap()
+            .args(["snapshot", "--size", bad])
+            .output()
+            .unwrap();
+        assert!(!out.status.success(), "{bad}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains("--size") && err.contains("COLSxROWS"), "{err}");
+    }
+}
+
+#[test]
+fn snapshot_command_prints_a_frame() {
+    let out = assert_cmd::Command::cargo_bin("flutterscope")
+        .unwrap()
+        .args(["snapshot", "--preset", DEFAULT_PRESET, "--size", "100x30"])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert_eq!(text.lines().count(), 30);
+    assert!(text.lines().all(|l| l.chars().count() <= 100 && !l.ends_with(' ')));
+    assert!(text.contains("Root locus") && text.contains("Tip response"));
+}

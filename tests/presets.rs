@@ -1,0 +1,176 @@
+//! Presets (issue 2 item 4): the shipped paper preset, the key table, `--set` overrides, and the
+//! section sources behind `section.source`.
+
+use flutterscope::error::Error;
+use flutterscope::physics::section::{section_properties, table1_si, TABLE1_ANGLES};
+use flutterscope::physics::structure::assemble;
+use flutterscope::preset::{builtin_names, Form, Inflow, Preset, SectionSource, KEYS};
+
+#[test]
+fn liu2017_is_the_papers_blade() {
+    let p = Preset::load("liu2017", &[]).unwrap();
+    assert_eq!(p.blade.length, 8.4455);
+    assert_eq!(p.operating.pitch, 10.0);
+    assert_eq!(p.operating.wind_speed, 20.0);
+    assert_eq!(p.operating.rotor_speed, 60.0);
+    assert_eq!(p.section.source, SectionSource::Table);
+    assert_eq!(p.section.ply_angle, 45.0);
+    assert_eq!(p.section.mass_per_length, 0.06377);
+    assert_eq!(p.section.polar_inertia, 2.3e-6);
+    assert_eq!(p.section.ka2, 3.6e-5);
+    assert_eq!(p.section.km1_2, 1.4e-6);
+    assert_eq!(p.section.km2_2, 3.47e-5);
+    assert_eq!(p.section.chord, 0.01833);
+    assert!((p.section.ea_offset + p.section.chord / 4.0).abs() < 1e-15);
+    assert_eq!(p.structure.modes, 5);
+    assert_eq!(p.structure.loss_factor, 0.02);
+    assert_eq!(p.operating.inflow, Inflow::Tip);
+}
+
+#[test]
+fn every_builtin_preset_assembles() {
+    for name in builtin_names() {
+        let p = Preset::load(name, &[]).unwrap();
+        let s = assemble(&p).unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert!(s.omega1 > 0.0, "{name}");
+    }
+}
+
+/// Every numeric key reaches the field it names: set it through `--set` (TOML path = key) to a
+/// new in-range value and read it back through the key table.
+#[test]
+fn every_key_can_be_overridden_with_set() {
+    let base = Preset::load("liu2017", &[]).unwrap();
+    for spec in KEYS {
+        let current = (spec.get)(&base);
+        let candidate = if spec.integer {
+            current + 1.0
+        } else if current != 0.0 {
+            current * 1.1
+        } else {
+            0.5 * spec.max
+        };
+        let v = if spec.contains(candidate) { candidate } else { current * 0.9 };
+        assert!(spec.contains(v) && v != current, "{}: no new value", spec.key);
+        let text = if spec.integer {
+            format!("{}={}", spec.key, v as i64)
+        } else {
+            format!("{}={v:?}", spec.key)
+        };
+        let p = Preset::load("liu2017", &[text.clone()])
+            .unwrap_or_else(|e| panic!("--set {text}: {e}"));
+        assert_eq!(p.get(spec.key).unwrap(), v, "--set {text}");
+    }
+}
+
+#[test]
+fn enumerated_keys_take_bare_words() {
+    let p = Preset::load(
+        "liu2017",
+        &[
+            "section.source=direct".into(),
+            "structure.form=strong".into(),
+            "operating.inflow=local".into(),
+        ],
+    )
+    .unwrap();
+    assert_eq!(p.section.source, SectionSource::Direct);
+    assert_eq!(p.structure.form, Form::Strong);
+    assert_eq!(p.operating.inflow, Inflow::Local);
+    let err = Preset::load("liu2017", &["structure.form=medium".into()]).unwrap_err();
+    assert!(err.to_string().contains("medium"), "{err}");
+}
+
+#[test]
+fn presets_round_trip_through_toml() {
+    let p = Preset::load("liu2017", &["section.ply_angle=30".into()]).unwrap();
+    let q = Preset::from_toml(&p.to_toml(), &p.origin, &[]).unwrap();
+    assert_eq!(p, q);
+}
+
+#[test]
+fn range_errors_name_origin_key_value_and_range() {
+    let err = Preset::from_toml("[structure]\nmodes = 0\n", "my.toml", &[]).unwrap_err();
+    match &err {
+        Error::Range { origin, key, value, allowed } => {
+            assert_eq!(origin, "my.toml");
+            assert_eq!(key, "structure.modes");
+            assert_eq!(value, "0");
+            assert!(allowed.contains("integer in [1, 40]"), "{allowed}");
+        }
+        other => panic!("expected a range error, got {other:?}"),
+    }
+}
+
+#[test]
+fn table_source_is_the_corrected_table_at_its_nodes() {
+    let t = table1_si();
+    for (k, &angle) in TABLE1_ANGLES.iter().enumerate() {
+        let p = Preset::load("liu2017", &[format!("section.ply_angle={angle}")]).unwrap();
+        let s = section_properties(&p).unwrap();
+        assert_eq!([s.c22, s.c23, s.c33], [t[0][k], t[1][k], t[2][k]].map(|v| {
+            // The spline returns the knot value up to round-off.
+            let got = [s.c22, s.c23, s.c33][[t[0][k], t[1][k], t[2][k]].iter().position(|x| *x == v).unwrap()];
+            if (got - v).abs() <= 1e-12 * v.abs().max(1e-12) { got } else { v }
+        }));
+        assert_eq!(s.m, p.section.mass_per_length);
+        assert_eq!(s.i, p.section.polar_inertia);
+    }
+}
+
+#[test]
+fn table_source_is_smooth_between_nodes() {
+    // Between 30° and 45° C22 peaks: the spline must stay within a few per cent of the nodes'
+    // range, and consecutive evaluations must not jump.
+    let at = |deg: f64| {
+        let p = Preset::load("liu2017", &[format!("section.ply_angle={deg}")]).unwrap();
+        section_properties(&p).unwrap()
+    };
+    let mut prev = at(0.0);
+    for k in 1..=900 {
+        let s = at(k as f64 * 0.1);
+        assert!((s.c22 - prev.c22).abs() < 2e-3, "C22 jump at {}°", k as f64 * 0.1);
+        assert!((s.c33 - prev.c33).abs() < 2e-3, "C33 jump at {}°", k as f64 * 0.1);
+        assert!(s.c22 > 0.5 && s.c22 < 0.95 && s.c33 > 0.37, "out of family at {}°", k as f64 * 0.1);
+        prev = s;
+    }
+}
+
+#[test]
+fn direct_source_takes_the_preset_stiffness() {
+    let p = Preset::load(
+        "liu2017",
+        &[
+            "section.source=direct".into(),
+            "section.c22=2.5".into(),
+            "section.c23=-0.3".into(),
+            "section.c33=1.25".into(),
+        ],
+    )
+    .unwrap();
+    let s = section_properties(&p).unwrap();
+    assert_eq!([s.c22, s.c23, s.c33], [2.5, -0.3, 1.25]);
+}
+
+#[test]
+fn layup_source_is_close_to_table_on_the_papers_box() {
+    // MODEL.md §2 evidence (b): the §2.1 formulas on the 18.33 × 2.470 mm box reproduce C22 to
+    // 4 digits, C33 within 4 % and |C23| within 12 %.
+    for &angle in &[15.0, 45.0, 60.0] {
+        let sets = |src: &str| {
+            vec![
+                format!("section.source={src}"),
+                format!("section.ply_angle={angle}"),
+                "section.contour.shape=box".to_string(),
+                "section.contour.width=0.01833".to_string(),
+                "section.contour.height=0.00247".to_string(),
+            ]
+        };
+        let layup = section_properties(&Preset::load("liu2017", &sets("layup")).unwrap()).unwrap();
+        let table = section_properties(&Preset::load("liu2017", &sets("table")).unwrap()).unwrap();
+        assert!((layup.c22 / table.c22 - 1.0).abs() < 1e-3, "{angle}°");
+        assert!((layup.c33 / table.c33 - 1.0).abs() < 0.04, "{angle}°");
+        assert!((layup.c23 / table.c23 - 1.0).abs() < 0.13, "{angle}°");
+        assert!(layup.c23.signum() == table.c23.signum());
+    }
+}
