@@ -28,7 +28,7 @@ pub struct Preset {
     pub origin: String,
 }
 
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Meta {
     pub name: String,
@@ -303,15 +303,6 @@ impl Default for Preset {
             simulation: Simulation::default(),
             view: View::default(),
             origin: "defaults".into(),
-        }
-    }
-}
-
-impl Default for Meta {
-    fn default() -> Self {
-        Meta {
-            name: String::new(),
-            description: String::new(),
         }
     }
 }

@@ -14,9 +14,7 @@ use flutterscope::explorer::headless::{
     self, parse_size, preset_entries, render_text, settle, settled_state,
 };
 use flutterscope::explorer::keys::{action_for, Action, BINDINGS};
-use flutterscope::explorer::state::{
-    update, AppState, Effect, Msg, Options, ViewMode, PARAMS,
-};
+use flutterscope::explorer::state::{update, AppState, Effect, Msg, Options, ViewMode, PARAMS};
 use flutterscope::explorer::worker::Worker;
 use flutterscope::explorer::{Engine, Physics, Solved, Stream};
 use flutterscope::physics::section::SectionProps;
@@ -61,7 +59,11 @@ fn test_stability(p: &Preset) -> Stability {
     let rpm = p.operating.rotor_speed;
     let flap_sigma = -0.05 + 0.01 * p.operating.wind_speed - 0.1;
     let eigenvalues = vec![
-        mode("flap 1", flap_sigma, 2.0 * std::f64::consts::PI * (1.0 + rpm / 60.0)),
+        mode(
+            "flap 1",
+            flap_sigma,
+            2.0 * std::f64::consts::PI * (1.0 + rpm / 60.0),
+        ),
         mode("torsion 1", -3.0, 2.0 * std::f64::consts::PI * 80.0),
     ];
     let stable = eigenvalues.iter().all(|m| m.re < 0.0);
@@ -109,12 +111,20 @@ impl Engine for TestEngine {
             gate.recv().ok();
         }
         if self.panic_solve_at_rpm == Some(p.operating.rotor_speed) {
-            panic!("test engine: deliberate panic at {} rpm", p.operating.rotor_speed);
+            panic!(
+                "test engine: deliberate panic at {} rpm",
+                p.operating.rotor_speed
+            );
         }
         self.solves.fetch_add(1, Ordering::SeqCst);
-        self.solved_rpm.lock().unwrap().push(p.operating.rotor_speed);
+        self.solved_rpm
+            .lock()
+            .unwrap()
+            .push(p.operating.rotor_speed);
         if self.fail_solve {
-            return Err(Error::numerical("test engine: eigenvalue solver did not converge"));
+            return Err(Error::numerical(
+                "test engine: eigenvalue solver did not converge",
+            ));
         }
         Ok(Solved {
             section: SectionProps {
@@ -134,7 +144,14 @@ impl Engine for TestEngine {
         })
     }
 
-    fn boundary(&self, p: &Preset, key: &str, from: f64, to: f64, _points: usize) -> Result<Boundary> {
+    fn boundary(
+        &self,
+        p: &Preset,
+        key: &str,
+        from: f64,
+        to: f64,
+        _points: usize,
+    ) -> Result<Boundary> {
         self.boundaries.fetch_add(1, Ordering::SeqCst);
         // Flutter where the flap σ of `test_stability` crosses zero along the wind speed.
         let critical = if key == "operating.wind_speed" {
@@ -169,7 +186,10 @@ impl Engine for TestEngine {
                 TrackedMode {
                     label: label.to_string(),
                     frequency_hz: stab.iter().map(|s| s.eigenvalues[k].frequency_hz).collect(),
-                    damping_ratio: stab.iter().map(|s| s.eigenvalues[k].damping_ratio).collect(),
+                    damping_ratio: stab
+                        .iter()
+                        .map(|s| s.eigenvalues[k].damping_ratio)
+                        .collect(),
                     re: stab.iter().map(|s| s.eigenvalues[k].re).collect(),
                 }
             })
@@ -242,7 +262,13 @@ fn start_requests_one_solve_then_a_boundary_search() {
     );
     assert!(!s.solving());
     assert!(
-        matches!(follow.as_slice(), [Effect::Boundary { key: "operating.rotor_speed", .. }]),
+        matches!(
+            follow.as_slice(),
+            [Effect::Boundary {
+                key: "operating.rotor_speed",
+                ..
+            }]
+        ),
         "{follow:?}"
     );
 }
@@ -279,12 +305,22 @@ fn slider_limits_stop_without_a_solve() {
     s.preset.section.ply_angle = 0.0;
     let e = update(&mut s, Msg::Action(Action::Decrease));
     assert!(e.is_empty());
-    assert!(s.notice.as_deref().unwrap().contains("minimum"), "{:?}", s.notice);
+    assert!(
+        s.notice.as_deref().unwrap().contains("minimum"),
+        "{:?}",
+        s.notice
+    );
     // Rotor speed stops at view.rotor_speed_max.
-    s.focus = PARAMS.iter().position(|p| p.label == "rotor speed").unwrap();
+    s.focus = PARAMS
+        .iter()
+        .position(|p| p.label == "rotor speed")
+        .unwrap();
     s.preset.operating.rotor_speed = s.preset.view.rotor_speed_max;
     assert!(update(&mut s, Msg::Action(Action::IncreaseCoarse)).is_empty());
-    assert_eq!(s.preset.operating.rotor_speed, s.preset.view.rotor_speed_max);
+    assert_eq!(
+        s.preset.operating.rotor_speed,
+        s.preset.view.rotor_speed_max
+    );
 }
 
 #[test]
@@ -389,9 +425,16 @@ fn campbell_is_recomputed_for_new_parameters_but_not_for_rotor_speed() {
     let mut s = settled(&engine);
     headless::press(&mut s, &engine, &[Action::ToggleCampbell]);
     assert_eq!(engine.campbells.load(Ordering::SeqCst), 1);
-    s.focus = PARAMS.iter().position(|p| p.label == "rotor speed").unwrap();
+    s.focus = PARAMS
+        .iter()
+        .position(|p| p.label == "rotor speed")
+        .unwrap();
     headless::press(&mut s, &engine, &[Action::Increase, Action::Increase]);
-    assert_eq!(engine.campbells.load(Ordering::SeqCst), 1, "rotor speed is the axis");
+    assert_eq!(
+        engine.campbells.load(Ordering::SeqCst),
+        1,
+        "rotor speed is the axis"
+    );
     s.focus = PARAMS.iter().position(|p| p.label == "wind speed").unwrap();
     headless::press(&mut s, &engine, &[Action::Increase]);
     assert_eq!(engine.campbells.load(Ordering::SeqCst), 2);
@@ -405,15 +448,17 @@ fn boundary_follows_the_selected_parameter() {
     let engine = TestEngine::default();
     let mut s = settled(&engine);
     assert_eq!(s.boundary_key, "operating.rotor_speed");
-    // Select wind speed: a new search along it, from the current value up to view.wind_speed_max.
+    // Select wind speed: a new search along it.
     s.focus = 0;
     let e = update(&mut s, Msg::Action(Action::FocusNext));
     let Some(Effect::Boundary { key, from, to, .. }) = e.first() else {
         panic!("{e:?}")
     };
+    // The test engine's flap mode is unstable at 20 m/s, so the search runs below the current
+    // value (stable operating points search above it, up to view.wind_speed_max).
     assert_eq!(*key, "operating.wind_speed");
-    assert_eq!(*from, s.preset.operating.wind_speed);
-    assert_eq!(*to, s.preset.view.wind_speed_max);
+    assert_eq!(*from, 0.0);
+    assert_eq!(*to, s.preset.operating.wind_speed);
     settle(&mut s, &engine, e);
     let text = flutterscope::explorer::ui::status::margin_text(&s).unwrap();
     // The test engine's flap mode is unstable at the preset's 20 m/s, so the search looks below
@@ -421,7 +466,11 @@ fn boundary_follows_the_selected_parameter() {
     assert_eq!(text, "wind speed: flutter from 15.0 m/s, -25 % (flap 1)");
     // The aero-model row keeps the last numeric key.
     let n = engine.boundaries.load(Ordering::SeqCst);
-    headless::press(&mut s, &engine, &[Action::FocusNext, Action::FocusNext, Action::FocusNext]);
+    headless::press(
+        &mut s,
+        &engine,
+        &[Action::FocusNext, Action::FocusNext, Action::FocusNext],
+    );
     assert_eq!(PARAMS[s.focus].label, "aero model");
     assert_eq!(s.boundary_key, "operating.pitch");
     headless::press(&mut s, &engine, &[Action::FocusNext]);
@@ -454,7 +503,11 @@ fn engine_errors_show_in_the_status_and_the_explorer_keeps_going() {
     };
     let mut s = settled(&engine);
     assert!(s.solved.is_none());
-    assert!(s.solve_error.as_deref().unwrap().contains("did not converge"));
+    assert!(s
+        .solve_error
+        .as_deref()
+        .unwrap()
+        .contains("did not converge"));
     let text = render_text(&s, 100, 30);
     assert!(text.contains("ERROR"), "{text}");
     assert!(text.contains("did not converge"), "{text}");
@@ -477,6 +530,25 @@ fn preset_keys_cycle_through_the_builtins() {
     } else {
         assert!(s.notice.is_some());
     }
+}
+
+#[test]
+fn trails_and_trends_start_afresh_on_a_new_preset() {
+    let engine = TestEngine::default();
+    let mut s = settled(&engine);
+    s.focus = PARAMS
+        .iter()
+        .position(|p| p.label == "rotor speed")
+        .unwrap();
+    headless::press(&mut s, &engine, &[Action::Increase, Action::Increase]);
+    assert_eq!(s.trails.len(), 2);
+    assert!(!s.prev_modes.is_empty());
+    // Reset (or another preset): no trails or trend arrows across the jump.
+    headless::press(&mut s, &engine, &[Action::Reset]);
+    assert!(s.trails.is_empty());
+    assert!(s.prev_modes.is_empty());
+    headless::press(&mut s, &engine, &[Action::Increase]);
+    assert_eq!(s.trails.len(), 1);
 }
 
 #[test]
@@ -517,7 +589,9 @@ fn tiny_windows_say_so_and_never_panic() {
 fn size_argument_is_checked() {
     assert_eq!(parse_size("120x40").unwrap(), (120, 40));
     assert_eq!(parse_size("80X24").unwrap(), (80, 24));
-    for bad in ["10x5", "abc", "120", "120x", "x40", "-1x30", "2000x40", "79x24"] {
+    for bad in [
+        "10x5", "abc", "120", "120x", "x40", "-1x30", "2000x40", "79x24",
+    ] {
         let e = parse_size(bad).unwrap_err().to_string();
         assert!(e.contains("COLSxROWS"), "{bad}: {e}");
     }
@@ -597,7 +671,10 @@ fn worker_streams_samples_and_stops_when_paused() {
     worker.send(solve_effect(1, 60.0));
     let mut samples = 0;
     collect_until(&rx, |m| {
-        if let Msg::Samples { gen: 1, samples: s, .. } = m {
+        if let Msg::Samples {
+            gen: 1, samples: s, ..
+        } = m
+        {
             samples += s.len();
         }
         samples >= 4
@@ -628,11 +705,17 @@ fn worker_survives_an_engine_panic() {
     let Some(Msg::Solved { result: Err(e), .. }) = msgs.last() else {
         panic!("expected an error result")
     };
-    assert!(e.contains("panicked") && e.contains("deliberate panic"), "{e}");
+    assert!(
+        e.contains("panicked") && e.contains("deliberate panic"),
+        "{e}"
+    );
     // The same worker keeps serving.
     worker.send(solve_effect(2, 20.0));
     let msgs = collect_until(&rx, |m| matches!(m, Msg::Solved { gen: 2, .. }));
-    assert!(matches!(msgs.last(), Some(Msg::Solved { result: Ok(_), .. })));
+    assert!(matches!(
+        msgs.last(),
+        Some(Msg::Solved { result: Ok(_), .. })
+    ));
     // And the state shows the panic in the status line.
     let (mut s, _) = fresh_state();
     update(
@@ -703,12 +786,18 @@ fn snapshot_campbell_view() {
 
 #[test]
 fn snapshot_small_window() {
-    insta::assert_snapshot!("small_80x24", snapshot_of(DEFAULT_PRESET, ViewKind::Main, 80, 24));
+    insta::assert_snapshot!(
+        "small_80x24",
+        snapshot_of(DEFAULT_PRESET, ViewKind::Main, 80, 24)
+    );
 }
 
 #[test]
 fn snapshot_large_window() {
-    insta::assert_snapshot!("large_160x48", snapshot_of(DEFAULT_PRESET, ViewKind::Main, 160, 48));
+    insta::assert_snapshot!(
+        "large_160x48",
+        snapshot_of(DEFAULT_PRESET, ViewKind::Main, 160, 48)
+    );
 }
 
 /// The real engine, except that solving fails: what a user sees when the solver gives up.
@@ -720,7 +809,14 @@ impl Engine for FailingSolve {
             "eigenvalues of the state matrix did not converge (test)",
         ))
     }
-    fn boundary(&self, p: &Preset, key: &str, from: f64, to: f64, points: usize) -> Result<Boundary> {
+    fn boundary(
+        &self,
+        p: &Preset,
+        key: &str,
+        from: f64,
+        to: f64,
+        points: usize,
+    ) -> Result<Boundary> {
         Physics.boundary(p, key, from, to, points)
     }
     fn campbell(&self, p: &Preset, grid: &[f64]) -> Result<TrackedSweep> {
@@ -734,7 +830,13 @@ impl Engine for FailingSolve {
 #[test]
 fn snapshot_error_state() {
     let p = default_preset();
-    let s = settled_state(DEFAULT_PRESET, p, &FailingSolve, ViewKind::Main, MarkerKind::Braille);
+    let s = settled_state(
+        DEFAULT_PRESET,
+        p,
+        &FailingSolve,
+        ViewKind::Main,
+        MarkerKind::Braille,
+    );
     let text = render_text(&s, 120, 40);
     assert!(text.contains("did not converge"), "{text}");
     insta::assert_snapshot!("error_state", text);
@@ -750,8 +852,19 @@ fn snapshots_are_deterministic() {
 #[test]
 fn every_marker_renders() {
     let p = default_preset();
-    for m in [MarkerKind::Braille, MarkerKind::Halfblock, MarkerKind::Block, MarkerKind::Dot] {
-        let s = settled_state(DEFAULT_PRESET, p.clone(), &TestEngine::default(), ViewKind::Main, m);
+    for m in [
+        MarkerKind::Braille,
+        MarkerKind::Halfblock,
+        MarkerKind::Block,
+        MarkerKind::Dot,
+    ] {
+        let s = settled_state(
+            DEFAULT_PRESET,
+            p.clone(),
+            &TestEngine::default(),
+            ViewKind::Main,
+            m,
+        );
         let text = render_text(&s, 120, 40);
         assert!(text.contains("Root locus"), "{m:?}");
     }
@@ -771,7 +884,10 @@ fn tui_without_a_terminal_points_to_the_headless_commands() {
         .unwrap();
     assert!(!out.status.success());
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(err.contains("needs a terminal") && err.contains("snapshot"), "{err}");
+    assert!(
+        err.contains("needs a terminal") && err.contains("snapshot"),
+        "{err}"
+    );
 }
 
 #[test]
@@ -795,9 +911,15 @@ fn snapshot_command_prints_a_frame() {
         .args(["snapshot", "--preset", DEFAULT_PRESET, "--size", "100x30"])
         .output()
         .unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let text = String::from_utf8(out.stdout).unwrap();
     assert_eq!(text.lines().count(), 30);
-    assert!(text.lines().all(|l| l.chars().count() <= 100 && !l.ends_with(' ')));
+    assert!(text
+        .lines()
+        .all(|l| l.chars().count() <= 100 && !l.ends_with(' ')));
     assert!(text.contains("Root locus") && text.contains("Tip response"));
 }

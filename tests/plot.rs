@@ -1,45 +1,396 @@
-//! The plot layer: SVG parses as XML with one polyline per line series, PNG decodes at the
-//! expected size, bad extensions and bad paths give clear errors.
+//! The plot layer (`flutterscope::plot`): SVG output parses as XML and carries exactly one
+//! `<polyline>` per line series, PNG output decodes at the expected size with text drawn from
+//! the embedded font, and bad extensions, bad paths and malformed figures give clear errors.
 
 use flutterscope::error::Error;
-use flutterscope::plot::{self, Figure, Guide, Marker, Panel, Series};
-use std::path::PathBuf;
+use flutterscope::plot::{
+    self, Figure, Format, Guide, Marker, Panel, Rgb, Series, DEFAULT_SIZE, LEGEND_MAX,
+};
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
 
+/// A fresh directory for one test's files.
 fn out_dir(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("flutterscope-plot-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir
 }
 
-fn sine(phase: f64, n: usize) -> Vec<(f64, f64)> {
+/// With `FLUTTERSCOPE_PLOT_KEEP=DIR`, copy a written plot there for a look by eye.
+fn keep(path: &Path) {
+    if let Some(dir) = std::env::var_os("FLUTTERSCOPE_PLOT_KEEP") {
+        let dir = PathBuf::from(dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::copy(path, dir.join(path.file_name().unwrap())).unwrap();
+    }
+}
+
+/// A decaying oscillation sampled at `n` points, like a tip response.
+fn decay(phase: f64, n: usize) -> Vec<(f64, f64)> {
     (0..n)
         .map(|i| {
             let t = i as f64 * 0.05;
-            (t, (t + phase).sin() * (-0.1 * t).exp())
+            (t, (3.0 * t + phase).sin() * (-0.2 * t).exp())
         })
         .collect()
 }
 
-#[test]
-fn dump_for_inspection() {
-    let fig = Figure::new("Campbell diagram — test blade")
+const BLUE: Rgb = Rgb(0, 114, 178);
+const RED: Rgb = Rgb(213, 94, 0);
+const GREEN: Rgb = Rgb(0, 158, 115);
+const PURPLE: Rgb = Rgb(204, 121, 167);
+const ORANGE: Rgb = Rgb(230, 159, 0);
+
+fn hex(c: Rgb) -> String {
+    format!("#{:02X}{:02X}{:02X}", c.0, c.1, c.2)
+}
+
+/// A Campbell-like figure: two stacked panels with line, line+points and point series, guides,
+/// a marker and a note; every series has its own colour.
+fn campbell_like() -> Figure {
+    let speeds: Vec<f64> = (0..=40).map(|i| i as f64 * 5.0).collect();
+    let freq =
+        |f0: f64, k: f64| -> Vec<(f64, f64)> { speeds.iter().map(|&w| (w, f0 + k * w)).collect() };
+    Figure::new("Campbell diagram — ζ and f vs Ω")
         .with_panel(
             Panel::new("rotor speed (rpm)", "frequency (Hz)")
-                .with_series(Series::line("flap 1", sine(0.0, 200)))
-                .with_series(Series::line("torsion 1", sine(1.0, 200)))
-                .with_series(Series::line_points("flap 2", sine(2.0, 20)))
-                .with_guide(Guide::segment((0.0, 0.0), (10.0, 1.0), "1P"))
-                .with_guide(Guide::vertical(5.0, "boundary 5.0 rpm"))
-                .with_marker(Marker::new(5.0, 0.0, "flutter 5.0 rpm, 1.2 Hz"))
-                .with_note("no crossing in range"),
+                .titled("(a) frequency")
+                .with_series(Series::line("flap 1", freq(0.6, 0.004)).with_color(BLUE))
+                .with_series(Series::line("flap 2", freq(1.7, 0.006)).with_color(RED))
+                .with_series(Series::line_points("torsion 1", freq(2.9, 0.0)).with_color(GREEN))
+                .with_guide(Guide::segment((0.0, 0.0), (200.0, 200.0 / 60.0), "1P"))
+                .with_guide(Guide::segment((0.0, 0.0), (200.0, 600.0 / 60.0), "3P")),
         )
         .with_panel(
             Panel::new("rotor speed (rpm)", "damping ratio ζ (–)")
-                .with_series(Series::points("flap 1", sine(0.5, 30)))
-                .with_guide(Guide::horizontal(0.0, "ζ = 0")),
+                .titled("(b) damping")
+                .with_series(
+                    Series::line(
+                        "flap 1",
+                        speeds.iter().map(|&w| (w, 0.02 - 1e-4 * w)).collect(),
+                    )
+                    .with_color(PURPLE),
+                )
+                .with_series(
+                    Series::points(
+                        "torsion 1",
+                        speeds.iter().map(|&w| (w, 0.01 + 2e-5 * w)).collect(),
+                    )
+                    .with_color(ORANGE),
+                )
+                .with_guide(Guide::horizontal(0.0, "ζ = 0"))
+                .with_guide(Guide::vertical(100.0, "boundary 100 rpm"))
+                .with_marker(Marker::new(100.0, 0.0, "flutter at 100 rpm"))
+                .with_note("flutter boundary: 100 rpm, flap 1"),
+        )
+}
+
+struct SvgSummary {
+    /// `<polyline>` count by stroke colour.
+    polylines: HashMap<String, usize>,
+    /// `<circle>` count by fill colour.
+    circles: HashMap<String, usize>,
+    texts: Vec<String>,
+    width: String,
+    height: String,
+}
+
+fn summarise(svg: &str) -> SvgSummary {
+    let doc = roxmltree::Document::parse(svg).expect("SVG must parse as XML");
+    let root = doc.root_element();
+    assert_eq!(root.tag_name().name(), "svg");
+    let mut s = SvgSummary {
+        polylines: HashMap::new(),
+        circles: HashMap::new(),
+        texts: Vec::new(),
+        width: root.attribute("width").unwrap_or_default().to_string(),
+        height: root.attribute("height").unwrap_or_default().to_string(),
+    };
+    for node in doc.descendants().filter(|n| n.is_element()) {
+        match node.tag_name().name() {
+            "polyline" => {
+                let stroke = node.attribute("stroke").unwrap_or_default().to_string();
+                *s.polylines.entry(stroke).or_default() += 1;
+            }
+            "circle" => {
+                let fill = node.attribute("fill").unwrap_or_default().to_string();
+                *s.circles.entry(fill).or_default() += 1;
+            }
+            "text" => s
+                .texts
+                .push(node.text().unwrap_or_default().trim().to_string()),
+            _ => {}
+        }
+    }
+    s
+}
+
+#[test]
+fn svg_parses_and_has_one_polyline_per_line_series() {
+    let fig = campbell_like();
+    let svg = plot::render_svg(&fig).unwrap();
+    let s = summarise(&svg);
+    assert_eq!(
+        (s.width.as_str(), s.height.as_str()),
+        ("1200", "800"),
+        "default size"
+    );
+    // Line and line+points series: exactly one polyline each.
+    for c in [BLUE, RED, GREEN, PURPLE] {
+        assert_eq!(s.polylines.get(&hex(c)), Some(&1), "colour {}", hex(c));
+    }
+    // A point series draws no polyline; it draws one circle per point plus its legend swatch.
+    assert_eq!(s.polylines.get(&hex(ORANGE)), None);
+    assert_eq!(s.circles.get(&hex(ORANGE)), Some(&(41 + 1)));
+    // Line+points: a dot at each of the 41 points plus nothing else (its swatch is a bar).
+    assert_eq!(s.circles.get(&hex(GREEN)), Some(&41));
+    // Guides are drawn dashed in grey: several short polylines each, none in a series colour.
+    assert!(s.polylines.get("#5A5A5A").copied().unwrap_or(0) > 10);
+    // Title, captions, axis labels with units, legend entries, guide labels, marker, note.
+    for want in [
+        "Campbell diagram — ζ and f vs Ω",
+        "(a) frequency",
+        "(b) damping",
+        "rotor speed (rpm)",
+        "frequency (Hz)",
+        "damping ratio ζ (–)",
+        "flap 1",
+        "flap 2",
+        "torsion 1",
+        "1P",
+        "3P",
+        "ζ = 0",
+        "boundary 100 rpm",
+        "flutter at 100 rpm",
+        "flutter boundary: 100 rpm, flap 1",
+    ] {
+        assert!(
+            s.texts.iter().any(|t| t == want),
+            "no text '{want}' in {:?}",
+            s.texts
         );
-    let dir = std::path::Path::new("/tmp/plotcheck");
-    std::fs::create_dir_all(dir).unwrap();
-    plot::write(&fig, &dir.join("a.svg")).unwrap();
-    plot::write(&fig, &dir.join("a.png")).unwrap();
+    }
+}
+
+#[test]
+fn gaps_and_out_of_range_points_split_a_line() {
+    let mut pts = decay(0.0, 100);
+    pts[40].1 = f64::NAN;
+    let fig = Figure::new("gap").with_panel(
+        Panel::new("time (s)", "tip twist (rad)")
+            .with_series(Series::line("with a gap", pts).with_color(BLUE))
+            .with_series(
+                Series::line("all NaN", vec![(0.0, f64::NAN), (1.0, f64::NAN)]).with_color(RED),
+            )
+            .with_series(Series::line("one point", vec![(1.0, 0.5)]).with_color(GREEN)),
+    );
+    let s = summarise(&plot::render_svg(&fig).unwrap());
+    assert_eq!(s.polylines.get(&hex(BLUE)), Some(&2));
+    assert_eq!(s.polylines.get(&hex(RED)), None);
+    assert_eq!(s.polylines.get(&hex(GREEN)), None);
+    // Still listed in the legend.
+    for name in ["with a gap", "all NaN", "one point"] {
+        assert!(s.texts.iter().any(|t| t == name), "{name} missing");
+    }
+
+    // A fixed y range clips the peaks: each excursion above 0.5 cuts the line.
+    let fig = Figure::new("clipped").with_panel(
+        Panel::new("time (s)", "tip twist (rad)")
+            .with_y_range(-0.5, 0.5)
+            .with_series(Series::line("clipped", decay(0.0, 100)).with_color(BLUE)),
+    );
+    let svg = plot::render_svg(&fig).unwrap();
+    let runs = plot::visible_runs(&decay(0.0, 100), (0.0, 4.95), (-0.5, 0.5));
+    assert!(runs.len() > 2);
+    assert_eq!(summarise(&svg).polylines.get(&hex(BLUE)), Some(&runs.len()));
+}
+
+fn state_colour(i: usize) -> Rgb {
+    Rgb(20 + 10 * i as u8, 60, 140)
+}
+
+#[test]
+fn legend_is_capped_with_a_count_of_the_rest() {
+    let mut panel = Panel::new("time (s)", "state (–)");
+    let n = LEGEND_MAX + 5;
+    for i in 0..n {
+        panel = panel.with_series(
+            Series::line(format!("state {i}"), decay(i as f64, 50)).with_color(state_colour(i)),
+        );
+    }
+    let s = summarise(&plot::render_svg(&Figure::new("many").with_panel(panel)).unwrap());
+    let listed = s
+        .texts
+        .iter()
+        .filter(|t| {
+            t.strip_prefix("state ")
+                .is_some_and(|r| r.parse::<usize>().is_ok())
+        })
+        .count();
+    assert_eq!(listed, LEGEND_MAX - 1);
+    assert!(
+        s.texts.iter().any(|t| t == "+ 6 more (not listed)"),
+        "{:?}",
+        s.texts
+    );
+    // Every series is drawn even when not listed: one polyline in each series' colour.
+    for i in 0..n {
+        assert_eq!(
+            s.polylines.get(&hex(state_colour(i))),
+            Some(&1),
+            "state {i}"
+        );
+    }
+}
+
+fn decode_png(path: &Path) -> (u32, u32, Vec<u8>) {
+    let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(path).unwrap()));
+    let mut reader = decoder.read_info().expect("PNG header");
+    let mut buf = vec![0; reader.output_buffer_size().expect("buffer size")];
+    let info = reader.next_frame(&mut buf).expect("PNG data");
+    assert_eq!(info.color_type, png::ColorType::Rgb);
+    assert_eq!(info.bit_depth, png::BitDepth::Eight);
+    buf.truncate(info.buffer_size());
+    (info.width, info.height, buf)
+}
+
+#[test]
+fn png_decodes_at_the_expected_size_with_text_and_series() {
+    let dir = out_dir("png");
+    let path = dir.join("campbell.png");
+    plot::write(&campbell_like(), &path).unwrap();
+    keep(&path);
+    let (w, h, px) = decode_png(&path);
+    assert_eq!((w, h), DEFAULT_SIZE);
+    let at = |x: u32, y: u32| {
+        let i = 3 * (y * w + x) as usize;
+        (px[i], px[i + 1], px[i + 2])
+    };
+    // Series colours are on the canvas.
+    for c in [BLUE, RED, GREEN, PURPLE, ORANGE] {
+        let found = (0..h).any(|y| (0..w).any(|x| at(x, y) == (c.0, c.1, c.2)));
+        assert!(found, "colour {} not drawn", hex(c));
+    }
+    // The title was rasterised from the embedded font: dark pixels in the top band.
+    let dark_in_title = (0..50)
+        .flat_map(|y| (300..900).map(move |x| (x, y)))
+        .filter(|&(x, y)| {
+            let (r, g, b) = at(x, y);
+            r < 80 && g < 80 && b < 80
+        })
+        .count();
+    assert!(
+        dark_in_title > 200,
+        "title not drawn ({dark_in_title} dark pixels)"
+    );
+
+    // Three stacked panels grow the height; a fixed size is honoured.
+    let three = Figure::new("three")
+        .with_panel(Panel::new("x (m)", "a (–)").with_series(Series::line("a", decay(0.0, 20))))
+        .with_panel(Panel::new("x (m)", "b (–)").with_series(Series::line("b", decay(1.0, 20))))
+        .with_panel(Panel::new("x (m)", "c (–)").with_series(Series::line("c", decay(2.0, 20))));
+    let path = dir.join("three.PNG");
+    plot::write(&three, &path).unwrap();
+    keep(&path);
+    let (w3, h3, _) = decode_png(&path);
+    assert_eq!((w3, h3), (1200, 800 + 420));
+    let path = dir.join("small.png");
+    plot::write(&three.clone().with_size(640, 480), &path).unwrap();
+    let (ws, hs, _) = decode_png(&path);
+    assert_eq!((ws, hs), (640, 480));
+    // Two columns side by side.
+    let side = Figure::new("side")
+        .with_columns(2)
+        .with_panel(Panel::new("t (s)", "φ (rad)").with_series(Series::line("a", decay(0.0, 20))))
+        .with_panel(Panel::new("t (s)", "φ (rad)").with_series(Series::line("b", decay(1.0, 20))));
+    assert_eq!(side.rows(), 1);
+    let svg = plot::render_svg(&side).unwrap();
+    assert_eq!(summarise(&svg).width, "1200");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn extension_picks_the_format_case_insensitively() {
+    assert_eq!(plot::format_for(Path::new("a/b.svg")).unwrap(), Format::Svg);
+    assert_eq!(plot::format_for(Path::new("B.SVG")).unwrap(), Format::Svg);
+    assert_eq!(plot::format_for(Path::new("c.Png")).unwrap(), Format::Png);
+    let dir = out_dir("svg");
+    let path = dir.join("fig.SVG");
+    plot::write(&campbell_like(), &path).unwrap();
+    keep(&path);
+    let text = std::fs::read_to_string(&path).unwrap();
+    summarise(&text);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn bad_extension_is_a_usage_error_naming_it() {
+    let dir = out_dir("ext");
+    for (name, needle) in [
+        ("plot.pdf", "'.pdf'"),
+        ("plot.svg.txt", "'.txt'"),
+        ("plot", "no file extension"),
+    ] {
+        let path = dir.join(name);
+        match plot::write(&campbell_like(), &path) {
+            Err(Error::Usage(msg)) => {
+                assert!(msg.contains(needle), "{msg}");
+                assert!(msg.contains(".svg") && msg.contains(".png"), "{msg}");
+                assert!(msg.contains(name), "{msg}");
+            }
+            other => panic!("{name}: expected a usage error, got {other:?}"),
+        }
+        assert!(!path.exists(), "{name} was written");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn bad_path_is_an_io_error_naming_it() {
+    let dir = out_dir("path");
+    let missing = dir.join("no-such-dir").join("plot.svg");
+    match plot::write(&campbell_like(), &missing) {
+        Err(Error::Io(msg)) => {
+            assert!(msg.contains(&missing.display().to_string()), "{msg}");
+            assert!(msg.contains("cannot write plot"), "{msg}");
+        }
+        other => panic!("expected an I/O error, got {other:?}"),
+    }
+    // A directory in the way of a PNG.
+    let taken = dir.join("taken.png");
+    std::fs::create_dir_all(&taken).unwrap();
+    match plot::write(&campbell_like(), &taken) {
+        Err(Error::Io(msg)) => assert!(msg.contains("taken.png"), "{msg}"),
+        other => panic!("expected an I/O error, got {other:?}"),
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn malformed_figures_are_usage_errors_not_panics() {
+    let empty = Figure::new("nothing");
+    assert!(matches!(plot::render_svg(&empty), Err(Error::Usage(m)) if m.contains("no panels")));
+    let zero_cols = campbell_like().with_columns(0);
+    assert!(matches!(plot::render_png(&zero_cols), Err(Error::Usage(m)) if m.contains("column")));
+    let bad_range = Figure::new("r").with_panel(Panel::new("x", "y").with_x_range(1.0, 1.0));
+    assert!(matches!(plot::render_svg(&bad_range), Err(Error::Usage(m)) if m.contains("x range")));
+    let tiny = campbell_like().with_size(10, 10);
+    assert!(matches!(plot::render_svg(&tiny), Err(Error::Usage(m)) if m.contains("size")));
+    // Degenerate but valid data draws without panicking.
+    let flat = Figure::new("flat")
+        .with_panel(
+            Panel::new("x", "y").with_series(Series::line("const", vec![(1.0, 2.0), (1.0, 2.0)])),
+        )
+        .with_panel(Panel::new("x", "y"))
+        .with_panel(
+            Panel::new("x", "y")
+                .with_series(Series::line("huge", vec![(0.0, 1e300), (1.0, -1e300)])),
+        )
+        .with_panel(
+            Panel::new("x", "y")
+                .with_series(Series::points("tiny", vec![(0.0, 1e-9), (1e-9, 2e-9)])),
+        );
+    summarise(&plot::render_svg(&flat).unwrap());
+    assert!(plot::render_png(&flat).unwrap().starts_with(b"\x89PNG"));
 }

@@ -39,10 +39,21 @@ fn goland_flutter_speed_and_frequency() {
     let v = b.critical.unwrap();
     let w = 2.0 * PI * b.frequency_hz.unwrap();
     assert!((v - 137.0).abs() <= 0.02 * 137.0, "flutter speed {v}");
-    assert!((w - 70.0).abs() <= 0.03 * 70.0, "flutter frequency {w} rad/s");
+    assert!(
+        (w - 70.0).abs() <= 0.03 * 70.0,
+        "flutter frequency {w} rad/s"
+    );
     // Just below the boundary the wing is stable, just above it flutters.
-    let below = analyse(&preset("goland", &[&format!("operating.tunnel_speed={}", v * 0.99)])).unwrap();
-    let above = analyse(&preset("goland", &[&format!("operating.tunnel_speed={}", v * 1.01)])).unwrap();
+    let below = analyse(&preset(
+        "goland",
+        &[&format!("operating.tunnel_speed={}", v * 0.99)],
+    ))
+    .unwrap();
+    let above = analyse(&preset(
+        "goland",
+        &[&format!("operating.tunnel_speed={}", v * 1.01)],
+    ))
+    .unwrap();
     assert!(below.stable && !above.stable);
 }
 
@@ -61,12 +72,16 @@ fn torsional_divergence_matches_closed_form() {
         ],
     );
     let s = &p.section;
-    let q_d = s.c22 * (PI / (2.0 * p.blade.length)).powi(2) / (s.chord * p.aero.lift_slope * s.ea_offset);
+    let q_d =
+        s.c22 * (PI / (2.0 * p.blade.length)).powi(2) / (s.chord * p.aero.lift_slope * s.ea_offset);
     let v_d = (2.0 * q_d / p.operating.air_density).sqrt();
     let b = flutter_boundary(&p, "operating.tunnel_speed", 200.0, 300.0, 5).unwrap();
     assert_eq!(b.kind, Some(BoundaryKind::Divergence));
     let v = b.critical.unwrap();
-    assert!((v - v_d).abs() <= 2e-4 * v_d, "divergence at {v}, closed form {v_d}");
+    assert!(
+        (v - v_d).abs() <= 2e-4 * v_d,
+        "divergence at {v}, closed form {v_d}"
+    );
     assert_eq!(b.frequency_hz, Some(0.0));
 }
 
@@ -90,7 +105,9 @@ fn eigen_solve_rejects_non_finite_input_without_hanging() {
     let ls2 = ls.clone();
     let r = within(10, move || analyse_system(&ls2).map(|_| ()));
     assert!(matches!(r, Err(Error::Numerical(_))));
-    let r = within(10, move || Simulator::from_linear(ls, 100.0, 6.0).map(|_| ()));
+    let r = within(10, move || {
+        Simulator::from_linear(ls, 100.0, 6.0).map(|_| ())
+    });
     assert!(matches!(r, Err(Error::Numerical(_))));
 }
 
@@ -105,7 +122,11 @@ fn structure_alone_reproduces_the_natural_frequencies() {
     f.sort_by(f64::total_cmp);
     assert_eq!(f.len(), natural.len());
     for (a, b) in f.iter().zip(&natural) {
-        assert!((a - b.frequency_hz).abs() <= 1e-8 * b.frequency_hz, "{a} vs {}", b.frequency_hz);
+        assert!(
+            (a - b.frequency_hz).abs() <= 1e-8 * b.frequency_hz,
+            "{a} vs {}",
+            b.frequency_hz
+        );
     }
     for m in &s.eigenvalues {
         assert!(m.re.abs() <= 1e-8 * m.im);
@@ -136,7 +157,10 @@ fn system_jacobian_matches_central_differences() {
         }
         assert!(worst < 1e-5, "{name}: Jacobian mismatch {worst}");
         // The equilibrium is a rest point of the full nonlinear right-hand side.
-        assert!(sys.rhs(&x0).amax() < 1e-8 * (1.0 + x0.amax()), "{name}: rhs at equilibrium");
+        assert!(
+            sys.rhs(&x0).amax() < 1e-8 * (1.0 + x0.amax()),
+            "{name}: rhs at equilibrium"
+        );
     }
 }
 
@@ -148,7 +172,11 @@ fn tracking_keeps_torsion_through_a_crossing() {
     // "flap 2" must stay put.
     let p = preset(
         "goland",
-        &["aero.model=none", "structure.loss_factor=0", "section.cg_offset=0"],
+        &[
+            "aero.model=none",
+            "structure.loss_factor=0",
+            "section.cg_offset=0",
+        ],
     );
     let grid: Vec<f64> = (0..12).map(|k| 0.6e7 + 0.17e7 * k as f64).collect();
     let sweep = track(&p, "section.c22", &grid).unwrap();
@@ -164,7 +192,9 @@ fn tracking_keeps_torsion_through_a_crossing() {
             "point {k}: tracked torsion at {} Hz, exact {exact}",
             torsion.frequency_hz[k]
         );
-        assert!((flap2.frequency_hz[k] - flap2.frequency_hz[0]).abs() <= 1e-9 * flap2.frequency_hz[0]);
+        assert!(
+            (flap2.frequency_hz[k] - flap2.frequency_hz[0]).abs() <= 1e-9 * flap2.frequency_hz[0]
+        );
         crossed |= torsion.frequency_hz[k] > flap2.frequency_hz[k];
     }
     assert!(torsion.frequency_hz[0] < flap2.frequency_hz[0] && crossed);
@@ -199,13 +229,23 @@ fn simulated_decay_rate_equals_the_largest_sigma() {
     };
     let (a1, a2) = (peak(4.0, 5.0), peak(10.0, 11.0));
     let rate = (a2 / a1).ln() / 6.0;
-    assert!((rate - sigma).abs() <= 0.02 * sigma.abs(), "measured {rate}, largest σ {sigma}");
+    assert!(
+        (rate - sigma).abs() <= 0.02 * sigma.abs(),
+        "measured {rate}, largest σ {sigma}"
+    );
 }
 
 #[test]
 fn rest_start_settles_to_equilibrium_and_flutter_diverges_cleanly() {
     // Stable: the load switched on at t = 0 settles on the static deflection.
-    let p = preset("goland", &["operating.tunnel_speed=100", "operating.pitch=-2", "simulation.duration=30"]);
+    let p = preset(
+        "goland",
+        &[
+            "operating.tunnel_speed=100",
+            "operating.pitch=-2",
+            "simulation.duration=30",
+        ],
+    );
     let lin = linear_system(&p).unwrap();
     let (twist_eq, flap_eq) = lin.tip(&lin.x_eq);
     assert!(twist_eq.abs() > 0.0 && flap_eq.abs() > 0.0);
@@ -220,7 +260,11 @@ fn rest_start_settles_to_equilibrium_and_flutter_diverges_cleanly() {
     // Past the flutter speed: stops at the bound with status diverging, no NaN.
     let p = preset(
         "goland",
-        &["operating.tunnel_speed=160", "simulation.kick_twist=0.5", "simulation.duration=1000"],
+        &[
+            "operating.tunnel_speed=160",
+            "simulation.kick_twist=0.5",
+            "simulation.duration=1000",
+        ],
     );
     let r = within(60, move || simulate(&p).unwrap());
     assert_eq!(r.status, RunStatus::Diverging);
@@ -247,7 +291,11 @@ fn incremental_stepping_equals_one_run_and_kicks_move_the_tip() {
 }
 
 fn json(args: &[&str]) -> serde_json::Value {
-    let out = Command::cargo_bin("flutterscope").unwrap().args(args).assert().success();
+    let out = Command::cargo_bin("flutterscope")
+        .unwrap()
+        .args(args)
+        .assert()
+        .success();
     serde_json::from_slice(&out.get_output().stdout).unwrap()
 }
 
@@ -258,22 +306,50 @@ fn eigen_json_shape() {
     assert_eq!(v["verdict"], "stable");
     let eig = v["eigenvalues"].as_array().unwrap();
     assert!(!eig.is_empty() && !v["aero_lags"].as_array().unwrap().is_empty());
-    for key in ["re", "im", "frequency_hz", "damping_ratio", "label", "structural_share"] {
+    for key in [
+        "re",
+        "im",
+        "frequency_hz",
+        "damping_ratio",
+        "label",
+        "structural_share",
+    ] {
         assert!(eig.iter().all(|m| !m[key].is_null()), "{key}");
     }
     let re: Vec<f64> = eig.iter().map(|m| m["re"].as_f64().unwrap()).collect();
-    assert!(re.windows(2).all(|w| w[0] >= w[1]), "sorted by re descending");
+    assert!(
+        re.windows(2).all(|w| w[0] >= w[1]),
+        "sorted by re descending"
+    );
 }
 
 #[test]
 fn flutter_json_shape() {
-    let args = ["flutter", "--preset", "goland", "--vary", "operating.tunnel_speed"];
-    let v = json(&[&args[..], &["--from", "120", "--to", "150", "--points", "4", "--json"]].concat());
+    let args = [
+        "flutter",
+        "--preset",
+        "goland",
+        "--vary",
+        "operating.tunnel_speed",
+    ];
+    let v = json(
+        &[
+            &args[..],
+            &["--from", "120", "--to", "150", "--points", "4", "--json"],
+        ]
+        .concat(),
+    );
     assert_eq!(v["parameter"], "operating.tunnel_speed");
     assert!(v["critical"].as_f64().is_some() && v["frequency_hz"].as_f64().is_some());
     assert_eq!(v["kind"], "flutter");
     assert!(v["mode"].is_string());
-    let v = json(&[&args[..], &["--from", "50", "--to", "90", "--points", "3", "--json"]].concat());
+    let v = json(
+        &[
+            &args[..],
+            &["--from", "50", "--to", "90", "--points", "3", "--json"],
+        ]
+        .concat(),
+    );
     assert!(v["critical"].is_null());
     // Text says so plainly.
     let out = Command::cargo_bin("flutterscope")
@@ -287,7 +363,12 @@ fn flutter_json_shape() {
 #[test]
 fn simulate_json_shape_and_plot_refusal() {
     let v = json(&[
-        "simulate", "--preset", "goland", "--set", "simulation.duration=0.5", "--json",
+        "simulate",
+        "--preset",
+        "goland",
+        "--set",
+        "simulation.duration=0.5",
+        "--json",
     ]);
     assert_eq!(v["status"], "ok");
     let n = v["t"].as_array().unwrap().len();

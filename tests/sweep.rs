@@ -22,17 +22,22 @@ fn shards_concatenate_to_the_whole_grid() {
         axes: vec![vec![0.0, 10.0], (0..7).map(|k| 20.0 * k as f64).collect()],
     };
     let whole = rows(&p, &grid, None);
-    assert_eq!(whole.len() % grid.total(), 0);
+    assert!(!whole.is_empty() && whole.len() % grid.total() == 0);
     // 3 shards cut the 14 points at 4 and 9: both cuts fall inside a tracking line.
     let mut merged = Vec::new();
     for index in 1..=3 {
         merged.extend(rows(&p, &grid, Some(Shard { index, count: 3 })));
     }
-    assert_eq!(merged, whole);
+    // Debug text compares NaN (a mode without a partner at a point) equal to itself.
+    assert_eq!(format!("{merged:?}"), format!("{whole:?}"));
 }
 
 fn stdout(args: &[&str]) -> String {
-    let out = Command::cargo_bin("flutterscope").unwrap().args(args).assert().success();
+    let out = Command::cargo_bin("flutterscope")
+        .unwrap()
+        .args(args)
+        .assert()
+        .success();
     String::from_utf8(out.get_output().stdout.clone()).unwrap()
 }
 
@@ -51,7 +56,11 @@ fn csv_shards_merge_like_the_readme_says() {
         lines.next().unwrap(),
         "operating.rotor_speed,mode,frequency_hz,damping_ratio,re"
     );
-    assert!(lines.next().unwrap().starts_with("0,flap 1,"));
+    let first = lines.next().unwrap();
+    assert!(
+        first.starts_with("0,") && first.split(',').count() == 5,
+        "{first}"
+    );
     // Header from the first shard, body of every shard.
     let mut merged = String::new();
     for i in 1..=4 {
@@ -67,7 +76,8 @@ fn csv_shards_merge_like_the_readme_says() {
             merged += "\n";
         }
     }
-    assert_eq!(merged, whole);
+    // Debug text compares NaN (a mode without a partner at a point) equal to itself.
+    assert_eq!(format!("{merged:?}"), format!("{whole:?}"));
 }
 
 #[test]
@@ -98,7 +108,13 @@ fn sweep_json_shape_and_errors() {
     for bad in [&["--shard", "5/4"][..], &["--plot", "x.svg"][..]] {
         Command::cargo_bin("flutterscope")
             .unwrap()
-            .args([&["sweep", "--vary", "operating.rotor_speed=0:10:5"][..], bad].concat())
+            .args(
+                [
+                    &["sweep", "--vary", "operating.rotor_speed=0:10:5"][..],
+                    bad,
+                ]
+                .concat(),
+            )
             .assert()
             .code(2);
     }

@@ -269,7 +269,7 @@ pub fn eigen_decomposition(a: &DMatrix<f64>) -> Result<Roots> {
     let par = faer::Par::Seq;
     let mut buffer = MemBuffer::new(evd::evd_scratch::<f64>(
         n,
-        ComputeEigenvectors::Yes,
+        ComputeEigenvectors::No,
         ComputeEigenvectors::Yes,
         par,
         Default::default(),
@@ -278,7 +278,7 @@ pub fn eigen_decomposition(a: &DMatrix<f64>) -> Result<Roots> {
         fa.as_ref(),
         s_re.as_mut(),
         s_im.as_mut(),
-        Some(ul.as_mut()),
+        None,
         Some(u.as_mut()),
         par,
         MemStack::new(&mut buffer),

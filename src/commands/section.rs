@@ -48,8 +48,13 @@ struct VaryReport<'a> {
 }
 
 pub fn run(p: &Preset, vary: Option<&str>, json: bool, plot: Option<&Path>) -> Result<()> {
-    if plot.is_some() {
-        return Err(Error::usage("section --plot: not available yet"));
+    if plot.is_some() && vary.is_none() {
+        return Err(Error::usage(
+            "section --plot draws C22/C23/C33 over a grid: add --vary KEY=A:B:STEP, e.g. section.ply_angle=0:90:15",
+        ));
+    }
+    if let Some(path) = plot {
+        crate::plot::format_for(path)?;
     }
     match vary {
         None => {
@@ -69,6 +74,12 @@ pub fn run(p: &Preset, vary: Option<&str>, json: bool, plot: Option<&Path>) -> R
         Some(spec) => {
             let (key, values) = parse_vary(spec)?;
             let sections = vary_sections(p, &key, &values)?;
+            if let Some(path) = plot {
+                let fig =
+                    crate::plot::figures::section_grid(p.display_name(), &key, &values, &sections);
+                crate::plot::write(&fig, path)?;
+                eprintln!("plot written to {}", path.display());
+            }
             if json {
                 print_json(&VaryReport {
                     preset: p.display_name(),

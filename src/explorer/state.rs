@@ -190,6 +190,8 @@ pub struct AppState {
     pub prev_modes: Vec<Mode>,
     /// Earlier pole positions (σ, ω), newest first.
     pub trails: Vec<Vec<(f64, f64)>>,
+    /// A preset was (re)loaded: the next solve starts a new history (no trails, no trends).
+    pub fresh: bool,
     pub response: Response,
     pub boundary_key: &'static str,
     pub boundary: Option<BoundaryJob>,
@@ -294,6 +296,7 @@ impl AppState {
             solve_error: None,
             prev_modes: Vec::new(),
             trails: Vec::new(),
+            fresh: false,
             response: Response::default(),
             boundary_key: "operating.rotor_speed",
             boundary: None,
@@ -373,6 +376,7 @@ impl AppState {
         self.preset = self.presets[index].preset.clone();
         self.trails.clear();
         self.prev_modes.clear();
+        self.fresh = true;
         self.changed()
     }
 
@@ -498,7 +502,18 @@ impl AppState {
                     return Vec::new();
                 }
                 match self.preset.set(key, next) {
-                    Ok(()) => self.changed(),
+                    Ok(()) => {
+                        if key == "section.ply_angle"
+                            && self.preset.section.source == crate::preset::SectionSource::Direct
+                        {
+                            self.notice = Some(
+                                "ply angle has no effect: this preset gives C22, C23, C33 directly \
+                                 (section.source = direct)"
+                                    .into(),
+                            );
+                        }
+                        self.changed()
+                    }
                     Err(e) => {
                         self.notice = Some(e.to_string());
                         Vec::new()
@@ -622,7 +637,9 @@ impl AppState {
         self.solved_gen = gen;
         match result {
             Ok(solved) => {
-                if let Some(old) = self.solved.take() {
+                let old = self.solved.take().filter(|_| !self.fresh);
+                self.fresh = false;
+                if let Some(old) = old {
                     let poles: Vec<(f64, f64)> = old
                         .stability
                         .eigenvalues
@@ -640,7 +657,7 @@ impl AppState {
                 out
             }
             Err(e) => {
-                if let Some(old) = self.solved.take() {
+                if let Some(old) = self.solved.take().filter(|_| !self.fresh) {
                     self.prev_modes = old.stability.eigenvalues;
                 }
                 self.solve_error = Some(e);

@@ -8,6 +8,28 @@
 
 use nalgebra::DVector;
 use std::f64::consts::{FRAC_PI_2, PI};
+use std::sync::{Arc, OnceLock};
+
+/// Largest Gauss rule kept in [`gauss_rule`]'s cache (the basis needs 3N + 12 ≤ 132 for N ≤ 40).
+const CACHED_RULES: usize = 256;
+
+/// Largest j whose root [`bending_root`] caches.
+const CACHED_ROOTS: usize = 256;
+
+/// A Gauss–Legendre rule on `[-1, 1]`: (nodes, weights).
+pub type GaussRule = (Vec<f64>, Vec<f64>);
+
+/// [`gauss_legendre`] computed once per n and shared: every assembly and every strip-theory
+/// evaluation reuses the rule instead of re-running Newton on `P_n` (whose recurrence divides
+/// at every step). Write-once cells, so sharing across threads needs no lock after the first call.
+pub fn gauss_rule(n: usize) -> Arc<GaussRule> {
+    static RULES: [OnceLock<Arc<GaussRule>>; CACHED_RULES + 1] =
+        [const { OnceLock::new() }; CACHED_RULES + 1];
+    match RULES.get(n) {
+        Some(cell) => cell.get_or_init(|| Arc::new(gauss_legendre(n))).clone(),
+        None => Arc::new(gauss_legendre(n)),
+    }
+}
 
 /// Gauss–Legendre rule with `n` points on `[-1, 1]`: (nodes ascending, weights) (MODEL.md §4).
 /// Exact for polynomials of degree ≤ 2n−1. Newton on `P_n` from Tricomi's initial guesses, which
@@ -20,17 +42,20 @@ pub fn gauss_legendre(n: usize) -> (Vec<f64>, Vec<f64>) {
         // Tricomi's approximation of the (i+1)-th largest root.
         let theta = PI * (4.0 * i as f64 + 3.0) / (4.0 * nf + 2.0);
         let mut x = (1.0 - (nf - 1.0) / (8.0 * nf * nf * nf)) * theta.cos();
-        let mut dp = 1.0;
-        for _ in 0..100 {
+        // Newton converges quadratically from Tricomi's guess; once a step is below 1e-13 the
+        // next one reaches round-off, so take exactly one more (a tighter test could wait forever
+        // on round-off noise).
+        for _ in 0..20 {
             let (p, d) = legendre_with_derivative(n, x);
-            dp = d;
             let dx = p / d;
             x -= dx;
-            if dx.abs() <= 1e-16 * x.abs().max(1.0) {
-                dp = legendre_with_derivative(n, x).1;
+            if dx.abs() <= 1e-13 {
+                let (p, d) = legendre_with_derivative(n, x);
+                x -= p / d;
                 break;
             }
         }
+        let dp = legendre_with_derivative(n, x).1;
         let w = 2.0 / ((1.0 - x * x) * dp * dp);
         nodes[i] = -x;
         nodes[n - 1 - i] = x;
@@ -63,9 +88,18 @@ fn legendre_with_derivative(n: usize, x: f64) -> (f64, f64) {
 ///
 /// Newton on the equivalent `cos z + sech z = 0`, which stays O(1) for any j (cosh overflows
 /// near j ≈ 230, sech just underflows to 0 and the root becomes `(2j−1)π/2` exactly, as it should).
-/// Starts from the asymptotic root `(2j−1)π/2`; converges in ≤ 6 steps for every j.
+/// Starts from the asymptotic root `(2j−1)π/2`; converges in ≤ 6 steps for every j. Computed once
+/// per j (≤ 256) and cached, since every basis evaluation needs it.
 pub fn bending_root(j: usize) -> f64 {
+    static ROOTS: [OnceLock<f64>; CACHED_ROOTS + 1] = [const { OnceLock::new() }; CACHED_ROOTS + 1];
     let j = j.max(1);
+    match ROOTS.get(j) {
+        Some(cell) => *cell.get_or_init(|| newton_bending_root(j)),
+        None => newton_bending_root(j),
+    }
+}
+
+fn newton_bending_root(j: usize) -> f64 {
     let mut z = (2 * j - 1) as f64 * FRAC_PI_2;
     for _ in 0..50 {
         let sech = 1.0 / z.cosh();
@@ -195,7 +229,8 @@ impl Basis {
     /// `n ≳ 0.7ω + 10`, so `3N + 12` points leave a wide margin (checked against a doubled rule
     /// in the tests).
     pub fn quadrature(&self) -> (Vec<f64>, Vec<f64>) {
-        let (t, w) = gauss_legendre(Self::quadrature_points(self.n));
+        let rule = gauss_rule(Self::quadrature_points(self.n));
+        let (t, w) = (&rule.0, &rule.1);
         let h = 0.5 * self.length;
         (
             t.iter().map(|t| h * (t + 1.0)).collect(),
@@ -220,8 +255,10 @@ mod tests {
             assert!((bending_root(j + 1) - e).abs() < 1e-7, "j={}", j + 1);
         }
         for j in [6, 20, 100, 1000] {
+            // cos z + sech z = 0 is the same equation without cosh's overflow.
             let z = bending_root(j);
-            assert!((z.cos() * z.cosh() + 1.0).abs() < 1e-6 * z.cosh().max(1.0));
+            assert!((z.cos() + 1.0 / z.cosh()).abs() < 1e-13, "j={j}");
+            assert!((z - (2 * j - 1) as f64 * FRAC_PI_2).abs() < 0.02);
         }
     }
 

@@ -3,13 +3,15 @@
 //!
 //! The section is uniform along the span, so every integral is a section constant times a pure
 //! basis integral; the only span-varying coefficient is the centrifugal tension `F_c(x)`. All
-//! integrals use one Gauss–Legendre rule sized for the basis ([`Basis::quadrature`]).
+//! integrals use one Gauss–Legendre rule sized for the basis ([`Basis::quadrature`]), on the unit
+//! span, once per N: a blade's matrices are those integrals scaled by its length and section.
 
 use crate::error::{Error, Result};
 use crate::physics::basis::{torsion_wavenumber, Basis, BendingMode};
 use crate::physics::section::{section_properties, SectionProps};
 use crate::preset::{Form, Preset};
 use nalgebra::{Complex, DMatrix, DVector};
+use std::sync::{Arc, OnceLock};
 
 /// Structural matrices of one blade at one rotor speed (MODEL.md §3–§4).
 #[derive(Debug, Clone)]
@@ -102,7 +104,7 @@ struct BasisIntegrals {
     phi_phi: DMatrix<f64>,
     /// ∫Φ'Φ'ᵀ
     dphi_dphi: DMatrix<f64>,
-    /// ∫F_c Φ'Φ'ᵀ / (mΩ²) (geometric tension weight, so Ω = 0 costs nothing special)
+    /// ∫F_c Φ'Φ'ᵀ / (mΩ²)
     tension_dphi_dphi: DMatrix<f64>,
     /// ∫UUᵀ
     u_u: DMatrix<f64>,
@@ -116,56 +118,110 @@ struct BasisIntegrals {
     dphi_ddu: DMatrix<f64>,
 }
 
-/// Gauss quadrature of every basis product (MODEL.md §4). `F_c/(mΩ²) = ½((r_hub+L)² − r²)`.
-fn basis_integrals(basis: &Basis, hub_radius: f64) -> BasisIntegrals {
-    let n = basis.n;
-    let l = basis.length;
-    let modes: Vec<BendingMode> = (1..=n).map(|j| BendingMode::new(j, l)).collect();
-    let wavenumbers: Vec<f64> = (1..=n).map(|j| torsion_wavenumber(j, l)).collect();
-    let (xs, ws) = basis.quadrature();
+/// The same integrals on the unit span `s = x/L ∈ [0, 1]`, where the basis no longer depends on
+/// L (`Φ_j(Ls)` and `U_j(Ls)` are functions of s alone). The tension weight
+/// `F_c/(mΩ²) = ½((r_hub+L)² − r²) = L²·½(1−s²) + r_hub L·(1−s)` splits into two s-weights.
+struct ReferenceIntegrals {
+    phi_phi: DMatrix<f64>,
+    dphi_dphi: DMatrix<f64>,
+    u_u: DMatrix<f64>,
+    ddu_ddu: DMatrix<f64>,
+    phi_u: DMatrix<f64>,
+    dphi_ddu: DMatrix<f64>,
+    /// ∫½(1−s²)Φ̃'Φ̃'ᵀ ds and ∫(1−s)Φ̃'Φ̃'ᵀ ds
+    tension_dphi_dphi: [DMatrix<f64>; 2],
+    /// ∫½(1−s²)Ũ'Ũ'ᵀ ds and ∫(1−s)Ũ'Ũ'ᵀ ds
+    tension_du_du: [DMatrix<f64>; 2],
+}
+
+/// Largest N whose reference integrals are cached (the preset allows 40).
+const CACHED_BASES: usize = 64;
+
+/// The unit-span integrals for N functions per field, computed once per N and shared: they are
+/// the whole cost of assembly, and nothing in them depends on the blade.
+fn reference_integrals(n: usize) -> Arc<ReferenceIntegrals> {
+    static CACHE: [OnceLock<Arc<ReferenceIntegrals>>; CACHED_BASES + 1] =
+        [const { OnceLock::new() }; CACHED_BASES + 1];
+    match CACHE.get(n) {
+        Some(cell) => cell
+            .get_or_init(|| Arc::new(compute_reference_integrals(n)))
+            .clone(),
+        None => Arc::new(compute_reference_integrals(n)),
+    }
+}
+
+/// Gauss quadrature of every basis product on the unit span (MODEL.md §4).
+fn compute_reference_integrals(n: usize) -> ReferenceIntegrals {
+    let unit = Basis::new(n, 1.0);
+    let modes: Vec<BendingMode> = (1..=n).map(|j| BendingMode::new(j, 1.0)).collect();
+    let wavenumbers: Vec<f64> = (1..=n).map(|j| torsion_wavenumber(j, 1.0)).collect();
+    let (ss, ws) = unit.quadrature();
     let z = || DMatrix::<f64>::zeros(n, n);
-    let mut out = BasisIntegrals {
+    let mut r = ReferenceIntegrals {
         phi_phi: z(),
         dphi_dphi: z(),
-        tension_dphi_dphi: z(),
         u_u: z(),
         ddu_ddu: z(),
-        tension_du_du: z(),
         phi_u: z(),
         dphi_ddu: z(),
+        tension_dphi_dphi: [z(), z()],
+        tension_du_du: [z(), z()],
     };
     let (mut phi, mut dphi) = (vec![0.0; n], vec![0.0; n]);
     let (mut u, mut du, mut ddu) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-    let r_tip = hub_radius + l;
-    for (&x, &w) in xs.iter().zip(&ws) {
+    for (&s, &w) in ss.iter().zip(&ws) {
         for j in 0..n {
-            let (s, c) = (wavenumbers[j] * x).sin_cos();
-            phi[j] = s;
-            dphi[j] = wavenumbers[j] * c;
-            [u[j], du[j], ddu[j]] = modes[j].eval012(x, l);
+            let (sin, cos) = (wavenumbers[j] * s).sin_cos();
+            phi[j] = sin;
+            dphi[j] = wavenumbers[j] * cos;
+            [u[j], du[j], ddu[j]] = modes[j].eval012(s, 1.0);
         }
-        let r = hub_radius + x;
-        let wt = w * 0.5 * (r_tip * r_tip - r * r);
-        add_outer_sym(&mut out.phi_phi, w, &phi);
-        add_outer_sym(&mut out.dphi_dphi, w, &dphi);
-        add_outer_sym(&mut out.tension_dphi_dphi, wt, &dphi);
-        add_outer_sym(&mut out.u_u, w, &u);
-        add_outer_sym(&mut out.ddu_ddu, w, &ddu);
-        add_outer_sym(&mut out.tension_du_du, wt, &du);
-        add_outer(&mut out.phi_u, w, &phi, &u);
-        add_outer(&mut out.dphi_ddu, w, &dphi, &ddu);
+        let tension = [w * 0.5 * (1.0 - s * s), w * (1.0 - s)];
+        add_outer_sym(&mut r.phi_phi, w, &phi);
+        add_outer_sym(&mut r.dphi_dphi, w, &dphi);
+        add_outer_sym(&mut r.u_u, w, &u);
+        add_outer_sym(&mut r.ddu_ddu, w, &ddu);
+        for k in 0..2 {
+            add_outer_sym(&mut r.tension_dphi_dphi[k], tension[k], &dphi);
+            add_outer_sym(&mut r.tension_du_du[k], tension[k], &du);
+        }
+        add_outer(&mut r.phi_u, w, &phi, &u);
+        add_outer(&mut r.dphi_ddu, w, &dphi, &ddu);
     }
+    let [t0, t1] = &mut r.tension_dphi_dphi;
+    let [t2, t3] = &mut r.tension_du_du;
     for m in [
-        &mut out.phi_phi,
-        &mut out.dphi_dphi,
-        &mut out.tension_dphi_dphi,
-        &mut out.u_u,
-        &mut out.ddu_ddu,
-        &mut out.tension_du_du,
+        &mut r.phi_phi,
+        &mut r.dphi_dphi,
+        &mut r.u_u,
+        &mut r.ddu_ddu,
+        t0,
+        t1,
+        t2,
+        t3,
     ] {
         m.fill_lower_triangle_with_upper_triangle();
     }
-    out
+    r
+}
+
+/// The integrals over `[0, L]` from the unit-span ones (`x = Ls`, `dx = L ds`, each derivative
+/// brings `1/L`): e.g. `∫U''U''ᵀdx = L⁻³∫Ũ''Ũ''ᵀds`, and the tension integrals
+/// `∫F_cU'U'ᵀ/(mΩ²) dx = L·T₁ + r_hub·T₂` (MODEL.md §3–§4).
+fn basis_integrals(basis: &Basis, hub_radius: f64) -> BasisIntegrals {
+    let r = reference_integrals(basis.n);
+    let l = basis.length;
+    let tension = |t: &[DMatrix<f64>; 2]| &t[0] * l + &t[1] * hub_radius;
+    BasisIntegrals {
+        phi_phi: &r.phi_phi * l,
+        dphi_dphi: &r.dphi_dphi / l,
+        tension_dphi_dphi: tension(&r.tension_dphi_dphi),
+        u_u: &r.u_u * l,
+        ddu_ddu: &r.ddu_ddu / (l * l * l),
+        tension_du_du: tension(&r.tension_du_du),
+        phi_u: &r.phi_u * l,
+        dphi_ddu: &r.dphi_ddu / (l * l),
+    }
 }
 
 /// `a += w · v vᵀ`, upper triangle only.

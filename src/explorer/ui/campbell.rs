@@ -24,7 +24,12 @@ fn oscillates(f: f64) -> bool {
 
 /// A mode's typical frequency: the median of its oscillating points (`None` if it never does).
 fn typical(m: &TrackedMode) -> Option<f64> {
-    let mut f: Vec<f64> = m.frequency_hz.iter().copied().filter(|f| oscillates(*f)).collect();
+    let mut f: Vec<f64> = m
+        .frequency_hz
+        .iter()
+        .copied()
+        .filter(|f| oscillates(*f))
+        .collect();
     if f.is_empty() {
         return None;
     }
@@ -166,14 +171,11 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
     let guide = style_of(theme.guide());
     let line = |data, style| polyline(data, style, mk);
     let x_axis = || {
-        Axis::default()
-            .bounds([0.0, rpm_max])
-            .style(dim)
-            .labels([
-                Span::raw("0 rpm"),
-                Span::styled("rotor speed", theme.title()),
-                Span::raw(format!("{} rpm", sig(rpm_max, 3))),
-            ])
+        Axis::default().bounds([0.0, rpm_max]).style(dim).labels([
+            Span::raw("0 rpm"),
+            Span::styled("rotor speed", theme.title()),
+            Span::raw(format!("{} rpm", sig(rpm_max, 3))),
+        ])
     };
     let mut f_sets = vec![
         line(&one_p, guide),
@@ -193,29 +195,22 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
                 .title_bottom(Line::from(legend)),
         )
         .x_axis(x_axis())
-        .y_axis(
-            Axis::default()
-                .bounds([0.0, f_max])
-                .style(dim)
-                .labels([
-                    Span::raw("0 Hz"),
-                    Span::raw(format!("{} Hz", sig(f_max / 2.0, 3))),
-                    Span::raw(format!("{} Hz", sig(f_max, 3))),
-                ]),
-        );
+        .y_axis(Axis::default().bounds([0.0, f_max]).style(dim).labels([
+            Span::raw("0 Hz"),
+            Span::raw(format!("{} Hz", sig(f_max / 2.0, 3))),
+            Span::raw(format!("{} Hz", sig(f_max, 3))),
+        ]));
     let z_chart = Chart::new(z_sets)
-        .block(pane(" damping ratio ζ (a mode below 0 is unstable) ", theme))
+        .block(pane(
+            " damping ratio ζ (a mode below 0 is unstable) ",
+            theme,
+        ))
         .x_axis(x_axis())
-        .y_axis(
-            Axis::default()
-                .bounds(z)
-                .style(dim)
-                .labels([
-                    Span::raw(sig(z[0], 2)),
-                    Span::raw(sig(0.5 * (z[0] + z[1]), 2)),
-                    Span::raw(sig(z[1], 2)),
-                ]),
-        );
+        .y_axis(Axis::default().bounds(z).style(dim).labels([
+            Span::raw(sig(z[0], 2)),
+            Span::raw(sig(0.5 * (z[0] + z[1]), 2)),
+            Span::raw(sig(z[1], 2)),
+        ]));
     frame.render_widget(f_chart, f_area);
     frame.render_widget(z_chart, z_area);
 }

@@ -158,8 +158,8 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
     } else {
         format!(" σ {lo}…{hi} 1/s (asinh) · ω rad/s (log) ")
     };
-    let block = pane(TextLine::from(title), theme)
-        .title_bottom(TextLine::styled(bottom, theme.dim()));
+    let block =
+        pane(TextLine::from(title), theme).title_bottom(TextLine::styled(bottom, theme.dim()));
     // Canvas units per terminal column, to right-align the ω = 0 label.
     let per_col = (ax.x[1] - ax.x[0]) / f64::from(inner_w.max(1));
 
@@ -227,7 +227,11 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
                 d += 1;
             }
             if has_real {
-                ctx.print(ax.x[1] - 3.5 * per_col, ax.y_real, TextLine::styled("ω=0", dim));
+                ctx.print(
+                    ax.x[1] - 3.5 * per_col,
+                    ax.y_real,
+                    TextLine::styled("ω=0", dim),
+                );
             }
             ctx.print(0.0, ax.y[1], TextLine::styled("σ=0", dim));
             for (i, &(x, y)) in pole_pts.iter().enumerate() {

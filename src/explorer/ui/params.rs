@@ -41,16 +41,25 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
             p.label,
             if changed { "*" } else { " " }
         );
-        let style = if focused {
-            theme.focus()
-        } else {
-            Default::default()
+        // With direct stiffnesses the ply angle changes nothing: dim it.
+        let unused = state.preset.section.source == SectionSource::Direct
+            && matches!(
+                p.kind,
+                ParamKind::Number {
+                    key: "section.ply_angle",
+                    ..
+                }
+            );
+        let style = match (focused, unused) {
+            (true, _) => theme.focus(),
+            (false, true) => theme.dim(),
+            (false, false) => Default::default(),
         };
         lines.push(Line::styled(text, style));
     }
     lines.push(Line::from(""));
     let source = match state.preset.section.source {
-        SectionSource::Direct => "direct: ply angle has no effect",
+        SectionSource::Direct => "direct",
         SectionSource::Table => "table",
         SectionSource::Layup => "layup",
     };

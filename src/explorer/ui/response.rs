@@ -67,13 +67,7 @@ struct Series<'a> {
     color: ratatui::style::Color,
 }
 
-fn chart<'a>(
-    s: Series<'a>,
-    t: [f64; 2],
-    tall: bool,
-    state: &AppState,
-    theme: &Theme,
-) -> Chart<'a> {
+fn chart<'a>(s: Series<'a>, t: [f64; 2], tall: bool, state: &AppState, theme: &Theme) -> Chart<'a> {
     let Series {
         data,
         name,

@@ -12,6 +12,9 @@
 //! and written in one `std::fs::write`, so a bad path gives an [`Error::Io`] naming it and never
 //! leaves a half-written file from a drawing failure.
 //!
+//! [`figures`] turns the engine's results (sweeps, flutter searches, time responses, section
+//! grids) into figures; the commands call it for `--plot FILE`.
+//!
 //! SVG structure (the tests rely on it): every maximal run of finite, in-range points of a line
 //! series (`Mark::Line` or `Mark::LinePoints`) is exactly one `<polyline>`; legend swatches,
 //! frames and the grid are `<rect>`/`<line>`; guides are drawn as dashes (several short
@@ -24,6 +27,9 @@ use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 use std::path::Path;
 use std::sync::OnceLock;
+
+pub mod figures;
+pub mod text;
 
 /// Default size of a figure of up to two rows and two columns, in pixels (PNG) or SVG units.
 pub const DEFAULT_SIZE: (u32, u32) = (1200, 800);
@@ -559,10 +565,18 @@ fn clip_segment(
             }
         }
     }
-    Some((
-        (a.0 + t0 * dx, a.1 + t0 * dy),
-        (a.0 + t1 * dx, a.1 + t1 * dy),
-    ))
+    // Unclipped ends are returned exactly, so consecutive segments join into one run.
+    let start = if t0 == 0.0 {
+        a
+    } else {
+        (a.0 + t0 * dx, a.1 + t0 * dy)
+    };
+    let end = if t1 == 1.0 {
+        b
+    } else {
+        (a.0 + t1 * dx, a.1 + t1 * dy)
+    };
+    Some((start, end))
 }
 
 /// Split a polyline into runs that are finite and inside the box (clipping at the edges).
@@ -630,7 +644,7 @@ fn tick_step(lo: f64, hi: f64, max_points: usize) -> f64 {
 fn tick_decimals(lo: f64, hi: f64, max_points: usize) -> Option<usize> {
     let span = hi - lo;
     let mag = lo.abs().max(hi.abs());
-    if !(span.is_finite() && span > 0.0) || !(1e-3..1e5).contains(&mag) {
+    if !(span.is_finite() && span > 0.0 && (1e-3..1e5).contains(&mag)) {
         return None;
     }
     let step = tick_step(lo, hi, max_points);
@@ -715,12 +729,28 @@ impl Occupancy {
         }
         let mut labels: Vec<(f64, f64)> = panel.markers.iter().map(|m| px((m.x, m.y))).collect();
         for g in &panel.guides {
-            let at = match g.kind {
-                GuideKind::Vertical(x) => Some((x, yr.1)),
-                GuideKind::Horizontal(y) => Some((xr.1, y)),
-                GuideKind::Segment { from, to } => clip_segment(from, to, xr, yr)
-                    .map(|(a, b)| if (b.0, b.1) >= (a.0, a.1) { b } else { a }),
+            // The dashed line itself, sampled like a series.
+            let (a, b) = match g.kind {
+                GuideKind::Vertical(x) => ((x, yr.0), (x, yr.1)),
+                GuideKind::Horizontal(y) => ((xr.0, y), (xr.1, y)),
+                GuideKind::Segment { from, to } => (from, to),
             };
+            if let Some((a, b)) = clip_segment(a, b, xr, yr) {
+                let (a, b) = (px(a), px(b));
+                let len = ((b.0 - a.0).powi(2) + (b.1 - a.1).powi(2)).sqrt();
+                let n = (len / 4.0).ceil().clamp(1.0, 400.0) as usize;
+                for k in 0..=n {
+                    let t = k as f64 / n as f64;
+                    data.push((a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1)));
+                }
+            }
+            let at =
+                match g.kind {
+                    GuideKind::Vertical(x) => Some((x, yr.1)),
+                    GuideKind::Horizontal(y) => Some((xr.1, y)),
+                    GuideKind::Segment { from, to } => clip_segment(from, to, xr, yr)
+                        .map(|(a, b)| if (b.0, b.1) >= (a.0, a.1) { b } else { a }),
+                };
             if let (Some(at), false) = (at, g.label.is_empty()) {
                 labels.push(px(at));
             }
@@ -746,7 +776,8 @@ impl Occupancy {
     }
 
     fn cost(&self, rect: (f64, f64, f64, f64)) -> usize {
-        let inside = |&(x, y): &(f64, f64)| x >= rect.0 && x <= rect.2 && y >= rect.1 && y <= rect.3;
+        let inside =
+            |&(x, y): &(f64, f64)| x >= rect.0 && x <= rect.2 && y >= rect.1 && y <= rect.3;
         // Labels are padded by their approximate text extent.
         let near = |&(x, y): &(f64, f64)| {
             x >= rect.0 - 160.0 && x <= rect.2 + 20.0 && y >= rect.1 - 25.0 && y <= rect.3 + 25.0
@@ -820,14 +851,17 @@ where
         .label_style((FONT, TICK_SIZE))
         .axis_desc_style((FONT, AXIS_DESC_SIZE))
         .bold_line_style(RGBColor(200, 200, 200).stroke_width(1))
-        .light_line_style(RGBColor(238, 238, 238).stroke_width(1))
+        .light_line_style(TRANSPARENT)
         .axis_style(BLACK.stroke_width(1))
         .draw()
         .map_err(draw_error)?;
 
-    // Guides first, so the data is drawn over them.
+    // Guide lines first, so the data is drawn over them; their labels last, over the data.
+    let mut guide_labels = Vec::new();
     for guide in &panel.guides {
-        draw_guide(&mut chart, guide, xr, yr)?;
+        if let Some(place) = draw_guide_line(&mut chart, guide, xr, yr)? {
+            guide_labels.push((place, guide));
+        }
     }
 
     let mut palette = PALETTE.iter().cycle();
@@ -931,16 +965,18 @@ where
             let v = if upper_half { VPos::Top } else { VPos::Bottom };
             let dx = if right_half { -12 } else { 12 };
             let dy = if upper_half { 10 } else { -10 };
-            let style = (FONT, NOTE_SIZE)
-                .into_font()
-                .color(&BLACK)
-                .pos(Pos::new(h, v));
-            chart
-                .draw_series(std::iter::once(
-                    EmptyElement::at(p) + Text::new(m.label.clone(), (dx, dy), style),
-                ))
-                .map_err(draw_error)?;
+            let place = LabelPlacement {
+                at: p,
+                h,
+                v,
+                offset: (dx, dy),
+            };
+            draw_label(&mut chart, &place, &m.label, BLACK)?;
         }
+    }
+    for (place, guide) in &guide_labels {
+        let ink = color(guide.color.unwrap_or(GUIDE_GREY));
+        draw_label(&mut chart, place, &guide.label, ink)?;
     }
 
     let occupancy = Occupancy::new(
@@ -956,7 +992,10 @@ where
             .iter()
             .map(|n| text_width(n, NOTE_SIZE))
             .fold(0.0, f64::max);
-        let size = (width + 8.0, NOTE_SIZE * 1.15 * panel.notes.len() as f64 + 8.0);
+        let size = (
+            width + 8.0,
+            NOTE_SIZE * 1.15 * panel.notes.len() as f64 + 8.0,
+        );
         let corner = occupancy.best_corner(size, &[]);
         taken.push(occupancy.rect(corner, size));
         draw_notes(&chart, &panel.notes, corner)?;
@@ -1000,12 +1039,21 @@ where
 
 type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
 
-fn draw_guide<DB: DrawingBackend>(
+/// Where a guide's label goes: the anchor in data coordinates, the text anchor and a pixel offset.
+struct LabelPlacement {
+    at: (f64, f64),
+    h: HPos,
+    v: VPos,
+    offset: (i32, i32),
+}
+
+/// Draw a guide's dashed line; return where its label goes (drawn later, over the data).
+fn draw_guide_line<DB: DrawingBackend>(
     chart: &mut Chart<'_, DB>,
     guide: &Guide,
     xr: (f64, f64),
     yr: (f64, f64),
-) -> Result<()>
+) -> Result<Option<LabelPlacement>>
 where
     DB::ErrorType: 'static,
 {
@@ -1015,41 +1063,75 @@ where
         GuideKind::Segment { from, to } => (from, to),
     };
     if !(a.0.is_finite() && a.1.is_finite() && b.0.is_finite() && b.1.is_finite()) {
-        return Ok(());
+        return Ok(None);
     }
     let Some((a, b)) = clip_segment(a, b, xr, yr) else {
-        return Ok(());
+        return Ok(None);
     };
     let c = color(guide.color.unwrap_or(GUIDE_GREY));
     chart
-        .draw_series(DashedLineSeries::new(
-            [a, b],
-            10,
-            6,
-            c.stroke_width(2).into(),
-        ))
+        .draw_series(DashedLineSeries::new([a, b], 10, 6, c.stroke_width(2)))
         .map_err(draw_error)?;
     if guide.label.is_empty() {
-        return Ok(());
+        return Ok(None);
     }
     // Label at the end of the line that lies furthest right/up, nudged inside the plot.
     let end = if (b.0, b.1) >= (a.0, a.1) { b } else { a };
-    let (h, v, off) = match guide.kind {
+    let (h, v, offset) = match guide.kind {
         GuideKind::Vertical(_) => (HPos::Left, VPos::Top, (6, 6)),
         GuideKind::Horizontal(_) => (HPos::Right, VPos::Bottom, (-6, -4)),
         GuideKind::Segment { .. } => {
-            let at_right = (end.0 - xr.0) / (xr.1 - xr.0) > 0.9;
-            if at_right {
-                (HPos::Right, VPos::Bottom, (-6, -4))
-            } else {
-                (HPos::Left, VPos::Top, (6, 6))
+            // Leaving through the right edge: label above-left of the end; through the top
+            // (or bottom): label beside the end, inside the plot.
+            let at_right = (end.0 - xr.0) / (xr.1 - xr.0) > 0.98;
+            let at_top = (end.1 - yr.0) / (yr.1 - yr.0) > 0.98;
+            match (at_right, at_top) {
+                (true, _) => (HPos::Right, VPos::Bottom, (-6, -4)),
+                (false, true) => (HPos::Right, VPos::Top, (-8, 4)),
+                (false, false) => (HPos::Left, VPos::Bottom, (6, -4)),
             }
         }
     };
-    let style = (FONT, NOTE_SIZE).into_font().color(&c).pos(Pos::new(h, v));
+    Ok(Some(LabelPlacement {
+        at: end,
+        h,
+        v,
+        offset,
+    }))
+}
+
+/// A text label on a translucent white box, anchored at a data point plus a pixel offset.
+fn draw_label<DB: DrawingBackend>(
+    chart: &mut Chart<'_, DB>,
+    place: &LabelPlacement,
+    text: &str,
+    ink: RGBColor,
+) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    let w = text_width(text, NOTE_SIZE) as i32 + 6;
+    let h = (NOTE_SIZE / 1.24 * 1.25) as i32;
+    let (ox, oy) = place.offset;
+    let x0 = match place.h {
+        HPos::Left => ox - 3,
+        HPos::Center => ox - w / 2,
+        HPos::Right => ox - w + 3,
+    };
+    let y0 = match place.v {
+        VPos::Top => oy - 2,
+        VPos::Center => oy - h / 2,
+        VPos::Bottom => oy - h + 2,
+    };
+    let style = (FONT, NOTE_SIZE)
+        .into_font()
+        .color(&ink)
+        .pos(Pos::new(place.h, place.v));
     chart
         .draw_series(std::iter::once(
-            EmptyElement::at(end) + Text::new(guide.label.clone(), off, style),
+            EmptyElement::at(place.at)
+                + Rectangle::new([(x0, y0), (x0 + w, y0 + h)], WHITE.mix(0.8).filled())
+                + Text::new(text.to_string(), place.offset, style),
         ))
         .map_err(draw_error)?;
     Ok(())
@@ -1104,6 +1186,14 @@ mod tests {
         let (a, b) = clip_segment((-1.0, 0.5), (2.0, 0.5), r, r).unwrap();
         assert_eq!((a, b), ((0.0, 0.5), (1.0, 0.5)));
         assert_eq!(clip_segment((2.0, 2.0), (3.0, 3.0), r, r), None);
+    }
+
+    #[test]
+    fn runs_join_across_inexact_arithmetic() {
+        // 0.1 + (0.45 - 0.1) != 0.45 in floating point; the run must not break there.
+        assert_ne!(0.1 + (0.45 - 0.1), 0.45);
+        let pts = [(0.1, 0.1), (0.45, 0.3), (0.9, 0.2)];
+        assert_eq!(visible_runs(&pts, (0.0, 1.0), (0.0, 1.0)).len(), 1);
     }
 
     #[test]

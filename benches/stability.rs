@@ -1,0 +1,98 @@
+//! Stability engine timings (README figures): re-solve = assemble + equilibrium + eigen with
+//! vectors; a 10,000-point quasi-steady sweep on all cores; flutter search; linear simulation.
+//! Run: `cargo bench --bench stability`.
+
+use flutterscope::analysis::eigen::analyse;
+use flutterscope::analysis::flutter::flutter_boundary;
+use flutterscope::analysis::simulate::simulate;
+use flutterscope::analysis::sweep::{grid_sweep, Grid};
+use flutterscope::preset::Preset;
+
+fn main() {
+    divan::main();
+}
+
+fn preset(name: &str, overrides: &[&str]) -> Preset {
+    let o: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
+    Preset::load(name, &o).unwrap()
+}
+
+/// The paper's blade, N = 5, quasi-steady (8 stations): target < 150 µs.
+#[divan::bench]
+fn resolve_quasi_steady_n5(b: divan::Bencher) {
+    let p = preset("liu2017", &["structure.modes=5"]);
+    b.bench(|| analyse(divan::black_box(&p)).unwrap());
+}
+
+/// The demo blade, N = 5, theodorsen with 16 stations (52 states): target < 2 ms.
+#[divan::bench]
+fn resolve_theodorsen_n5_16_stations(b: divan::Bencher) {
+    let p = preset("demo-blade", &["structure.modes=5", "aero.stations=16"]);
+    b.bench(|| analyse(divan::black_box(&p)).unwrap());
+}
+
+/// 100 × 100 grid (pitch × rotor speed) of the paper's blade, tracked: target < 5 s.
+#[divan::bench(sample_count = 3, sample_size = 1)]
+fn sweep_10k_quasi_steady(b: divan::Bencher) {
+    let p = preset("liu2017", &["structure.modes=5"]);
+    let grid = Grid {
+        keys: vec!["operating.pitch".into(), "operating.rotor_speed".into()],
+        axes: vec![
+            (0..100).map(|k| 0.2 * k as f64).collect(),
+            (0..100).map(|k| 2.0 * k as f64).collect(),
+        ],
+    };
+    b.bench(|| {
+        let mut rows = 0usize;
+        grid_sweep(&p, &grid, None, &|_| {}, &mut |batch| {
+            rows += batch.len();
+            Ok(())
+        })
+        .unwrap();
+        rows
+    });
+}
+
+/// Goland flutter speed, 41-point bracket + bisection.
+#[divan::bench(sample_count = 5, sample_size = 1)]
+fn flutter_search_goland(b: divan::Bencher) {
+    let p = preset("goland", &[]);
+    b.bench(|| flutter_boundary(&p, "operating.tunnel_speed", 50.0, 250.0, 41).unwrap());
+}
+
+/// 20 s at 200 samples/s, N = 5, quasi-steady: target (issue 7) < 10 ms.
+#[divan::bench(sample_count = 10)]
+fn simulate_20s_quasi_steady(b: divan::Bencher) {
+    let p = preset("liu2017", &["structure.modes=5"]);
+    b.bench(|| simulate(divan::black_box(&p)).unwrap());
+}
+
+/// Breakdown of the quasi-steady re-solve: structure assembly alone.
+#[divan::bench]
+fn part_assemble_n5(b: divan::Bencher) {
+    let p = preset("liu2017", &["structure.modes=5"]);
+    b.bench(|| flutterscope::physics::structure::assemble(divan::black_box(&p)).unwrap());
+}
+
+/// Breakdown: system set-up, equilibrium and state matrix (quasi-steady, N = 5).
+#[divan::bench]
+fn part_linearise_n5(b: divan::Bencher) {
+    let p = preset("liu2017", &["structure.modes=5"]);
+    b.bench(|| flutterscope::analysis::eigen::linear_system(divan::black_box(&p)).unwrap());
+}
+
+/// Breakdown: eigen-analysis with vectors of the 20-state quasi-steady system.
+#[divan::bench]
+fn part_eigen_n5(b: divan::Bencher) {
+    let p = preset("liu2017", &["structure.modes=5"]);
+    let ls = flutterscope::analysis::eigen::linear_system(&p).unwrap();
+    b.bench(|| flutterscope::analysis::eigen::analyse_system(divan::black_box(&ls)).unwrap());
+}
+
+/// Breakdown: the dense eigendecomposition (left and right vectors) of a 20 × 20 state matrix.
+#[divan::bench]
+fn part_eigen_decomposition_20(b: divan::Bencher) {
+    let p = preset("liu2017", &["structure.modes=5"]);
+    let ls = flutterscope::analysis::eigen::linear_system(&p).unwrap();
+    b.bench(|| flutterscope::analysis::eigen::eigen_decomposition(divan::black_box(&ls.a)).unwrap());
+}
