@@ -48,17 +48,3 @@ fn weak_assemble_only(b: divan::Bencher, n: usize) {
     let p = paper_blade(n, "weak");
     b.bench(|| assemble(divan::black_box(&p)).unwrap());
 }
-
-#[divan::bench]
-fn tmp_gauss27() -> (Vec<f64>, Vec<f64>) {
-    flutterscope::physics::basis::gauss_legendre(divan::black_box(27))
-}
-#[divan::bench]
-fn tmp_section() -> flutterscope::physics::section::SectionProps {
-    let p = paper_blade(5, "weak");
-    flutterscope::physics::section::section_properties(divan::black_box(&p)).unwrap()
-}
-#[divan::bench]
-fn tmp_roots() -> f64 {
-    (1..=5).map(|j| flutterscope::physics::basis::bending_root(divan::black_box(j))).sum()
-}

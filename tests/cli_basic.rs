@@ -22,7 +22,12 @@ fn run(args: &[&str]) -> Run {
 
 /// A failure with a clear message: non-zero exit, no panic, every `needles` in stderr.
 fn assert_fails_naming(r: &Run, needles: &[&str]) {
-    assert!(r.code.is_some_and(|c| c != 0), "exit {:?}; stderr: {}", r.code, r.stderr);
+    assert!(
+        r.code.is_some_and(|c| c != 0),
+        "exit {:?}; stderr: {}",
+        r.code,
+        r.stderr
+    );
     assert!(!r.stderr.contains("panicked"), "panic: {}", r.stderr);
     for n in needles {
         assert!(r.stderr.contains(n), "stderr lacks {n:?}: {}", r.stderr);
@@ -48,23 +53,41 @@ fn modes_json_is_sorted_and_labelled() {
     let v = json(&run(&["modes", "--preset", "liu2017", "--json"]));
     let modes = v["modes"].as_array().unwrap();
     assert_eq!(modes.len(), 10);
-    let f: Vec<f64> = modes.iter().map(|m| m["frequency_hz"].as_f64().unwrap()).collect();
+    let f: Vec<f64> = modes
+        .iter()
+        .map(|m| m["frequency_hz"].as_f64().unwrap())
+        .collect();
     assert!(f.windows(2).all(|w| w[0] <= w[1]), "{f:?}");
     assert!(f[0] > 0.0);
     assert_eq!(modes[0]["label"], "flap 1");
-    let torsion = modes.iter().filter(|m| m["label"].as_str().unwrap().starts_with("torsion"));
+    let torsion = modes
+        .iter()
+        .filter(|m| m["label"].as_str().unwrap().starts_with("torsion"));
     assert_eq!(torsion.count(), 5);
     for m in modes {
         let share = m["torsion_share"].as_f64().unwrap();
         assert!((0.0..=1.0).contains(&share));
-        assert_eq!(m["label"].as_str().unwrap().starts_with("torsion"), share > 0.5);
+        assert_eq!(
+            m["label"].as_str().unwrap().starts_with("torsion"),
+            share > 0.5
+        );
     }
 }
 
 #[test]
 fn modes_follow_set_overrides() {
-    let still = json(&run(&["modes", "--json", "--set", "operating.rotor_speed=0"]));
-    let spinning = json(&run(&["modes", "--json", "--set", "operating.rotor_speed=120"]));
+    let still = json(&run(&[
+        "modes",
+        "--json",
+        "--set",
+        "operating.rotor_speed=0",
+    ]));
+    let spinning = json(&run(&[
+        "modes",
+        "--json",
+        "--set",
+        "operating.rotor_speed=120",
+    ]));
     let f = |v: &serde_json::Value| v["modes"][0]["frequency_hz"].as_f64().unwrap();
     assert!(f(&spinning) > 2.0 * f(&still));
     let n8 = json(&run(&["modes", "--json", "--set", "structure.modes=8"]));
@@ -181,7 +204,10 @@ fn missing_file_names_the_path() {
 
 #[test]
 fn unknown_preset_name_lists_the_builtins() {
-    assert_fails_naming(&run(&["modes", "--preset", "no-such-blade"]), &["no-such-blade", "liu2017"]);
+    assert_fails_naming(
+        &run(&["modes", "--preset", "no-such-blade"]),
+        &["no-such-blade", "liu2017"],
+    );
 }
 
 #[test]

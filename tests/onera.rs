@@ -714,3 +714,40 @@ fn rigid_model_rates_do_not_depend_on_the_structure() {
     assert_eq!(a.zdot, b.zdot);
     assert!(b.dzdot_dk.iter().all(|row| row.iter().all(|v| *v == 0.0)));
 }
+
+#[test]
+fn steady_moment_of_both_forms_follows_the_static_curves() {
+    let coef = busy_coefficients();
+    for alpha in ANGLES {
+        let strip = paper_strip(alpha);
+        let qc = strip.dynamic_pressure() * strip.chord;
+        let e = strip.ea_offset;
+        // Written out from MODEL.md §5.3: C_L, C_M = C_M0 − ΔC_M, C_D = C_D0 − ΔC_D on the
+        // static curves; the lift acts at the aerodynamic centre, so its arm is e_a.
+        let dev = |a: f64| {
+            let m = a.abs();
+            let lm = 0.15 * (m - 0.1396).max(0.0) + 0.6 * (m - 0.3142).max(0.0);
+            let d = -0.1 * m - 0.5 * a * a - 2.0 * m * m * m;
+            (a.signum() * lm, d)
+        };
+        let (dm, dd) = dev(alpha);
+        let (cl, cm, cd) = (static_lift_by_hand(alpha), -0.02 - dm, 0.014 - dd);
+        // Rigid at zero twist: α_g = α_r.
+        let s = rigid::steady(&coef, &strip);
+        let m_rigid = rigid::loads(&coef, &strip, 0.0, &s).twist;
+        let expect = -qc * (strip.chord * cm + e * (cl * alpha.cos() + cd * alpha.sin()));
+        assert!(
+            close(m_rigid, expect, 1e-12),
+            "rigid α = {alpha}: {m_rigid} vs {expect}"
+        );
+        // Coupled at rest: the attached lift enters linearly (no cos α_g), drag through sin α_g.
+        let w = strip.v0 * alpha;
+        let s = coupled::steady(&coef, &strip, w);
+        let m_coupled = coupled::loads(&coef, &strip, &Motion::default(), &s).twist;
+        let expect = -qc * (strip.chord * cm + e * (cl + cd * alpha.sin()));
+        assert!(
+            close(m_coupled, expect, 1e-12),
+            "coupled α = {alpha}: {m_coupled} vs {expect}"
+        );
+    }
+}

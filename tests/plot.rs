@@ -394,3 +394,195 @@ fn malformed_figures_are_usage_errors_not_panics() {
     summarise(&plot::render_svg(&flat).unwrap());
     assert!(plot::render_png(&flat).unwrap().starts_with(b"\x89PNG"));
 }
+
+// ---------------------------------------------------------------------------------------------
+// Figures built from the engine's result types (`plot::figures`), on hand-made results.
+// ---------------------------------------------------------------------------------------------
+
+mod figures {
+    use flutterscope::analysis::flutter::{Boundary, BoundaryKind, Search};
+    use flutterscope::analysis::simulate::{Response, RunStatus};
+    use flutterscope::analysis::sweep::{SweepRow, TrackedMode, TrackedSweep};
+    use flutterscope::plot::figures;
+    use flutterscope::plot::GuideKind;
+
+    fn mode(label: &str, f: Vec<f64>, z: Vec<f64>) -> TrackedMode {
+        let re = z.iter().map(|z| -z).collect();
+        TrackedMode {
+            label: label.into(),
+            frequency_hz: f,
+            damping_ratio: z,
+            re,
+        }
+    }
+
+    fn rotor_sweep() -> TrackedSweep {
+        let values: Vec<f64> = (0..=20).map(|i| i as f64 * 10.0).collect();
+        let n = values.len();
+        TrackedSweep {
+            parameter: "operating.rotor_speed".into(),
+            modes: vec![
+                mode(
+                    "flap 1",
+                    values.iter().map(|w| 1.0 + 0.005 * w).collect(),
+                    vec![0.01; n],
+                ),
+                mode(
+                    "flap 2",
+                    values.iter().map(|w| 3.0 + 0.01 * w).collect(),
+                    vec![0.02; n],
+                ),
+                // Far above the flap modes: left off the frequency panel, kept in damping.
+                mode("torsion 1", vec![96.0; n], vec![0.005; n]),
+            ],
+            values,
+        }
+    }
+
+    #[test]
+    fn campbell_has_1p_3p_lines_and_leaves_far_modes_off_the_frequency_scale() {
+        let fig = figures::sweep("test", &rotor_sweep());
+        assert_eq!(fig.panels.len(), 2);
+        assert!(fig.title.starts_with("Campbell diagram"));
+        let (freq, damp) = (&fig.panels[0], &fig.panels[1]);
+        assert_eq!(freq.x_label, "operating.rotor_speed (rpm)");
+        let labels: Vec<&str> = freq.guides.iter().map(|g| g.label.as_str()).collect();
+        assert_eq!(labels, ["1P", "3P"]);
+        // 3P at 200 rpm is 10 Hz.
+        match freq.guides[1].kind {
+            GuideKind::Segment { from, to } => {
+                assert_eq!(from, (0.0, 0.0));
+                assert_eq!(to, (200.0, 10.0));
+            }
+            ref k => panic!("3P is {k:?}"),
+        }
+        let names = |p: &flutterscope::plot::Panel| -> Vec<String> {
+            p.series.iter().map(|s| s.name.clone()).collect()
+        };
+        assert_eq!(names(freq), ["flap 1", "flap 2"]);
+        assert_eq!(names(damp), ["flap 1", "flap 2", "torsion 1"]);
+        assert!(
+            freq.notes[0].starts_with("1 higher mode(s)"),
+            "{:?}",
+            freq.notes
+        );
+        // One colour per mode in both panels.
+        assert_eq!(freq.series[1].style.color, damp.series[1].style.color);
+        assert_ne!(damp.series[0].style.color, damp.series[1].style.color);
+        for s in &damp.series {
+            assert_eq!(s.points.len(), 21);
+        }
+        // A non-rotor key: no excitation lines.
+        let mut other = rotor_sweep();
+        other.parameter = "operating.wind_speed".into();
+        let fig = figures::sweep("test", &other);
+        assert!(fig.panels[0].guides.is_empty());
+        assert_eq!(fig.panels[0].x_label, "operating.wind_speed (m/s)");
+    }
+
+    #[test]
+    fn sweep_rows_regroup_into_tracked_modes() {
+        let row = |v: f64, mode: &str, f: f64| SweepRow {
+            values: vec![v],
+            mode: mode.into(),
+            frequency_hz: f,
+            damping_ratio: 0.1 * f,
+            re: -f,
+        };
+        let rows = [
+            row(0.0, "flap 1", 1.0),
+            row(0.0, "torsion 1", 9.0),
+            row(5.0, "flap 1", 1.5),
+            row(10.0, "flap 1", 2.0),
+            row(10.0, "torsion 1", 9.5),
+        ];
+        let t = figures::tracked_from_rows("operating.wind_speed", &rows);
+        assert_eq!(t.values, [0.0, 5.0, 10.0]);
+        assert_eq!(t.modes.len(), 2);
+        assert_eq!(t.modes[0].label, "flap 1");
+        assert_eq!(t.modes[0].frequency_hz, [1.0, 1.5, 2.0]);
+        assert_eq!(t.modes[1].frequency_hz[0], 9.0);
+        assert!(t.modes[1].frequency_hz[1].is_nan());
+        assert_eq!(t.modes[1].re[2], -9.5);
+    }
+
+    #[test]
+    fn flutter_figure_marks_the_boundary() {
+        let mut tracked = rotor_sweep();
+        tracked.parameter = "operating.wind_speed".into();
+        let search = Search {
+            boundary: Boundary {
+                parameter: "operating.wind_speed".into(),
+                critical: Some(33.25),
+                frequency_hz: Some(2.5),
+                kind: Some(BoundaryKind::Flutter),
+                mode: Some("flap 2".into()),
+            },
+            message: "flutter at 33.25 m/s".into(),
+        };
+        let fig = figures::flutter("test", &tracked, &search);
+        let damp = &fig.panels[0];
+        assert_eq!(damp.y_label, "damping ratio ζ (–)");
+        assert_eq!(damp.markers.len(), 1);
+        assert_eq!((damp.markers[0].x, damp.markers[0].y), (33.25, 0.0));
+        assert_eq!(
+            damp.markers[0].label,
+            "flutter at 33.25 m/s, 2.5000 Hz (flap 2)"
+        );
+        assert!(damp
+            .guides
+            .iter()
+            .any(|g| g.kind == GuideKind::Vertical(33.25)));
+        assert!(damp
+            .guides
+            .iter()
+            .any(|g| g.kind == GuideKind::Horizontal(0.0)));
+        assert_eq!(damp.notes, ["flutter at 33.25 m/s"]);
+        // No crossing: no marker, the message still shown.
+        let none = Search {
+            boundary: Boundary {
+                parameter: "operating.wind_speed".into(),
+                critical: None,
+                frequency_hz: None,
+                kind: None,
+                mode: None,
+            },
+            message: "stable throughout".into(),
+        };
+        let fig = figures::flutter("test", &tracked, &none);
+        assert!(fig.panels[0].markers.is_empty());
+        assert_eq!(fig.panels[0].notes, ["stable throughout"]);
+        assert!(flutterscope::plot::render_svg(&fig).is_ok());
+    }
+
+    #[test]
+    fn tip_response_marks_a_diverging_run() {
+        let t: Vec<f64> = (0..100).map(|i| i as f64 * 0.01).collect();
+        let r = Response {
+            status: RunStatus::Diverging,
+            tip_twist: t.iter().map(|t| (5.0 * t).exp() * 1e-3).collect(),
+            tip_flap: t.iter().map(|t| 0.1 * t).collect(),
+            diverged_at: Some(0.99),
+            t,
+        };
+        let fig = figures::tip_response("test", "quasi-steady", &r);
+        assert_eq!(fig.panels.len(), 2);
+        assert_eq!(fig.panels[0].series[0].points.len(), 100);
+        assert_eq!(fig.panels[1].series[0].points[50], (0.5, 0.1 * 0.5));
+        assert!(fig.panels[0].notes[0].contains("DIVERGING"));
+        assert!(fig
+            .panels
+            .iter()
+            .all(|p| p.guides.iter().any(|g| g.kind == GuideKind::Vertical(0.99))));
+        let ok = Response {
+            status: RunStatus::Ok,
+            diverged_at: None,
+            ..r
+        };
+        let fig = figures::tip_response("test", "quasi-steady", &ok);
+        assert!(fig
+            .panels
+            .iter()
+            .all(|p| p.notes.is_empty() && p.guides.is_empty()));
+    }
+}

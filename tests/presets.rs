@@ -50,14 +50,22 @@ fn every_key_can_be_overridden_with_set() {
         } else {
             0.5 * spec.max
         };
-        let v = if spec.contains(candidate) { candidate } else { current * 0.9 };
-        assert!(spec.contains(v) && v != current, "{}: no new value", spec.key);
+        let v = if spec.contains(candidate) {
+            candidate
+        } else {
+            current * 0.9
+        };
+        assert!(
+            spec.contains(v) && v != current,
+            "{}: no new value",
+            spec.key
+        );
         let text = if spec.integer {
             format!("{}={}", spec.key, v as i64)
         } else {
             format!("{}={v:?}", spec.key)
         };
-        let p = Preset::load("liu2017", &[text.clone()])
+        let p = Preset::load("liu2017", std::slice::from_ref(&text))
             .unwrap_or_else(|e| panic!("--set {text}: {e}"));
         assert_eq!(p.get(spec.key).unwrap(), v, "--set {text}");
     }
@@ -92,7 +100,12 @@ fn presets_round_trip_through_toml() {
 fn range_errors_name_origin_key_value_and_range() {
     let err = Preset::from_toml("[structure]\nmodes = 0\n", "my.toml", &[]).unwrap_err();
     match &err {
-        Error::Range { origin, key, value, allowed } => {
+        Error::Range {
+            origin,
+            key,
+            value,
+            allowed,
+        } => {
             assert_eq!(origin, "my.toml");
             assert_eq!(key, "structure.modes");
             assert_eq!(value, "0");
@@ -109,8 +122,14 @@ fn table_source_is_the_corrected_table_at_its_nodes() {
         let p = Preset::load("liu2017", &[format!("section.ply_angle={angle}")]).unwrap();
         let s = section_properties(&p).unwrap();
         // The spline returns the knot values up to round-off.
-        for (got, want) in [s.c22, s.c23, s.c33].into_iter().zip([t[0][k], t[1][k], t[2][k]]) {
-            assert!((got - want).abs() <= 1e-12 * want.abs().max(1e-15), "{angle}°: {got} vs {want}");
+        for (got, want) in [s.c22, s.c23, s.c33]
+            .into_iter()
+            .zip([t[0][k], t[1][k], t[2][k]])
+        {
+            assert!(
+                (got - want).abs() <= 1e-12 * want.abs().max(1e-15),
+                "{angle}°: {got} vs {want}"
+            );
         }
         assert_eq!(s.m, p.section.mass_per_length);
         assert_eq!(s.i, p.section.polar_inertia);
@@ -123,7 +142,10 @@ fn table_source_is_smooth_between_nodes() {
     // table (a cubic spline's slope stays near its secants), and it stays within the table's family.
     let t = table1_si();
     let steepest = |row: usize| {
-        t[row].windows(2).map(|w| (w[1] - w[0]).abs() / 15.0).fold(0.0, f64::max)
+        t[row]
+            .windows(2)
+            .map(|w| (w[1] - w[0]).abs() / 15.0)
+            .fold(0.0, f64::max)
     };
     let step = 0.1;
     let bound = [0, 1, 2].map(|r| 1.5 * steepest(r) * step);
@@ -137,9 +159,16 @@ fn table_source_is_smooth_between_nodes() {
         let s = at(deg);
         let moves = [s.c22 - prev.c22, s.c23 - prev.c23, s.c33 - prev.c33];
         for r in 0..3 {
-            assert!(moves[r].abs() <= bound[r], "row {r} jumps {} at {deg}°", moves[r]);
+            assert!(
+                moves[r].abs() <= bound[r],
+                "row {r} jumps {} at {deg}°",
+                moves[r]
+            );
         }
-        assert!(s.c22 > 0.5 && s.c22 < 0.95 && s.c33 > 0.37, "out of family at {deg}°");
+        assert!(
+            s.c22 > 0.5 && s.c22 < 0.95 && s.c33 > 0.37,
+            "out of family at {deg}°"
+        );
         prev = s;
     }
 }

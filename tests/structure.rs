@@ -31,7 +31,12 @@ fn bending_functions_are_orthogonal_with_known_norms() {
         let u = basis.bending(x, 0);
         &u * u.transpose()
     });
-    assert_close(&uu, &(DMatrix::identity(n, n) * l), 1e-10 * l, "∫U_iU_j = L δ_ij");
+    assert_close(
+        &uu,
+        &(DMatrix::identity(n, n) * l),
+        1e-10 * l,
+        "∫U_iU_j = L δ_ij",
+    );
     let dd = integrate(l, pts, |x| {
         let u = basis.bending(x, 2);
         &u * u.transpose()
@@ -57,7 +62,12 @@ fn torsion_functions_are_orthogonal_with_known_norms() {
         let p = basis.torsion(x, 0);
         &p * p.transpose()
     });
-    assert_close(&pp, &(DMatrix::identity(n, n) * (l / 2.0)), 1e-12, "∫Φ_iΦ_j = L/2 δ_ij");
+    assert_close(
+        &pp,
+        &(DMatrix::identity(n, n) * (l / 2.0)),
+        1e-12,
+        "∫Φ_iΦ_j = L/2 δ_ij",
+    );
     let dd = integrate(l, pts, |x| {
         let p = basis.torsion(x, 1);
         &p * p.transpose()
@@ -80,10 +90,16 @@ fn quadrature_rule_is_converged_for_every_basis_product() {
         let l = 1.3;
         let basis = Basis::new(n, l);
         let products = |x: f64| {
-            let (p1, u1, u2) = (basis.torsion(x, 1), basis.bending(x, 1), basis.bending(x, 2));
+            let (p1, u1, u2) = (
+                basis.torsion(x, 1),
+                basis.bending(x, 1),
+                basis.bending(x, 2),
+            );
             let mut m = DMatrix::zeros(3 * n, n);
-            m.view_mut((0, 0), (n, n)).copy_from(&(&p1 * u2.transpose()));
-            m.view_mut((n, 0), (n, n)).copy_from(&(&u2 * u2.transpose()));
+            m.view_mut((0, 0), (n, n))
+                .copy_from(&(&p1 * u2.transpose()));
+            m.view_mut((n, 0), (n, n))
+                .copy_from(&(&u2 * u2.transpose()));
             // Centrifugal weight: a quadratic in x times U'U'.
             m.view_mut((2 * n, 0), (n, n))
                 .copy_from(&(&u1 * u1.transpose() * (l * l - x * x)));
@@ -109,10 +125,20 @@ fn bending_functions_satisfy_cantilever_conditions_for_large_j() {
         let b = bending_root(j + 1);
         assert!(u0[j].abs() < 1e-12, "U_{}(0) = {}", j + 1, u0[j]);
         assert!(u0p[j].abs() < 1e-12 * b, "U'_{}(0)", j + 1);
-        assert!(ulpp[j].abs() < 1e-10 * b * b, "U''_{}(L) = {}", j + 1, ulpp[j]);
+        assert!(
+            ulpp[j].abs() < 1e-10 * b * b,
+            "U''_{}(L) = {}",
+            j + 1,
+            ulpp[j]
+        );
         assert!(ulppp[j].abs() < 1e-10 * b.powi(3), "U'''_{}(L)", j + 1);
         // |U_j(L)| = 2 for every cantilever function.
-        assert!((tip[j].abs() - 2.0).abs() < 1e-9, "U_{}(L) = {}", j + 1, tip[j]);
+        assert!(
+            (tip[j].abs() - 2.0).abs() < 1e-9,
+            "U_{}(L) = {}",
+            j + 1,
+            tip[j]
+        );
     }
 }
 
@@ -128,12 +154,20 @@ fn paper_blade(extra: &[&str]) -> Preset {
 #[test]
 fn weak_form_matrices_are_symmetric_and_strong_form_is_not() {
     let weak = assemble(&paper_blade(&["operating.rotor_speed=60"])).unwrap();
-    for a in [&weak.mass, &weak.elastic, &weak.centrifugal, &weak.stiffness()] {
+    for a in [
+        &weak.mass,
+        &weak.elastic,
+        &weak.centrifugal,
+        &weak.stiffness(),
+    ] {
         assert_close(a, &a.transpose(), 0.0, "symmetry");
     }
     let strong = assemble(&paper_blade(&["structure.form=strong"])).unwrap();
     let asym = (&strong.elastic - strong.elastic.transpose()).amax();
-    assert!(asym > 1e-3 * strong.elastic.amax().min(1.0), "strong form symmetric: {asym}");
+    assert!(
+        asym > 1e-3 * strong.elastic.amax().min(1.0),
+        "strong form symmetric: {asym}"
+    );
     // The strong form differs only in the flap–twist block.
     let n = strong.n;
     let diff = &strong.elastic - &weak.elastic;
@@ -148,7 +182,12 @@ fn damping_is_loss_factor_over_omega1_times_elastic() {
     let modes = s.natural_modes().unwrap();
     let w1 = 2.0 * std::f64::consts::PI * modes[0].frequency_hz;
     assert!((s.omega1 - w1).abs() < 1e-9 * w1);
-    assert_close(&s.damping, &(&s.elastic * (0.02 / w1)), 1e-12 * s.damping.amax(), "C_s");
+    assert_close(
+        &s.damping,
+        &(&s.elastic * (0.02 / w1)),
+        1e-12 * s.damping.amax(),
+        "C_s",
+    );
 }
 
 #[test]
@@ -193,7 +232,10 @@ fn torsion_share_is_phase_invariant_and_bounded() {
 #[test]
 fn labels_count_within_their_kind() {
     let labels = mode_labels(&[0.1, 0.0, 0.9, 0.4, 0.51]);
-    assert_eq!(labels, ["flap 1", "flap 2", "torsion 1", "flap 3", "torsion 2"]);
+    assert_eq!(
+        labels,
+        ["flap 1", "flap 2", "torsion 1", "flap 3", "torsion 2"]
+    );
 }
 
 #[test]
@@ -221,7 +263,9 @@ fn every_mode_count_from_1_to_20_assembles() {
             let s = assemble(&p).unwrap();
             let modes = s.natural_modes().unwrap();
             assert_eq!(modes.len(), 2 * n);
-            assert!(modes.windows(2).all(|w| w[0].frequency_hz <= w[1].frequency_hz));
+            assert!(modes
+                .windows(2)
+                .all(|w| w[0].frequency_hz <= w[1].frequency_hz));
         }
     }
 }
@@ -250,27 +294,44 @@ fn assembled_matrices_equal_direct_quadrature_on_the_blade() {
     let fc = |x: f64| 0.5 * sec.m * omega * omega * ((hub + l).powi(2) - (hub + x).powi(2));
     let expect = integrate(l, pts, |x| {
         let (p0, p1) = (basis.torsion(x, 0), basis.torsion(x, 1));
-        let (u0, u1, u2) = (basis.bending(x, 0), basis.bending(x, 1), basis.bending(x, 2));
+        let (u0, u1, u2) = (
+            basis.bending(x, 0),
+            basis.bending(x, 1),
+            basis.bending(x, 2),
+        );
         let mut m = DMatrix::zeros(6 * n, 2 * n);
         // Rows 0..2N: mass; 2N..4N: elastic; 4N..6N: centrifugal.
-        m.view_mut((0, 0), (n, n)).copy_from(&(&p0 * p0.transpose() * sec.i));
-        m.view_mut((0, n), (n, n)).copy_from(&(&p0 * u0.transpose() * (sec.m * sec.cg_offset)));
-        m.view_mut((n, 0), (n, n)).copy_from(&(&u0 * p0.transpose() * (sec.m * sec.cg_offset)));
-        m.view_mut((n, n), (n, n)).copy_from(&(&u0 * u0.transpose() * sec.m));
-        m.view_mut((2 * n, 0), (n, n)).copy_from(&(&p1 * p1.transpose() * sec.c22));
-        m.view_mut((2 * n, n), (n, n)).copy_from(&(&p1 * u2.transpose() * sec.c23));
-        m.view_mut((3 * n, 0), (n, n)).copy_from(&(&u2 * p1.transpose() * sec.c23));
-        m.view_mut((3 * n, n), (n, n)).copy_from(&(&u2 * u2.transpose() * sec.c33));
+        m.view_mut((0, 0), (n, n))
+            .copy_from(&(&p0 * p0.transpose() * sec.i));
+        m.view_mut((0, n), (n, n))
+            .copy_from(&(&p0 * u0.transpose() * (sec.m * sec.cg_offset)));
+        m.view_mut((n, 0), (n, n))
+            .copy_from(&(&u0 * p0.transpose() * (sec.m * sec.cg_offset)));
+        m.view_mut((n, n), (n, n))
+            .copy_from(&(&u0 * u0.transpose() * sec.m));
+        m.view_mut((2 * n, 0), (n, n))
+            .copy_from(&(&p1 * p1.transpose() * sec.c22));
+        m.view_mut((2 * n, n), (n, n))
+            .copy_from(&(&p1 * u2.transpose() * sec.c23));
+        m.view_mut((3 * n, 0), (n, n))
+            .copy_from(&(&u2 * p1.transpose() * sec.c23));
+        m.view_mut((3 * n, n), (n, n))
+            .copy_from(&(&u2 * u2.transpose() * sec.c33));
         let prop = sec.m * omega * omega * (sec.km2_2 - sec.km1_2);
-        m.view_mut((4 * n, 0), (n, n)).copy_from(
-            &(&p1 * p1.transpose() * (fc(x) * sec.ka2) + &p0 * p0.transpose() * prop),
-        );
-        m.view_mut((5 * n, n), (n, n)).copy_from(&(&u1 * u1.transpose() * fc(x)));
+        m.view_mut((4 * n, 0), (n, n))
+            .copy_from(&(&p1 * p1.transpose() * (fc(x) * sec.ka2) + &p0 * p0.transpose() * prop));
+        m.view_mut((5 * n, n), (n, n))
+            .copy_from(&(&u1 * u1.transpose() * fc(x)));
         m
     });
     let pick = |row: usize| expect.view((row, 0), (2 * n, 2 * n)).into_owned();
     assert_close(&s.mass, &pick(0), 1e-11 * s.mass.amax(), "M");
     assert_close(&s.elastic, &pick(2 * n), 1e-11 * s.elastic.amax(), "K_e");
-    assert_close(&s.centrifugal, &pick(4 * n), 1e-11 * s.centrifugal.amax(), "K_c");
+    assert_close(
+        &s.centrifugal,
+        &pick(4 * n),
+        1e-11 * s.centrifugal.amax(),
+        "K_c",
+    );
     assert!(s.centrifugal.amax() > 0.0 && s.mass[(0, n)] != 0.0);
 }

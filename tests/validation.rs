@@ -109,7 +109,10 @@ fn weak_form_converges_to_effective_stiffness_cantilever() {
 fn weak_form_frequencies_decrease_with_n() {
     let f = |n| flap_modes(&paper_blade(30.0, "weak", n))[0].frequency_hz;
     let seq: Vec<f64> = [4, 6, 8, 12, 16].iter().map(|&n| f(n)).collect();
-    assert!(seq.windows(2).all(|w| w[1] <= w[0] * (1.0 + 1e-12)), "{seq:?}");
+    assert!(
+        seq.windows(2).all(|w| w[1] <= w[0] * (1.0 + 1e-12)),
+        "{seq:?}"
+    );
     let exact = effective_stiffness_hz(&paper_blade(30.0, "weak", 16), 1);
     assert!(rel(seq[4], exact) < rel(seq[0], exact));
 }
@@ -132,12 +135,19 @@ fn uncoupled_torsion_is_exact() {
              [structure]\nmodes = 6\nform = \"{form}\"\nloss_factor = 0.0\n"
         ));
         let modes = assemble(&p).unwrap().natural_modes().unwrap();
-        let torsion: Vec<&NaturalMode> =
-            modes.iter().filter(|m| m.label.starts_with("torsion")).collect();
+        let torsion: Vec<&NaturalMode> = modes
+            .iter()
+            .filter(|m| m.label.starts_with("torsion"))
+            .collect();
         assert_eq!(torsion.len(), 6);
         for (j, m) in torsion.iter().enumerate() {
             let exact = (2 * j + 1) as f64 * PI / (2.0 * 2.0) * (3.0f64 / 0.01).sqrt() / (2.0 * PI);
-            assert!(rel(m.frequency_hz, exact) <= 1e-6, "{form} torsion {}: {} vs {exact}", j + 1, m.frequency_hz);
+            assert!(
+                rel(m.frequency_hz, exact) <= 1e-6,
+                "{form} torsion {}: {} vs {exact}",
+                j + 1,
+                m.frequency_hz
+            );
             assert!(m.torsion_share > 1.0 - 1e-12);
         }
     }

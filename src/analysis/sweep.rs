@@ -10,7 +10,7 @@
 //! those points) so its tracked labels are exactly those of the whole run. Hence concatenating the
 //! shards' rows in order reproduces the unsharded output exactly.
 
-use crate::analysis::eigen::{analyse, Stability};
+use crate::analysis::eigen::{analyse, Mode, Stability};
 use crate::analysis::flutter::with_value;
 use crate::analysis::tracking::track_modes;
 use crate::error::{Error, Result};
@@ -38,34 +38,53 @@ pub struct TrackedSweep {
 }
 
 /// Tracked structural modes of `p` along `key` over `grid`. Values where a mode has no partner
-/// (e.g. a pair that split into real roots) are NaN (null in JSON).
+/// (e.g. a pair that split into real roots) or where the point could not be solved (a numerical
+/// failure such as no static equilibrium) are NaN (null in JSON); input errors still fail.
 pub fn track(p: &Preset, key: &str, grid: &[f64]) -> Result<TrackedSweep> {
-    let points: Vec<Stability> = grid
+    let points: Vec<Option<Stability>> = grid
         .par_iter()
-        .map(|&v| analyse(&with_value(p, key, v)?))
+        .map(|&v| solved_or_gap(with_value(p, key, v).and_then(|q| analyse(&q))))
         .collect::<Result<_>>()?;
-    Ok(tracked_from(key, grid, &points))
+    Ok(tracked_with_gaps(key, grid, &points))
 }
 
 /// Track already-solved points (the explorer can solve incrementally and call this).
 pub fn tracked_from(key: &str, grid: &[f64], points: &[Stability]) -> TrackedSweep {
-    let lists: Vec<_> = points.iter().map(|s| s.eigenvalues.clone()).collect();
+    let points: Vec<Option<Stability>> = points.iter().cloned().map(Some).collect();
+    tracked_with_gaps(key, grid, &points)
+}
+
+/// A point's result, with numerical failures turned into a gap (None).
+fn solved_or_gap(r: Result<Stability>) -> Result<Option<Stability>> {
+    match r {
+        Ok(s) => Ok(Some(s)),
+        Err(Error::Numerical(_)) => Ok(None),
+        Err(e) => Err(e),
+    }
+}
+
+/// Track through points some of which are gaps (no modes there; tracks resume after).
+pub fn tracked_with_gaps(key: &str, grid: &[f64], points: &[Option<Stability>]) -> TrackedSweep {
+    let lists: Vec<Vec<Mode>> = points
+        .iter()
+        .map(|s| s.as_ref().map_or_else(Vec::new, |s| s.eigenvalues.clone()))
+        .collect();
     let tracks = track_modes(&lists);
     let modes = tracks
         .into_iter()
         .map(|t| {
-            let pick = |f: &dyn Fn(&crate::analysis::eigen::Mode) -> f64| -> Vec<f64> {
+            let pick = |f: fn(&Mode) -> f64| -> Vec<f64> {
                 t.index
                     .iter()
-                    .zip(points)
-                    .map(|(i, s)| i.map_or(f64::NAN, |i| f(&s.eigenvalues[i])))
+                    .zip(&lists)
+                    .map(|(i, modes)| i.map_or(f64::NAN, |i| f(&modes[i])))
                     .collect()
             };
             TrackedMode {
                 label: t.label.clone(),
-                frequency_hz: pick(&|m| m.frequency_hz),
-                damping_ratio: pick(&|m| m.damping_ratio),
-                re: pick(&|m| m.re),
+                frequency_hz: pick(|m| m.frequency_hz),
+                damping_ratio: pick(|m| m.damping_ratio),
+                re: pick(|m| m.re),
             }
         })
         .collect();
@@ -148,14 +167,15 @@ pub struct SweepRow {
 const BATCH_POINTS: usize = 4096;
 
 /// Solve the shard's slice of `grid`, handing rows to `sink` batch by batch in grid order.
-/// `progress` is called with the number of points just solved (warm-up included).
+/// `progress` is called with the number of points just solved (warm-up included). Returns how
+/// many of the shard's points could not be solved (numerical failure: their rows are NaN).
 pub fn grid_sweep(
     p: &Preset,
     grid: &Grid,
     shard: Option<Shard>,
     progress: &(dyn Fn(u64) + Sync),
     sink: &mut dyn FnMut(&[SweepRow]) -> Result<()>,
-) -> Result<()> {
+) -> Result<usize> {
     if grid.keys.is_empty()
         || grid.keys.len() != grid.axes.len()
         || grid.axes.iter().any(Vec::is_empty)
@@ -167,8 +187,9 @@ pub fn grid_sweep(
     let total = grid.total();
     let own = shard.map_or(0..total, |s| s.range(total));
     if own.is_empty() {
-        return Ok(());
+        return Ok(0);
     }
+    let mut failed = 0;
     let line = grid.line_length();
     let first_line = own.start / line;
     let last_line = (own.end - 1) / line;
@@ -185,14 +206,19 @@ pub fn grid_sweep(
             next_line += 1;
         }
         let flat: Vec<usize> = lines.iter().flat_map(|r| r.clone()).collect();
-        let solved: Vec<Stability> = flat
+        let solved: Vec<Option<Stability>> = flat
             .par_iter()
             .map(|&i| {
-                let s = solve_point(p, grid, i);
+                let s = solved_or_gap(solve_point(p, grid, i));
                 progress(1);
                 s
             })
             .collect::<Result<_>>()?;
+        failed += flat
+            .iter()
+            .zip(&solved)
+            .filter(|(i, s)| own.contains(i) && s.is_none())
+            .count();
         let mut rows = Vec::new();
         let mut offset = 0;
         for r in &lines {
@@ -203,7 +229,7 @@ pub fn grid_sweep(
                 .clone()
                 .map(|i| grid.values(i)[grid.keys.len() - 1])
                 .collect();
-            let tracked = tracked_from(&grid.keys[grid.keys.len() - 1], &axis, pts);
+            let tracked = tracked_with_gaps(&grid.keys[grid.keys.len() - 1], &axis, pts);
             for (k, i) in r.clone().enumerate() {
                 if !own.contains(&i) {
                     continue;
@@ -222,7 +248,7 @@ pub fn grid_sweep(
         }
         sink(&rows)?;
     }
-    Ok(())
+    Ok(failed)
 }
 
 fn solve_point(p: &Preset, grid: &Grid, i: usize) -> Result<Stability> {

@@ -89,11 +89,25 @@ pub fn run_default_tui() -> Result<()> {
 
 /// Print a serialisable value as pretty JSON on stdout.
 pub fn print_json<T: serde::Serialize>(value: &T) -> Result<()> {
-    let text = serde_json::to_string_pretty(value)
+    let mut text = serde_json::to_string_pretty(value)
         .map_err(|e| Error::Io(format!("cannot encode JSON: {e}")))?;
-    println!("{text}");
-    Ok(())
+    text.push('\n');
+    print_text(&text)
 }
+
+/// Write a report to stdout. A reader that closed the pipe early (`| head`) has what it wanted:
+/// that is not an error, and must not be the panic `print!` turns it into.
+pub fn print_text(text: &str) -> Result<()> {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => {
+            Err(Error::Io(format!("cannot write to stdout: {e}")))
+        }
+        _ => Ok(()),
+    }
+}
+
 
 /// Parse `KEY=FROM:TO:STEP` into the key and its grid (FROM and TO included when STEP divides
 /// the range; the last point never overshoots TO).

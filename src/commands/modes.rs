@@ -1,7 +1,7 @@
 //! `flutterscope modes`: coupled natural frequencies of the blade structure (MODEL.md §3–§4), no
 //! aerodynamics, at the preset's rotor speed.
 
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::physics::structure::{assemble, NaturalMode};
 use crate::preset::{Form, Preset};
 
@@ -11,20 +11,7 @@ pub fn run(p: &Preset, json: bool) -> Result<()> {
     if json {
         return super::print_json(&serde_json::json!({ "modes": modes }));
     }
-    print_text(&render(p, &modes))
-}
-
-/// Write a report to stdout. A reader that closed the pipe early (`| head`) has what it wanted:
-/// that is not an error, and must not be the panic `print!` turns it into.
-pub(crate) fn print_text(text: &str) -> Result<()> {
-    use std::io::Write;
-    let mut out = std::io::stdout().lock();
-    match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
-        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => {
-            Err(Error::Io(format!("cannot write to stdout: {e}")))
-        }
-        _ => Ok(()),
-    }
+    super::print_text(&render(p, &modes))
 }
 
 /// The human-readable table.

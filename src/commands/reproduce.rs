@@ -44,7 +44,9 @@ pub const STRONG_MODES: usize = 5;
 pub fn run(what: Reproduction, json: bool, plot: Option<&Path>) -> Result<()> {
     let table_plot = || {
         plot.map_or(Ok(()), |_| {
-            Err(Error::usage("reproduce: --plot applies to figures, not tables"))
+            Err(Error::usage(
+                "reproduce: --plot applies to figures, not tables",
+            ))
         })
     };
     match what {
@@ -54,7 +56,7 @@ pub fn run(what: Reproduction, json: bool, plot: Option<&Path>) -> Result<()> {
             if json {
                 super::print_json(&t)
             } else {
-                super::modes::print_text(&render_table1(&t))
+                super::print_text(&render_table1(&t))
             }
         }
         Reproduction::Table2 => {
@@ -63,7 +65,7 @@ pub fn run(what: Reproduction, json: bool, plot: Option<&Path>) -> Result<()> {
             if json {
                 super::print_json(&t)
             } else {
-                super::modes::print_text(&render_table2(&t))
+                super::print_text(&render_table2(&t))
             }
         }
         Reproduction::Fig2 => Err(Error::usage("reproduce fig2: not available yet")),
@@ -113,8 +115,9 @@ pub struct Table1Row {
     pub ours_table: Stiffness,
     /// Our layup source on the paper's box contour (§2.1), if it computed.
     pub ours_layup: Option<Stiffness>,
-    /// (layup − paper SI)/|paper SI| per coefficient; None where the paper's value is zero to
-    /// round-off (C23 at 0° and 90°) or the layup did not compute.
+    /// layup / paper SI − 1 per coefficient (for C23, > 0 means a larger magnitude, same sign);
+    /// None where the paper's value is zero to round-off (C23 at 0° and 90°) or the layup did
+    /// not compute.
     pub layup_rel_diff: [Option<f64>; 3],
 }
 
@@ -176,7 +179,7 @@ pub fn table1() -> Result<Table1> {
             let meaningful = reference.abs() > 1e-3 * paper_si.c33.abs();
             layup
                 .filter(|_| meaningful)
-                .map(|l| (l.get(r) - reference) / reference.abs())
+                .map(|l| l.get(r) / reference - 1.0)
         });
         rows.push(Table1Row {
             ply_angle_deg: angle,
@@ -225,9 +228,13 @@ fn render_table1(t: &Table1) -> String {
             }
             s + "\n"
         };
-        out += &line("paper printed", &|row| format!("{:.4e}", row.paper_printed.get(r)));
+        out += &line("paper printed", &|row| {
+            format!("{:.4e}", row.paper_printed.get(r))
+        });
         out += &line("paper SI", &|row| format!("{:.4e}", row.paper_si.get(r)));
-        out += &line("ours: table", &|row| format!("{:.4e}", row.ours_table.get(r)));
+        out += &line("ours: table", &|row| {
+            format!("{:.4e}", row.ours_table.get(r))
+        });
         out += &line("ours: layup", &|row| {
             row.ours_layup
                 .map_or("n/a".into(), |l| format!("{:.4e}", l.get(r)))
@@ -352,7 +359,12 @@ fn render_table2(t: &Table2) -> String {
          paper blade ({}), Ω = {} rpm, a_s = 0, m = {} kg/m, I = {:e} kg·m, table stiffness\n\
          ours: Eq. 13 AC at λ = i k₁ (lower root); strong form N = {} (the paper's method); weak \
          form N = {}\n",
-        t.preset, t.rotor_speed_rpm, t.mass_per_length, t.polar_inertia, t.strong_modes, t.weak_modes
+        t.preset,
+        t.rotor_speed_rpm,
+        t.mass_per_length,
+        t.polar_inertia,
+        t.strong_modes,
+        t.weak_modes
     );
     for mode in 1..=5 {
         let row: Vec<&Table2Entry> = t.entries.iter().filter(|e| e.mode == mode).collect();
@@ -372,11 +384,15 @@ fn render_table2(t: &Table2) -> String {
         out += &line(&format!("ours strong N={}", t.strong_modes), &|e| {
             format!("{:.4}", e.ours_strong)
         });
-        out += &line("  vs Present", &|e| format!("{:+.2}%", 100.0 * e.strong_rel_diff));
+        out += &line("  vs Present", &|e| {
+            format!("{:+.2}%", 100.0 * e.strong_rel_diff)
+        });
         out += &line(&format!("ours weak N={}", t.weak_modes), &|e| {
             format!("{:.4}", e.ours_weak)
         });
-        out += &line("  vs Present", &|e| format!("{:+.2}%", 100.0 * e.weak_rel_diff));
+        out += &line("  vs Present", &|e| {
+            format!("{:+.2}%", 100.0 * e.weak_rel_diff)
+        });
         out += &line("paper AC", &|e| format!("{:.4}", e.paper_ac));
         out += &line("ours AC (Eq. 13)", &|e| format!("{:.4}", e.ours_ac));
         out += &line("  minus paper (Hz)", &|e| format!("{:+.5}", e.ac_abs_diff));

@@ -29,8 +29,9 @@ pub fn run(
             rows.extend_from_slice(batch);
             Ok(())
         })
-        .and_then(|()| {
+        .and_then(|failed| {
             super::print_json(&serde_json::json!({ "parameters": grid.keys, "rows": rows }))
+                .map(|()| failed)
         })
     } else {
         let io = |e: std::io::Error| Error::Io(format!("cannot write CSV: {e}"));
@@ -42,10 +43,17 @@ pub fn run(
             }
             Ok(())
         })
-        .and_then(|()| out.flush().map_err(io))
+        .and_then(|failed| out.flush().map_err(io).map(|()| failed))
     };
     bar.finish_and_clear();
-    result
+    let failed = result?;
+    if failed > 0 {
+        eprintln!(
+            "warning: {failed} grid point(s) could not be solved (e.g. no static equilibrium); \
+             their rows have empty values"
+        );
+    }
+    Ok(())
 }
 
 /// The product grid of the `--vary KEY=A:B:STEP` arguments, in order (the last varies fastest

@@ -6,7 +6,8 @@
 //!   is solved), then restarts the tip simulation from them and streams sample batches in real
 //!   time, at most one batch per frame interval; paused, or after the response diverged, it blocks
 //!   on its channel (no polling);
-//! - the **jobs** thread runs the latest boundary search and the latest Campbell sweep.
+//! - the **jobs** thread runs the latest boundary search and the latest Campbell sweep, once the
+//!   requests have settled for a moment.
 //!
 //! Every engine call runs under `catch_unwind`: an error or a panic becomes an `Err` result that the
 //! status line shows, and the thread keeps serving. If a thread dies anyway, the next send spawns
@@ -29,6 +30,10 @@ pub const JOBS_THREAD: &str = "flutterscope-jobs";
 /// Longest stretch of simulated time caught up in one batch (after a stall or a slow frame), so a
 /// hiccup never turns into a burst of work.
 const MAX_CATCH_UP_S: f64 = 0.25;
+
+/// Quiet time before a background job starts: requests arriving within it replace the pending
+/// one (a held key sends one per solve).
+const JOB_SETTLE: Duration = Duration::from_millis(120);
 
 enum SolverReq {
     Solve { gen: u64, preset: Arc<Preset> },
@@ -108,20 +113,20 @@ impl Worker {
         match effect {
             Effect::Solve { gen, preset } => {
                 self.last_solve = Some((gen, preset.clone()));
-                self.to_solver(SolverReq::Solve { gen, preset });
+                self.send_solver(SolverReq::Solve { gen, preset });
             }
             Effect::Kick {
                 gen,
                 twist_rad,
                 flap_m,
-            } => self.to_solver(SolverReq::Kick {
+            } => self.send_solver(SolverReq::Kick {
                 gen,
                 twist: twist_rad,
                 flap: flap_m,
             }),
             Effect::Pause(p) => {
                 self.paused = p;
-                self.to_solver(SolverReq::Pause(p));
+                self.send_solver(SolverReq::Pause(p));
             }
             Effect::Boundary {
                 gen,
@@ -130,7 +135,7 @@ impl Worker {
                 from,
                 to,
                 points,
-            } => self.to_jobs(JobReq::Boundary {
+            } => self.send_jobs(JobReq::Boundary {
                 gen,
                 preset,
                 key,
@@ -139,7 +144,7 @@ impl Worker {
                 points,
             }),
             Effect::Campbell { gen, preset, grid } => {
-                self.to_jobs(JobReq::Campbell { gen, preset, grid })
+                self.send_jobs(JobReq::Campbell { gen, preset, grid })
             }
             Effect::Quit => {
                 let _ = self.solver.send(SolverReq::Quit);
@@ -148,7 +153,7 @@ impl Worker {
         }
     }
 
-    fn to_solver(&mut self, req: SolverReq) {
+    fn send_solver(&mut self, req: SolverReq) {
         if let Err(failed) = self.solver.send(req) {
             let _ = self.out.send(Msg::WorkerFailed(
                 "the solver thread stopped; restarted it".into(),
@@ -169,7 +174,7 @@ impl Worker {
         }
     }
 
-    fn to_jobs(&mut self, req: JobReq) {
+    fn send_jobs(&mut self, req: JobReq) {
         if let Err(failed) = self.jobs.send(req) {
             let _ = self.out.send(Msg::WorkerFailed(
                 "the background-job thread stopped; restarted it".into(),
@@ -377,9 +382,17 @@ fn run_jobs(engine: &dyn Engine, out: &Sender<Msg>, rx: &Receiver<JobReq>) {
                 Err(_) => return,
             }
         }
-        for r in rx.try_iter() {
-            if !take(r, &mut boundary, &mut campbell) {
-                return;
+        // Wait until the requests settle: while a slider is held, every solve asks for a new
+        // search, and only the last one is worth running (it also leaves the cores to the solver).
+        loop {
+            match rx.recv_timeout(JOB_SETTLE) {
+                Ok(r) => {
+                    if !take(r, &mut boundary, &mut campbell) {
+                        return;
+                    }
+                }
+                Err(RecvTimeoutError::Timeout) => break,
+                Err(RecvTimeoutError::Disconnected) => return,
             }
         }
         // One job, then look at the channel again: a newer request may have replaced the other.

@@ -181,9 +181,14 @@ fn compute_reference_integrals(n: usize) -> ReferenceIntegrals {
         add_outer_sym(&mut r.dphi_dphi, w, &dphi);
         add_outer_sym(&mut r.u_u, w, &u);
         add_outer_sym(&mut r.ddu_ddu, w, &ddu);
-        for k in 0..2 {
-            add_outer_sym(&mut r.tension_dphi_dphi[k], tension[k], &dphi);
-            add_outer_sym(&mut r.tension_du_du[k], tension[k], &du);
+        for ((tp, tu), wt) in r
+            .tension_dphi_dphi
+            .iter_mut()
+            .zip(r.tension_du_du.iter_mut())
+            .zip(tension)
+        {
+            add_outer_sym(tp, wt, &dphi);
+            add_outer_sym(tu, wt, &du);
         }
         add_outer(&mut r.phi_u, w, &phi, &u);
         add_outer(&mut r.dphi_ddu, w, &dphi, &ddu);
@@ -346,7 +351,7 @@ fn lowest_frequency(lambdas: &[f64]) -> Result<f64> {
     }
 }
 
-/// Iteration cap for the symmetric eigensolver: far beyond what a 2N ≤ 80 problem needs, so a
+/// Iteration cap for the eigensolvers: far beyond what a 2N ≤ 80 problem needs, so a
 /// failure means broken input, reported rather than looped on.
 const MAX_SWEEPS: usize = 10_000;
 
@@ -370,9 +375,9 @@ fn cholesky_reduce(mass: &DMatrix<f64>, k: &DMatrix<f64>) -> Result<(DMatrix<f64
 }
 
 /// Eigenvalues ω² of `K q = ω² M q`, ascending. Symmetric K (weak form, or no coupling):
-/// Cholesky reduction and the symmetric solver. Non-symmetric K (strong form): the general real
-/// solver on `M⁻¹K` (faer: Francis QR with an iteration cap); complex pairs, which a nearly
-/// symmetric positive K does not produce, keep their real part.
+/// Cholesky reduction and the symmetric solver. Non-symmetric K (strong form): the real Schur
+/// form of `M⁻¹K` (Francis QR with an iteration cap); complex pairs, which a nearly symmetric
+/// positive K does not produce, keep their real part.
 fn eigenvalues(mass: &DMatrix<f64>, k: &DMatrix<f64>) -> Result<Vec<f64>> {
     let mut lambdas = match is_symmetric(k) {
         true => {
@@ -385,10 +390,12 @@ fn eigenvalues(mass: &DMatrix<f64>, k: &DMatrix<f64>) -> Result<Vec<f64>> {
                 .collect::<Vec<_>>()
         }
         false => {
+            // Eigenvalues only: nalgebra's real Schur form with an iteration cap is several
+            // times faster than a full decomposition on these small matrices.
             let a = mass_inverse_times(mass, k)?;
-            faer_matrix(&a)
-                .eigenvalues()
-                .map_err(|e| Error::numerical(format!("general eigensolver failed: {e:?}")))?
+            nalgebra::Schur::try_new(a, f64::EPSILON, MAX_SWEEPS)
+                .ok_or_else(|| Error::numerical("general eigensolver did not converge"))?
+                .complex_eigenvalues()
                 .iter()
                 .map(|z| z.re)
                 .collect()
@@ -467,24 +474,44 @@ impl StructuralModel {
         Ok(pairs)
     }
 
-    /// (ω², q) pairs, ascending, of the non-symmetric (strong-form) problem. The eigenvectors of a
-    /// real eigenvalue are real up to a complex phase, which [`normalise_complex`] removes.
+    /// (ω², q) pairs, ascending, of the non-symmetric (strong-form) problem: faer's real
+    /// eigendecomposition (Hessenberg, Francis QR with an iteration cap, back-substitution),
+    /// called sequentially — a 2N ≤ 80 matrix gains nothing from threads, and a thread pool's
+    /// start-up would dominate. Real eigenvalues have real eigenvectors (a column of the real
+    /// form); a complex pair, which a nearly symmetric positive K does not produce, keeps the
+    /// real part of its first column.
     fn general_pairs(&self, k: &DMatrix<f64>) -> Result<Vec<(f64, DVector<f64>)>> {
+        use faer::dyn_stack::{MemBuffer, MemStack};
+        use faer::linalg::evd::{self, ComputeEigenvectors};
         let a = mass_inverse_times(&self.mass, k)?;
-        let eig = faer::linalg::solvers::Eigen::new_from_real(faer_matrix(&a).as_ref())
-            .map_err(|e| Error::numerical(format!("general eigensolver failed: {e:?}")))?;
-        let s = eig.S();
-        let u = eig.U();
         let dim = a.nrows();
+        let mut vectors = faer::Mat::<f64>::zeros(dim, dim);
+        let mut re = faer::diag::Diag::<f64>::zeros(dim);
+        let mut im = faer::diag::Diag::<f64>::zeros(dim);
+        let par = faer::Par::Seq;
+        let scratch = evd::evd_scratch::<f64>(
+            dim,
+            ComputeEigenvectors::No,
+            ComputeEigenvectors::Yes,
+            par,
+            Default::default(),
+        );
+        evd::evd_real(
+            faer_matrix(&a).as_ref(),
+            re.as_mut(),
+            im.as_mut(),
+            None,
+            Some(vectors.as_mut()),
+            par,
+            MemStack::new(&mut MemBuffer::new(scratch)),
+            Default::default(),
+        )
+        .map_err(|e| Error::numerical(format!("general eigensolver failed: {e:?}")))?;
+        let re = re.column_vector();
         let mut pairs: Vec<(f64, DVector<f64>)> = (0..dim)
             .map(|c| {
-                let z: Vec<Complex<f64>> = (0..dim)
-                    .map(|r| {
-                        let v = u[(r, c)];
-                        Complex::new(v.re, v.im)
-                    })
-                    .collect();
-                (s[c].re, normalise_complex(&z))
+                let q = DVector::from_fn(dim, |r, _| vectors[(r, c)]);
+                (re[c], normalise(q))
             })
             .collect();
         check_pairs(&mut pairs)?;
@@ -554,24 +581,6 @@ fn normalise(mut v: DVector<f64>) -> DVector<f64> {
         v *= v[imax].signum() / norm;
     }
     v
-}
-
-/// The real shape of a complex eigenvector: rotate so the largest entry is real, keep the real part.
-fn normalise_complex(z: &[Complex<f64>]) -> DVector<f64> {
-    let big = z
-        .iter()
-        .copied()
-        .max_by(|a, b| a.norm_sqr().total_cmp(&b.norm_sqr()))
-        .unwrap_or(Complex::new(1.0, 0.0));
-    let phase = if big.norm() > 0.0 {
-        big.conj() / big.norm()
-    } else {
-        Complex::new(1.0, 0.0)
-    };
-    normalise(DVector::from_iterator(
-        z.len(),
-        z.iter().map(|v| (v * phase).re),
-    ))
 }
 
 /// Labels `flap k` / `torsion k` (share > 0.5 → torsion), k counting within its kind in the given

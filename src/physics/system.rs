@@ -210,7 +210,11 @@ impl System {
         let nq = self.nq();
         let mut q = DVector::zeros(nq);
         let (mut res, mut jac) = self.static_residual(&q, true)?;
-        let scale = self.static_scale(&q)?;
+        // Load scale for the convergence test: the rigid (q = 0) load, floored by the stiffness.
+        let scale = res
+            .norm()
+            .max(self.stiffness.amax() * 1e-12)
+            .max(f64::MIN_POSITIVE);
         for _ in 0..NEWTON_MAX_ITERATIONS {
             let rnorm = res.norm();
             if rnorm <= 1e-12 * scale {
@@ -227,23 +231,30 @@ impl System {
                          on a static-divergence boundary)",
                     )
                 })?;
+            if step.norm() <= 1e-14 * (1.0 + q.norm()) {
+                // Round-off level: the residual cannot be reduced further.
+                return Ok(self.steady_state_of(&q));
+            }
+            // Backtracking with an Armijo-type sufficient decrease: the full Newton step
+            // overshoots and cycles on soft blades.
             let mut t = 1.0;
             loop {
                 let trial = &q + t * &step;
                 let (r, _) = self.static_residual(&trial, false)?;
-                // Armijo-type sufficient decrease; the full step overshoots on soft blades.
-                if r.norm() <= (1.0 - 1e-4 * t) * rnorm || t < 1e-6 {
+                if r.norm() <= (1.0 - 1e-4 * t) * rnorm {
                     q = trial;
                     break;
                 }
                 t *= 0.5;
+                if t < 1e-6 {
+                    return Err(Error::numerical(format!(
+                        "static equilibrium: Newton line search stalled (residual {rnorm:.3e} \
+                         against load scale {scale:.3e}); the aerodynamic load may exceed what \
+                         the blade can carry here"
+                    )));
+                }
             }
-            let (r, j) = self.static_residual(&q, true)?;
-            res = r;
-            jac = j;
-            if step.norm() * t <= 1e-14 * (1.0 + q.norm()) {
-                return Ok(self.steady_state_of(&q));
-            }
+            (res, jac) = self.static_residual(&q, true)?;
         }
         Err(Error::numerical(format!(
             "static equilibrium did not converge in {NEWTON_MAX_ITERATIONS} Newton steps \
@@ -295,13 +306,6 @@ impl System {
                 .copy_from_slice(&st.z);
         }
         x
-    }
-
-    /// A load magnitude for the convergence test: the rigid (q = 0) load and the stiffness scale.
-    fn static_scale(&self, q: &DVector<f64>) -> Result<f64> {
-        let (r, _) = self.static_residual(q, false)?;
-        let k = self.stiffness.amax();
-        Ok(r.norm().max(k * 1e-12).max(f64::MIN_POSITIVE))
     }
 
     /// `R(q) = Q(q, 0, z*(q)) − K q` and, when asked, `dR/dq` (aero states held steady).
@@ -398,8 +402,8 @@ impl System {
             self.model.evaluate(s, &k, &zs, &mut eval, want_jac);
             let rows = self.kinematic_rows(si);
             let w = s.weight;
-            for l in 0..2 {
-                pr.force.axpy(w * eval.loads[l], &rows[l], 1.0);
+            for (load, row) in eval.loads.iter().zip(rows) {
+                pr.force.axpy(w * load, row, 1.0);
             }
             pr.zdot.rows_mut(si * ns, ns).copy_from_slice(&eval.zdot);
             if !want_jac {

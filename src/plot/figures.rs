@@ -2,9 +2,10 @@
 //! arrange numbers the engine computed (the one derived quantity, the n-per-revolution lines
 //! `f = nΩ/60` on a Campbell diagram, is a unit conversion).
 
-use super::{Figure, Guide, Panel, Series};
-use crate::analysis::simulate::{RunStatus, TipSample};
-use crate::analysis::sweep::TrackedSweep;
+use super::{Figure, Guide, Mark, Marker, Panel, Series, PALETTE};
+use crate::analysis::flutter::{BoundaryKind, Search};
+use crate::analysis::simulate::{Response, RunStatus};
+use crate::analysis::sweep::{SweepRow, TrackedMode, TrackedSweep};
 use crate::physics::laminate::LayupSection;
 
 /// "key (unit)" for a preset key, or the bare key when it has no unit or is unknown.
@@ -24,6 +25,83 @@ fn finite_extent(values: &[f64]) -> Option<(f64, f64)> {
     Some(it.fold((first, first), |(lo, hi), v| (lo.min(v), hi.max(v))))
 }
 
+/// Modes whose typical frequency exceeds this multiple of the low-frequency scale are left off
+/// the frequency panel (on the paper's blade torsion sits ~100× above flap and would flatten it).
+const FREQUENCY_SCALE_FACTOR: f64 = 5.0;
+
+/// A mode's typical frequency: the median of its finite, positive values.
+fn typical_frequency(f: &[f64]) -> Option<f64> {
+    let mut v: Vec<f64> = f
+        .iter()
+        .copied()
+        .filter(|f| f.is_finite() && *f > 0.0)
+        .collect();
+    if v.is_empty() {
+        return None;
+    }
+    v.sort_by(f64::total_cmp);
+    Some(v[v.len() / 2])
+}
+
+/// Which modes the frequency panel shows, and the cut-off (when some are left off): modes up to
+/// `FREQUENCY_SCALE_FACTOR` × the lowest mode's top frequency (or `floor_hz`, if higher).
+fn frequency_subset(modes: &[TrackedMode], floor_hz: f64) -> (Vec<bool>, Option<f64>) {
+    let typical: Vec<Option<f64>> = modes
+        .iter()
+        .map(|m| typical_frequency(&m.frequency_hz))
+        .collect();
+    let lowest = typical
+        .iter()
+        .enumerate()
+        .filter_map(|(i, t)| t.map(|t| (i, t)))
+        .min_by(|a, b| a.1.total_cmp(&b.1));
+    let Some((low, _)) = lowest else {
+        return (vec![true; modes.len()], None);
+    };
+    let top = modes[low]
+        .frequency_hz
+        .iter()
+        .copied()
+        .filter(|f| f.is_finite())
+        .fold(floor_hz, f64::max);
+    let cut = FREQUENCY_SCALE_FACTOR * top;
+    let shown: Vec<bool> = typical.iter().map(|t| t.is_none_or(|t| t <= cut)).collect();
+    let any_left_off = shown.iter().any(|s| !s);
+    (shown, any_left_off.then_some(cut))
+}
+
+/// Frequency and damping-ratio panels for tracked modes, one colour per mode in both. Returns
+/// (frequency panel, damping panel); the legend is on the damping panel, which shows every mode.
+fn mode_panels(s: &TrackedSweep, x_label: &str, floor_hz: f64) -> (Panel, Panel) {
+    let mut freq = Panel::new(x_label, "frequency (Hz)");
+    let mut damp =
+        Panel::new(x_label, "damping ratio ζ (–)").with_guide(Guide::horizontal(0.0, "ζ = 0"));
+    freq.legend = false;
+    let mark = if s.values.len() < 12 {
+        Mark::LinePoints
+    } else {
+        Mark::Line
+    };
+    let (shown, cut) = frequency_subset(&s.modes, floor_hz);
+    for (i, m) in s.modes.iter().enumerate() {
+        let color = PALETTE[i % PALETTE.len()];
+        if shown[i] {
+            freq.series.push(
+                Series::from_xy(&m.label, &s.values, &m.frequency_hz, mark).with_color(color),
+            );
+        }
+        damp.series
+            .push(Series::from_xy(&m.label, &s.values, &m.damping_ratio, mark).with_color(color));
+    }
+    if let Some(cut) = cut {
+        let off = shown.iter().filter(|s| !**s).count();
+        freq.notes.push(format!(
+            "{off} higher mode(s) above {cut:.3} Hz not drawn here (see --json / CSV)"
+        ));
+    }
+    (freq, damp)
+}
+
 /// Frequency above, damping ratio below, one line per tracked mode; along rotor speed (rpm) a
 /// Campbell diagram with the 1P and 3P excitation lines.
 pub fn sweep(preset: &str, s: &TrackedSweep) -> Figure {
@@ -34,64 +112,144 @@ pub fn sweep(preset: &str, s: &TrackedSweep) -> Figure {
     } else {
         format!("Tracked modes over {} — {preset}", s.parameter)
     };
-    let mut freq = Panel::new(&x_label, "frequency (Hz)").titled("(a) frequency");
-    let mut damp = Panel::new(&x_label, "damping ratio ζ (–)")
-        .titled("(b) damping ratio ζ = −σ/|λ|")
-        .with_guide(Guide::horizontal(0.0, "ζ = 0"));
-    for m in &s.modes {
-        freq.series.push(Series::from_xy(
-            &m.label,
-            &s.values,
-            &m.frequency_hz,
-            super::Mark::Line,
-        ));
-        damp.series.push(Series::from_xy(
-            &m.label,
-            &s.values,
-            &m.damping_ratio,
-            super::Mark::Line,
-        ));
-    }
-    if s.values.len() < 12 {
-        for series in freq.series.iter_mut().chain(damp.series.iter_mut()) {
-            series.style.mark = super::Mark::LinePoints;
-        }
-    }
-    // Fit the frequency axis to the modes; the excitation lines are clipped to it.
-    damp.legend = false;
-    if campbell {
-        if let Some((lo, hi)) = finite_extent(&s.values) {
-            for n in [1.0, 3.0] {
-                freq.guides.push(Guide::segment(
-                    (lo, n * lo / 60.0),
-                    (hi, n * hi / 60.0),
-                    format!("{n}P"),
-                ));
-            }
+    let extent = finite_extent(&s.values);
+    // On a Campbell diagram the frequency scale reaches at least 3P at the top speed.
+    let floor_hz = match (campbell, extent) {
+        (true, Some((_, hi))) => 3.0 * hi / 60.0,
+        _ => 0.0,
+    };
+    let (mut freq, mut damp) = mode_panels(s, &x_label, floor_hz);
+    freq.title = "(a) frequency".into();
+    damp.title = "(b) damping ratio ζ = −σ/|λ|".into();
+    if let (true, Some((lo, hi))) = (campbell, extent) {
+        for n in [1.0, 3.0] {
+            freq.guides.push(Guide::segment(
+                (lo, n * lo / 60.0),
+                (hi, n * hi / 60.0),
+                format!("{n}P"),
+            ));
         }
     }
     Figure::new(title).with_panel(freq).with_panel(damp)
 }
 
-/// Tip twist above, tip flap below, against time.
-pub fn tip_response(preset: &str, samples: &[TipSample], status: RunStatus) -> Figure {
-    let twist: Vec<(f64, f64)> = samples.iter().map(|s| (s.t, s.tip_twist)).collect();
-    let flap: Vec<(f64, f64)> = samples.iter().map(|s| (s.t, s.tip_flap)).collect();
+/// Tip twist above, tip flap below, against time; a diverging run is marked where it stopped.
+pub fn tip_response(preset: &str, aero: &str, r: &Response) -> Figure {
+    let twist: Vec<(f64, f64)> =
+        r.t.iter()
+            .copied()
+            .zip(r.tip_twist.iter().copied())
+            .collect();
+    let flap: Vec<(f64, f64)> =
+        r.t.iter()
+            .copied()
+            .zip(r.tip_flap.iter().copied())
+            .collect();
     let mut twist_panel = Panel::new("time t (s)", "tip twist φ(L,t) (rad)")
         .titled("(a) tip twist, toward feather")
         .with_series(Series::line("φ(L,t)", twist));
-    let flap_panel = Panel::new("time t (s)", "tip flap u(L,t) (m)")
+    let mut flap_panel = Panel::new("time t (s)", "tip flap u(L,t) (m)")
         .titled("(b) tip flap, downwind")
         .with_series(Series::line("u(L,t)", flap));
-    if status == RunStatus::Diverging {
-        let t_end = samples.last().map(|s| s.t).unwrap_or(0.0);
-        twist_panel = twist_panel.with_note(format!(
-            "diverging: the response grew past the bound; run stopped at t = {t_end:.4} s"
-        ));
+    if r.status == RunStatus::Diverging {
+        let t_end = r.diverged_at.or_else(|| r.t.last().copied()).unwrap_or(0.0);
+        let note = format!("DIVERGING: the response left the bounds at t = {t_end:.4} s");
+        for panel in [&mut twist_panel, &mut flap_panel] {
+            panel.guides.push(Guide::vertical(t_end, "run stopped"));
+        }
+        twist_panel.notes.push(note);
     }
-    Figure::new(format!("Tip response — {preset}"))
+    Figure::new(format!("Tip response — {preset}, {aero} aerodynamics"))
         .with_panel(twist_panel)
         .with_panel(flap_panel)
+}
+
+/// The tracked sweep of a one-key `sweep` rebuilt from its output rows (grid order: the key's
+/// values in order, every mode at each). Modes keep their first-appearance order; a mode missing
+/// at a value is NaN there.
+pub fn tracked_from_rows(key: &str, rows: &[SweepRow]) -> TrackedSweep {
+    let mut values: Vec<f64> = Vec::new();
+    let mut modes: Vec<TrackedMode> = Vec::new();
+    for r in rows {
+        let Some(&v) = r.values.last() else { continue };
+        if values.last() != Some(&v) {
+            values.push(v);
+            for m in &mut modes {
+                m.frequency_hz.push(f64::NAN);
+                m.damping_ratio.push(f64::NAN);
+                m.re.push(f64::NAN);
+            }
+        }
+        let n = values.len();
+        let idx = match modes.iter().position(|m| m.label == r.mode) {
+            Some(i) => i,
+            None => {
+                modes.push(TrackedMode {
+                    label: r.mode.clone(),
+                    frequency_hz: vec![f64::NAN; n],
+                    damping_ratio: vec![f64::NAN; n],
+                    re: vec![f64::NAN; n],
+                });
+                modes.len() - 1
+            }
+        };
+        let m = &mut modes[idx];
+        m.frequency_hz[n - 1] = r.frequency_hz;
+        m.damping_ratio[n - 1] = r.damping_ratio;
+        m.re[n - 1] = r.re;
+    }
+    TrackedSweep {
+        parameter: key.to_string(),
+        values,
+        modes,
+    }
+}
+
+/// A flutter search: damping ratio of every tracked mode along the key (ζ crosses zero where σ
+/// does) with the boundary marked, and the frequencies below.
+pub fn flutter(preset: &str, tracked: &TrackedSweep, search: &Search) -> Figure {
+    let key = &tracked.parameter;
+    let x_label = key_label(key);
+    let unit = crate::preset::key_spec(key)
+        .map(|k| k.unit)
+        .unwrap_or_default();
+    let (mut freq, mut damp) = mode_panels(tracked, &x_label, 0.0);
+    damp.title = "(a) damping ratio ζ = −σ/|λ| of the tracked modes".into();
+    freq.title = "(b) frequency".into();
+    let b = &search.boundary;
+    if let Some(x) = b.critical {
+        let kind = match b.kind {
+            Some(BoundaryKind::Divergence) => "divergence",
+            _ => "flutter",
+        };
+        let mut label = format!("{kind} at {}", with_unit(x, unit));
+        if let Some(f) = b.frequency_hz {
+            label.push_str(&format!(", {f:.4} Hz"));
+        }
+        if let Some(mode) = &b.mode {
+            label.push_str(&format!(" ({mode})"));
+        }
+        damp.guides.push(Guide::vertical(x, "boundary"));
+        freq.guides.push(Guide::vertical(x, "boundary"));
+        damp.markers.push(Marker::new(x, 0.0, label));
+        if let Some(f) = b.frequency_hz {
+            freq.markers.push(Marker::new(x, f, ""));
+        }
+    }
+    damp.notes.push(search.message.clone());
+    Figure::new(format!("Flutter search along {key} — {preset}"))
+        .with_panel(damp)
+        .with_panel(freq)
+}
+
+fn with_unit(v: f64, unit: &str) -> String {
+    let num = format!("{v:.6}");
+    let num = num.trim_end_matches('0').trim_end_matches('.');
+    if unit.is_empty() {
+        num.to_string()
+    } else {
+        format!("{num} {unit}")
+    }
 }
 
 /// C22, C23 and C33 of the layup section over a grid of one key (like the paper's Table 1).

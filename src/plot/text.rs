@@ -279,7 +279,17 @@ mod tests {
             .filter(|c| ('\u{2801}'..='\u{28ff}').contains(c))
             .count();
         assert!(braille > 40, "{braille} braille cells\n{text}");
-        for want in ["1st", "2nd", "┄ σ = 0", "ply angle (deg)", "10", "40", "70", "-2.5", "0.5"] {
+        for want in [
+            "1st",
+            "2nd",
+            "┄ σ = 0",
+            "ply angle (deg)",
+            "10",
+            "40",
+            "70",
+            "-2.5",
+            "0.5",
+        ] {
             assert!(text.contains(want), "no '{want}' in\n{text}");
         }
     }
@@ -294,12 +304,5 @@ mod tests {
             let last = line.rfind('\x1b').unwrap();
             assert!(line[last..].starts_with("\x1b[0m"), "{line:?}");
         }
-    }
-}
-#[cfg(test)]
-mod dump {
-    #[test]
-    fn show() {
-        println!("{}", super::render(&super::tests::panel(), 80, 20, false));
     }
 }

@@ -103,15 +103,17 @@ pub fn sig(v: f64, digits: usize) -> String {
 
 /// A short pole label: `flap 2` → `F2`, `torsion 1` → `T1`.
 pub fn short_label(label: &str) -> String {
-    let mut words = label.split_whitespace();
-    let first = words.next().unwrap_or("");
-    let num: String = words.collect::<Vec<_>>().join("");
-    let initial = first
+    let initial = label
         .chars()
         .next()
         .map(|c| c.to_ascii_uppercase())
         .unwrap_or('?');
-    format!("{initial}{num}")
+    let number = label
+        .split_whitespace()
+        .last()
+        .filter(|w| w.chars().all(|c| c.is_ascii_digit()))
+        .unwrap_or("");
+    format!("{initial}{number}")
 }
 
 /// Centre a `w × h` rectangle in `area` (clipped to it).

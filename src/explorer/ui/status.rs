@@ -3,7 +3,7 @@
 //! row any error from the worker (or a notice, or the main keys).
 
 use super::{sig, Theme};
-use crate::analysis::eigen::Verdict;
+use crate::analysis::eigen::{Mode, Stability, Verdict};
 use crate::analysis::flutter::BoundaryKind;
 use crate::explorer::state::ParamKind;
 use crate::explorer::state::{unit, AppState, ViewMode, PARAMS};
@@ -108,6 +108,16 @@ pub fn error_text(state: &AppState) -> Option<String> {
     None
 }
 
+/// The mode to name beside the verdict: the least-damped structural mode, unless an aerodynamic
+/// lag root is the one that is unstable (slow, real lag roots near σ = 0 are not news).
+pub fn least_damped(s: &Stability) -> Option<&Mode> {
+    let structural = s.eigenvalues.iter().max_by(|a, b| a.re.total_cmp(&b.re));
+    match s.critical() {
+        Some(c) if c.re >= 0.0 => Some(c),
+        _ => structural.or(s.critical()),
+    }
+}
+
 pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
     let [top, bottom] =
         Layout::vertical([Constraint::Length(1), Constraint::Length(1)]).areas(area);
@@ -122,7 +132,7 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
         },
     };
     let least = match (&state.solved, &state.solve_error) {
-        (Some(s), None) => s.stability.critical().map(|m| {
+        (Some(s), None) => least_damped(&s.stability).map(|m| {
             (
                 format!(
                     " least damped: {} {} Hz, ζ = {}",
