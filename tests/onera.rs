@@ -214,11 +214,11 @@ fn coupled_rate_jacobian_matches_central_differences() {
     let s0 = [1e-4, -2e-5, -0.3, 40.0, -0.05, 3.0, 0.06, -7.0];
     for w in [0.05 * strip.v0, 0.25 * strip.v0, -0.4 * strip.v0] {
         let jac = coupled::rate_jacobian(&coef, &strip);
-        for i in 0..coupled::STATES {
-            for j in 0..coupled::STATES {
+        for (i, row) in jac.iter().enumerate() {
+            for (j, d) in row.iter().enumerate() {
                 check_partial(
                     &format!("coupled ∂ṡ{i}/∂s{j} at w = {w}"),
-                    jac[i][j],
+                    *d,
                     |x| {
                         let mut s = s0;
                         s[j] = x;
@@ -230,20 +230,20 @@ fn coupled_rate_jacobian_matches_central_differences() {
             }
         }
         let dw = coupled::rate_downwash_partial(&coef, &strip, w);
-        for i in 0..coupled::STATES {
+        for (i, d) in dw.iter().enumerate() {
             check_partial(
                 &format!("coupled ∂ṡ{i}/∂w at w = {w}"),
-                dw[i],
+                *d,
                 |x| coupled::rates(&coef, &strip, x, &s0)[i],
                 w,
                 1.0,
             );
         }
         let ds = coupled::steady_downwash_partial(&coef, &strip, w);
-        for i in 0..coupled::STATES {
+        for (i, d) in ds.iter().enumerate() {
             check_partial(
                 &format!("coupled d(steady s{i})/dw at w = {w}"),
-                ds[i],
+                *d,
                 |x| coupled::steady(&coef, &strip, x)[i],
                 w,
                 1.0,
@@ -258,11 +258,11 @@ fn rigid_rate_jacobian_matches_central_differences() {
     let strip = paper_strip(0.25);
     let s0 = [0.9, -0.3, 40.0, -0.05, 3.0, 0.06, -7.0];
     let jac = rigid::rate_jacobian(&coef, &strip);
-    for i in 0..rigid::STATES {
-        for j in 0..rigid::STATES {
+    for (i, row) in jac.iter().enumerate() {
+        for (j, d) in row.iter().enumerate() {
             check_partial(
                 &format!("rigid ∂ṡ{i}/∂s{j}"),
-                jac[i][j],
+                *d,
                 |x| {
                     let mut s = s0;
                     s[j] = x;
