@@ -105,3 +105,29 @@ fn part_eigen_decomposition_random_20(b: divan::Bencher) {
     let a = nalgebra::DMatrix::<f64>::from_fn(20, 20, |i, j| ((i * 31 + j * 17) as f64).sin());
     b.bench(|| flutterscope::analysis::eigen::eigen_decomposition(divan::black_box(&a)).unwrap());
 }
+
+// ---- temporary experiments ----
+fn sys_a(name: &str, o: &[&str]) -> nalgebra::DMatrix<f64> {
+    flutterscope::analysis::eigen::linear_system(&preset(name, o)).unwrap().a
+}
+#[divan::bench(args = [0, 1])]
+fn x_schur_q(b: divan::Bencher, which: usize) {
+    let a = if which == 0 { sys_a("liu2017", &["structure.modes=5"]) } else { sys_a("demo-blade", &["structure.modes=5", "aero.stations=16"]) };
+    b.bench(|| nalgebra::Schur::try_new(divan::black_box(a.clone()), f64::EPSILON, 1000).unwrap());
+}
+#[divan::bench(args = [0, 1])]
+fn x_eig_full(b: divan::Bencher, which: usize) {
+    let a = if which == 0 { sys_a("liu2017", &["structure.modes=5"]) } else { sys_a("demo-blade", &["structure.modes=5", "aero.stations=16"]) };
+    b.bench(|| flutterscope::analysis::eigen::eigen_decomposition(divan::black_box(&a)).unwrap());
+}
+#[divan::bench(args = [0, 1])]
+fn x_linearise(b: divan::Bencher, which: usize) {
+    let p = if which == 0 { preset("liu2017", &["structure.modes=5"]) } else { preset("demo-blade", &["structure.modes=5", "aero.stations=16"]) };
+    b.bench(|| flutterscope::analysis::eigen::linear_system(divan::black_box(&p)).unwrap());
+}
+#[divan::bench(args = [0, 1])]
+fn x_natural(b: divan::Bencher, which: usize) {
+    let p = if which == 0 { preset("liu2017", &["structure.modes=5"]) } else { preset("demo-blade", &["structure.modes=5", "aero.stations=16"]) };
+    let s = flutterscope::physics::structure::assemble(&p).unwrap();
+    b.bench(|| divan::black_box(&s).natural_modes().unwrap());
+}

@@ -3,9 +3,7 @@
 //! the embedded font, and bad extensions, bad paths and malformed figures give clear errors.
 
 use flutterscope::error::Error;
-use flutterscope::plot::{
-    self, Figure, Format, Guide, Marker, Panel, Rgb, Series, DEFAULT_SIZE, LEGEND_MAX,
-};
+use flutterscope::plot::{self, Figure, Format, Guide, Marker, Panel, Rgb, Series, DEFAULT_SIZE};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
@@ -207,34 +205,78 @@ fn gaps_and_out_of_range_points_split_a_line() {
 }
 
 fn state_colour(i: usize) -> Rgb {
-    Rgb(20 + 10 * i as u8, 60, 140)
+    Rgb(10 + 6 * i as u8, 60, 140)
+}
+
+/// `<text>` elements with their x position.
+fn texts_at(svg: &str) -> Vec<(f64, String)> {
+    let doc = roxmltree::Document::parse(svg).unwrap();
+    doc.descendants()
+        .filter(|n| n.has_tag_name("text"))
+        .map(|n| {
+            let x = n
+                .attribute("x")
+                .and_then(|x| x.parse().ok())
+                .unwrap_or(f64::NAN);
+            (x, n.text().unwrap_or_default().trim().to_string())
+        })
+        .collect()
 }
 
 #[test]
-fn legend_is_capped_with_a_count_of_the_rest() {
+fn a_few_series_get_a_legend_inside_the_plot() {
     let mut panel = Panel::new("time (s)", "state (–)");
-    let n = LEGEND_MAX + 5;
+    for i in 0..3 {
+        panel = panel.with_series(
+            Series::line(format!("state {i}"), decay(i as f64, 50)).with_color(state_colour(i)),
+        );
+    }
+    let svg = plot::render_svg(&Figure::new("few").with_panel(panel)).unwrap();
+    let texts = texts_at(&svg);
+    for i in 0..3 {
+        let (x, _) = texts
+            .iter()
+            .find(|(_, t)| *t == format!("state {i}"))
+            .unwrap_or_else(|| panic!("state {i} not in the legend"));
+        // Inside the axes: left of the right margin (the plot ends 24 px before the edge).
+        assert!(*x < 1200.0 - 24.0 - 40.0, "state {i} at x = {x}");
+    }
+}
+
+#[test]
+fn many_series_get_a_legend_column_capped_with_a_count_of_the_rest() {
+    let n = 40;
+    let mut panel = Panel::new("time (s)", "state (–)");
     for i in 0..n {
         panel = panel.with_series(
             Series::line(format!("state {i}"), decay(i as f64, 50)).with_color(state_colour(i)),
         );
     }
-    let s = summarise(&plot::render_svg(&Figure::new("many").with_panel(panel)).unwrap());
-    let listed = s
-        .texts
+    let svg = plot::render_svg(&Figure::new("many").with_panel(panel)).unwrap();
+    let texts = texts_at(&svg);
+    let listed: Vec<f64> = texts
         .iter()
-        .filter(|t| {
+        .filter(|(_, t)| {
             t.strip_prefix("state ")
                 .is_some_and(|r| r.parse::<usize>().is_ok())
         })
-        .count();
-    assert_eq!(listed, LEGEND_MAX - 1);
-    assert!(
-        s.texts.iter().any(|t| t == "+ 6 more (not listed)"),
-        "{:?}",
-        s.texts
-    );
+        .map(|(x, _)| *x)
+        .collect();
+    let more: usize = texts
+        .iter()
+        .find_map(|(_, t)| {
+            t.strip_prefix("+ ")?
+                .strip_suffix(" more (not listed)")?
+                .parse()
+                .ok()
+        })
+        .unwrap_or_else(|| panic!("no '+ N more' entry in {texts:?}"));
+    assert_eq!(listed.len() + more, n);
+    assert!(listed.len() >= 15, "only {} listed", listed.len());
+    // The column lies right of the plot: every entry in the right part of the figure.
+    assert!(listed.iter().all(|&x| x > 900.0), "{listed:?}");
     // Every series is drawn even when not listed: one polyline in each series' colour.
+    let s = summarise(&svg);
     for i in 0..n {
         assert_eq!(
             s.polylines.get(&hex(state_colour(i))),

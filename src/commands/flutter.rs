@@ -1,7 +1,8 @@
 //! `flutterscope flutter`: the flutter (or divergence) boundary along one key.
 
 use crate::analysis::flutter::flutter_search;
-use crate::error::{Error, Result};
+use crate::analysis::sweep::track;
+use crate::error::Result;
 use crate::preset::Preset;
 use std::path::Path;
 
@@ -14,13 +15,24 @@ pub fn run(
     json: bool,
     plot: Option<&Path>,
 ) -> Result<()> {
-    if plot.is_some() {
-        return Err(Error::usage("flutter --plot: not available yet"));
+    if let Some(path) = plot {
+        crate::plot::format_for(path)?;
     }
     let search = flutter_search(p, key, from, to, points)?;
     if json {
-        return super::print_json(&search.boundary);
+        super::print_json(&search.boundary)?;
+    } else {
+        println!("{}: {}", p.display_name(), search.message);
     }
-    println!("{}: {}", p.display_name(), search.message);
+    if let Some(path) = plot {
+        // The tracked modes on the search grid: damping ratio and frequency along the key.
+        let grid: Vec<f64> = (0..points)
+            .map(|i| from + (to - from) * i as f64 / (points - 1) as f64)
+            .collect();
+        let tracked = track(p, key, &grid)?;
+        let fig = crate::plot::figures::flutter(p.display_name(), &tracked, &search);
+        crate::plot::write(&fig, path)?;
+        eprintln!("plot written to {}", path.display());
+    }
     Ok(())
 }

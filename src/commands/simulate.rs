@@ -7,17 +7,22 @@ use std::io::Write;
 use std::path::Path;
 
 pub fn run(p: &Preset, json: bool, csv: bool, plot: Option<&Path>) -> Result<()> {
-    if plot.is_some() {
-        return Err(Error::usage("simulate --plot: not available yet"));
+    if let Some(path) = plot {
+        crate::plot::format_for(path)?;
     }
     let r = simulate(p)?;
     if json {
-        return super::print_json(&r);
+        super::print_json(&r)?;
+    } else if csv {
+        write_csv(&r)?;
+    } else {
+        print!("{}", summary(p, &r));
     }
-    if csv {
-        return write_csv(&r);
+    if let Some(path) = plot {
+        let fig = crate::plot::figures::tip_response(p.display_name(), p.aero.model.name(), &r);
+        crate::plot::write(&fig, path)?;
+        eprintln!("plot written to {}", path.display());
     }
-    print!("{}", summary(p, &r));
     Ok(())
 }
 

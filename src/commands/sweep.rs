@@ -15,10 +15,20 @@ pub fn run(
     shard: Option<&str>,
     plot: Option<&Path>,
 ) -> Result<()> {
-    if plot.is_some() {
-        return Err(Error::usage("sweep --plot: not available yet"));
+    if let Some(path) = plot {
+        crate::plot::format_for(path)?;
+        if vary.len() != 1 {
+            return Err(Error::usage(format!(
+                "sweep --plot draws tracked modes along one key (a Campbell diagram along \
+                 operating.rotor_speed); got {} --vary keys",
+                vary.len()
+            )));
+        }
     }
     let grid = parse_grid(vary)?;
+    // Rows kept for the plot (one key: the tracked modes along it).
+    let mut plotted: Vec<SweepRow> = Vec::new();
+    let keep = plot.is_some();
     let shard = shard.map(Shard::parse).transpose()?;
     let own = shard.map_or(grid.total(), |s| s.range(grid.total()).len());
     let bar = progress_bar(own as u64);
@@ -27,6 +37,9 @@ pub fn run(
         let mut rows = Vec::new();
         grid_sweep(p, &grid, shard, &progress, &mut |batch| {
             rows.extend_from_slice(batch);
+            if keep {
+                plotted.extend_from_slice(batch);
+            }
             Ok(())
         })
         .and_then(|failed| {
@@ -41,6 +54,9 @@ pub fn run(
             for r in batch {
                 writeln!(out, "{}", csv_row(r)).map_err(io)?;
             }
+            if keep {
+                plotted.extend_from_slice(batch);
+            }
             Ok(())
         })
         .and_then(|failed| out.flush().map_err(io).map(|()| failed))
@@ -52,6 +68,12 @@ pub fn run(
             "warning: {failed} grid point(s) could not be solved (e.g. no static equilibrium); \
              their rows have empty values"
         );
+    }
+    if let Some(path) = plot {
+        let tracked = crate::plot::figures::tracked_from_rows(&grid.keys[0], &plotted);
+        let fig = crate::plot::figures::sweep(p.display_name(), &tracked);
+        crate::plot::write(&fig, path)?;
+        eprintln!("plot written to {}", path.display());
     }
     Ok(())
 }

@@ -36,8 +36,6 @@ pub const DEFAULT_SIZE: (u32, u32) = (1200, 800);
 /// Height given to each row beyond the second, and width to each column beyond the second.
 const ROW_HEIGHT: u32 = 420;
 const COLUMN_WIDTH: u32 = 640;
-/// Largest number of legend entries drawn; further series are summarised as "+ N more".
-pub const LEGEND_MAX: usize = 12;
 
 const FONT: &str = "sans-serif";
 const TITLE_SIZE: f64 = 34.0;
@@ -809,6 +807,121 @@ fn text_width(text: &str, size: f64) -> f64 {
     text.chars().count() as f64 * 0.55 * size / 1.24 * 1.1
 }
 
+/// One legend row.
+struct LegendEntry {
+    name: String,
+    color: RGBColor,
+    mark: Mark,
+}
+
+const LEGEND_PAD: f64 = 8.0;
+const LEGEND_SWATCH: f64 = 30.0;
+
+fn legend_line_height() -> f64 {
+    (LEGEND_SIZE / 1.24 * 1.35).round()
+}
+
+/// Width and height of a legend box for `entries` (at most `rows` rows).
+fn legend_size(entries: &[LegendEntry], rows: usize) -> (f64, f64) {
+    let text = entries
+        .iter()
+        .take(rows)
+        .map(|e| text_width(&e.name, LEGEND_SIZE))
+        .fold(0.0, f64::max);
+    (
+        text + LEGEND_SWATCH + 3.0 * LEGEND_PAD,
+        rows.min(entries.len()) as f64 * legend_line_height() + 2.0 * LEGEND_PAD,
+    )
+}
+
+/// Draw a legend box with its top-left corner at `origin` (pixels of `target`), at most `rows`
+/// rows (the last says how many more were left out when they do not all fit), names cut to
+/// `max_text` pixels.
+fn draw_legend<DB: DrawingBackend>(
+    target: &DrawingArea<DB, Shift>,
+    origin: (i32, i32),
+    entries: &[LegendEntry],
+    rows: usize,
+    max_text: f64,
+) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    let rows = rows.max(1);
+    let (listed, more) = if entries.len() > rows {
+        (rows - 1, entries.len() - (rows - 1))
+    } else {
+        (entries.len(), 0)
+    };
+    let cut = |name: &str| -> String {
+        if text_width(name, LEGEND_SIZE) <= max_text {
+            return name.to_string();
+        }
+        let keep = (max_text / text_width("m", LEGEND_SIZE)).floor().max(2.0) as usize - 1;
+        format!("{}…", name.chars().take(keep).collect::<String>())
+    };
+    let names: Vec<String> = entries[..listed].iter().map(|e| cut(&e.name)).collect();
+    let more_text = format!("+ {more} more (not listed)");
+    let text_w = names
+        .iter()
+        .map(|n| text_width(n, LEGEND_SIZE))
+        .chain((more > 0).then(|| text_width(&more_text, LEGEND_SIZE)))
+        .fold(0.0, f64::max);
+    let line = legend_line_height();
+    let n_rows = listed + usize::from(more > 0);
+    let w = (text_w + LEGEND_SWATCH + 3.0 * LEGEND_PAD) as i32;
+    let h = (n_rows as f64 * line + 2.0 * LEGEND_PAD) as i32;
+    let (x0, y0) = origin;
+    target
+        .draw(&Rectangle::new(
+            [(x0, y0), (x0 + w, y0 + h)],
+            WHITE.mix(0.85).filled(),
+        ))
+        .map_err(draw_error)?;
+    target
+        .draw(&Rectangle::new(
+            [(x0, y0), (x0 + w, y0 + h)],
+            RGBColor(160, 160, 160).stroke_width(1),
+        ))
+        .map_err(draw_error)?;
+    let font = (FONT, LEGEND_SIZE)
+        .into_font()
+        .color(&BLACK)
+        .pos(Pos::new(HPos::Left, VPos::Center));
+    let sx = x0 + LEGEND_PAD as i32;
+    let tx = sx + (LEGEND_SWATCH + LEGEND_PAD) as i32;
+    for (i, (e, name)) in entries[..listed].iter().zip(&names).enumerate() {
+        let cy = y0 + (LEGEND_PAD + (i as f64 + 0.5) * line) as i32;
+        // Swatches are rectangles and circles, never polylines (one polyline per data run).
+        if matches!(e.mark, Mark::Line | Mark::LinePoints) {
+            target
+                .draw(&Rectangle::new(
+                    [(sx, cy - 2), (sx + LEGEND_SWATCH as i32, cy + 2)],
+                    e.color.filled(),
+                ))
+                .map_err(draw_error)?;
+        } else {
+            target
+                .draw(&Circle::new(
+                    (sx + LEGEND_SWATCH as i32 / 2, cy),
+                    5,
+                    e.color.filled(),
+                ))
+                .map_err(draw_error)?;
+        }
+        target
+            .draw(&Text::new(name.as_str(), (tx, cy), font.clone()))
+            .map_err(draw_error)?;
+    }
+    if more > 0 {
+        let cy = y0 + (LEGEND_PAD + (listed as f64 + 0.5) * line) as i32;
+        target
+            .draw(&Text::new(more_text.as_str(), (tx, cy), font.clone()))
+            .map_err(draw_error)?;
+    }
+    Ok(())
+}
+
 fn draw_panel<DB: DrawingBackend>(panel: &Panel, area: &DrawingArea<DB, Shift>) -> Result<()>
 where
     DB::ErrorType: 'static,
@@ -825,10 +938,57 @@ where
         .unwrap_or(4) as u32;
     let y_area = 12 * y_label_chars + 44;
 
+    // Series colours: given, or the palette in order.
+    let mut palette = PALETTE.iter().cycle();
+    let colors: Vec<RGBColor> = panel
+        .series
+        .iter()
+        .map(|s| {
+            color(
+                s.style
+                    .color
+                    .unwrap_or_else(|| *palette.next().unwrap_or(&PALETTE[0])),
+            )
+        })
+        .collect();
+    let entries: Vec<LegendEntry> = if panel.legend {
+        panel
+            .series
+            .iter()
+            .zip(&colors)
+            .filter(|(s, _)| !s.name.is_empty())
+            .map(|(s, &c)| LegendEntry {
+                name: s.name.clone(),
+                color: c,
+                mark: s.style.mark,
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
+
+    // A legend that would cover much of the plot goes in a column to its right.
+    let (aw, ah) = area.dim_in_pixel();
+    let (aw, ah) = (aw as f64, ah as f64);
+    let caption_h = if panel.title.is_empty() {
+        0.0
+    } else {
+        CAPTION_SIZE * 1.4
+    };
+    let plot_h = (ah - caption_h - 24.0 - 62.0).max(40.0);
+    let plot_w = (aw - y_area as f64 - 36.0).max(40.0);
+    let (legend_w, legend_h) = legend_size(&entries, entries.len());
+    let outside = !entries.is_empty() && (legend_h > 0.5 * plot_h || legend_w > 0.4 * plot_w);
+    let column = if outside {
+        legend_w.min(0.3 * aw).ceil()
+    } else {
+        0.0
+    };
+
     let mut builder = ChartBuilder::on(area);
     builder
         .margin(12)
-        .margin_right(24)
+        .margin_right(if outside { column as u32 + 20 } else { 24 })
         .x_label_area_size(62)
         .y_label_area_size(y_area);
     if !panel.title.is_empty() {
@@ -864,51 +1024,14 @@ where
         }
     }
 
-    let mut palette = PALETTE.iter().cycle();
-    let total_named = if panel.legend {
-        panel.series.iter().filter(|s| !s.name.is_empty()).count()
-    } else {
-        0
-    };
-    let mut named = 0usize;
-    let mut hidden = 0usize;
-    for series in &panel.series {
-        let c = color(
-            series
-                .style
-                .color
-                .unwrap_or_else(|| *palette.next().unwrap_or(&PALETTE[0])),
-        );
-        let width = series.style.width.max(1);
-        let line_style = c.stroke_width(width);
+    for (series, &c) in panel.series.iter().zip(&colors) {
+        let line_style = c.stroke_width(series.style.width.max(1));
         let mark = series.style.mark;
-        let mut anno_set = false;
-        let want_legend = panel.legend && !series.name.is_empty();
-        let listed = if total_named <= LEGEND_MAX {
-            LEGEND_MAX
-        } else {
-            LEGEND_MAX - 1
-        };
-        let in_legend = want_legend && named < listed;
-        if want_legend {
-            named += 1;
-            if !in_legend {
-                hidden += 1;
-            }
-        }
-
         if matches!(mark, Mark::Line | Mark::LinePoints) {
-            let runs = visible_runs(&series.points, xr, yr);
-            for run in runs {
-                let anno = chart
+            for run in visible_runs(&series.points, xr, yr) {
+                chart
                     .draw_series(std::iter::once(PathElement::new(run, line_style)))
                     .map_err(draw_error)?;
-                if in_legend && !anno_set {
-                    anno.label(series.name.as_str()).legend(move |(x, y)| {
-                        Rectangle::new([(x, y - 2), (x + 24, y + 2)], c.filled())
-                    });
-                    anno_set = true;
-                }
             }
         }
         if matches!(mark, Mark::Points | Mark::LinePoints) {
@@ -918,30 +1041,10 @@ where
                 .iter()
                 .copied()
                 .filter(|&(x, y)| x >= xr.0 && x <= xr.1 && y >= yr.0 && y <= yr.1);
-            let anno = chart
+            chart
                 .draw_series(pts.map(|p| Circle::new(p, radius, c.filled())))
                 .map_err(draw_error)?;
-            if in_legend && !anno_set {
-                anno.label(series.name.as_str())
-                    .legend(move |(x, y)| Circle::new((x + 12, y), radius, c.filled()));
-                anno_set = true;
-            }
         }
-        if in_legend && !anno_set {
-            // Nothing visible (all points outside the range or non-finite): keep the entry.
-            chart
-                .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
-                .map_err(draw_error)?
-                .label(series.name.as_str())
-                .legend(move |(x, y)| Rectangle::new([(x, y - 2), (x + 24, y + 2)], c.filled()));
-        }
-    }
-    if hidden > 0 {
-        chart
-            .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
-            .map_err(draw_error)?
-            .label(format!("+ {hidden} more (not listed)"))
-            .legend(|(x, y)| EmptyElement::at((x, y)));
     }
 
     for m in &panel.markers {
@@ -979,12 +1082,9 @@ where
         draw_label(&mut chart, place, &guide.label, ink)?;
     }
 
-    let occupancy = Occupancy::new(
-        panel,
-        xr,
-        yr,
-        chart.plotting_area().strip_coord_spec().dim_in_pixel(),
-    );
+    let plot_area = chart.plotting_area().strip_coord_spec();
+    let plot_px = plot_area.dim_in_pixel();
+    let occupancy = Occupancy::new(panel, xr, yr, plot_px);
     let mut taken = Vec::new();
     if !panel.notes.is_empty() {
         let width = panel
@@ -993,46 +1093,34 @@ where
             .map(|n| text_width(n, NOTE_SIZE))
             .fold(0.0, f64::max);
         let size = (
-            width + 8.0,
-            NOTE_SIZE * 1.15 * panel.notes.len() as f64 + 8.0,
+            width + 12.0,
+            NOTE_SIZE * 1.15 * panel.notes.len() as f64 + 10.0,
         );
         let corner = occupancy.best_corner(size, &[]);
         taken.push(occupancy.rect(corner, size));
         draw_notes(&chart, &panel.notes, corner)?;
     }
 
-    if panel.legend && named > 0 {
-        let entries: Vec<&str> = panel
-            .series
-            .iter()
-            .filter(|s| !s.name.is_empty())
-            .map(|s| s.name.as_str())
-            .take(LEGEND_MAX)
-            .chain((hidden > 0).then_some("+ 99 more (not listed)"))
-            .collect();
-        let width = entries
-            .iter()
-            .map(|n| text_width(n, LEGEND_SIZE))
-            .fold(0.0, f64::max)
-            + 60.0;
-        let rows = entries.len().min(LEGEND_MAX) as f64;
-        let size = (width, rows * LEGEND_SIZE * 1.3 + 16.0);
-        let pos = match occupancy.best_corner(size, &taken) {
-            Corner::UpperRight => SeriesLabelPosition::UpperRight,
-            Corner::UpperLeft => SeriesLabelPosition::UpperLeft,
-            Corner::LowerRight => SeriesLabelPosition::LowerRight,
-            Corner::LowerLeft => SeriesLabelPosition::LowerLeft,
-        };
-        chart
-            .configure_series_labels()
-            .position(pos)
-            .margin(10)
-            .legend_area_size(30)
-            .label_font((FONT, LEGEND_SIZE))
-            .background_style(WHITE.mix(0.85))
-            .border_style(RGBColor(160, 160, 160))
-            .draw()
-            .map_err(draw_error)?;
+    if outside {
+        // The column right of the plot, top-aligned with it, in the panel's pixels.
+        let (bx, by) = plot_area.get_base_pixel();
+        let (ox, oy) = area.get_base_pixel();
+        let x = bx - ox + plot_px.0 as i32 + 12;
+        let y = by - oy;
+        let rows = ((plot_px.1 as f64 - 2.0 * LEGEND_PAD) / legend_line_height()).floor() as usize;
+        let max_text = column - LEGEND_SWATCH - 3.0 * LEGEND_PAD;
+        draw_legend(area, (x, y), &entries, rows, max_text)?;
+    } else if !entries.is_empty() {
+        let size = legend_size(&entries, entries.len());
+        let corner = occupancy.best_corner(size, &taken);
+        let r = occupancy.rect(corner, size);
+        draw_legend(
+            &plot_area,
+            (r.0 as i32, r.1 as i32),
+            &entries,
+            entries.len(),
+            f64::INFINITY,
+        )?;
     }
     Ok(())
 }
@@ -1157,6 +1245,21 @@ where
         Corner::UpperLeft | Corner::UpperRight => 10,
         Corner::LowerLeft | Corner::LowerRight => h as i32 - 10 - total,
     };
+    // A translucent box keeps the text readable over lines.
+    let width = notes
+        .iter()
+        .map(|n| text_width(n, NOTE_SIZE))
+        .fold(0.0, f64::max) as i32
+        + 8;
+    let bx = match h_pos {
+        HPos::Right => x - width + 4,
+        _ => x - 4,
+    };
+    area.draw(&Rectangle::new(
+        [(bx, y0 - 4), (bx + width, y0 + total + 2)],
+        WHITE.mix(0.85).filled(),
+    ))
+    .map_err(draw_error)?;
     let style = (FONT, NOTE_SIZE)
         .into_font()
         .color(&BLACK)

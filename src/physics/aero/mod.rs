@@ -11,15 +11,16 @@
 //! Ordering convention, used everywhere in this interface: loads `[m_φ, f_u]`, kinematics
 //! `[φ, u, φ̇, u̇]`, apparent-mass inputs `[φ̈, ü]` — torsion first, as in `q = [q_φ; q_u]`.
 //!
-//! Adding a model (e.g. ONERA, §5.3): implement [`StripModel`] in its own file, including
-//! `steady_states` (the states that make `ż = 0` for a static deflection, with their derivative,
-//! so the equilibrium solve needs no special case) and add it to [`model_for`].
+//! Adding a model: implement [`StripModel`] in its own file, including `steady_states` (the
+//! states that make `ż = 0` for a static deflection, with their derivative, so the equilibrium
+//! solve needs no special case) and, if it is not affine and must be simulated as such (ONERA,
+//! §5.3), `nonlinear_support`; then add it to [`model_for`].
 
 pub mod onera;
 pub mod quasi_steady;
 pub mod theodorsen;
 
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::physics::inflow::Station;
 use crate::preset::{AeroModel, Preset};
 
@@ -128,6 +129,45 @@ impl SteadyStates {
     }
 }
 
+/// Where a strip model is not affine, for the time stepper (MODEL.md §7): the local inputs its
+/// nonlinear part reads and the local outputs it writes.
+///
+/// Local inputs are indexed `[φ, u, φ̇, u̇, z_0, z_1, …]`, local outputs `[m_φ, f_u, ż_0, ż_1, …]`
+/// (the interface's ordering). The contract: every output not listed is affine in every input
+/// with constant coefficients, and every listed output is affine with constant coefficients in
+/// the inputs not listed. The stepper then treats the listed part implicitly on a few scalars per
+/// station and the rest exactly. Empty (the default) means the model is simulated linearised
+/// about its equilibrium, as MODEL.md §7 prescribes for quasi-steady and Theodorsen.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct NonlinearSupport {
+    pub inputs: Vec<usize>,
+    pub outputs: Vec<usize>,
+}
+
+impl NonlinearSupport {
+    /// Input index of φ.
+    pub const TWIST: usize = 0;
+    /// Input index of u.
+    pub const FLAP: usize = 1;
+    /// Input index of φ̇.
+    pub const TWIST_RATE: usize = 2;
+    /// Input index of u̇.
+    pub const FLAP_RATE: usize = 3;
+    /// Input index of the first aerodynamic state.
+    pub const FIRST_STATE: usize = 4;
+    /// Output index of m_φ.
+    pub const TWIST_LOAD: usize = 0;
+    /// Output index of f_u.
+    pub const FLAP_LOAD: usize = 1;
+    /// Output index of the first state rate.
+    pub const FIRST_RATE: usize = 2;
+
+    /// True when nothing is listed: the model is simulated linearised.
+    pub fn is_affine(&self) -> bool {
+        self.outputs.is_empty()
+    }
+}
+
 /// A strip-theory aerodynamic model (MODEL.md §5).
 pub trait StripModel: Send + Sync + std::fmt::Debug {
     /// The preset name of the model (`aero.model`).
@@ -156,6 +196,11 @@ pub trait StripModel: Send + Sync + std::fmt::Debug {
     fn state_weights(&self, _s: &Station, out: &mut [f64]) {
         out.fill(0.0);
     }
+
+    /// The nonlinear part's support ([`NonlinearSupport`]); empty: simulated linearised.
+    fn nonlinear_support(&self) -> NonlinearSupport {
+        NonlinearSupport::default()
+    }
 }
 
 /// `aero.model = "none"`: the structure alone, no loads, no states.
@@ -182,9 +227,7 @@ pub fn model_for(p: &Preset) -> Result<Box<dyn StripModel>> {
         AeroModel::None => Ok(Box::new(NoAero)),
         AeroModel::QuasiSteady => Ok(Box::new(quasi_steady::QuasiSteady::new(section))),
         AeroModel::Theodorsen => Ok(Box::new(theodorsen::Theodorsen::new(section))),
-        AeroModel::Onera => Err(Error::usage(
-            "aero.model = \"onera\" is not available yet in this build; use quasi-steady or theodorsen",
-        )),
+        AeroModel::Onera => Ok(Box::new(onera::OneraModel::from_preset(p))),
     }
 }
 

@@ -16,7 +16,7 @@
 //! form; with its default 0 the coupled form still differs from `theodorsen` only by drag, and a
 //! preset that sets `aero.onera.cm0` sees it in the default form too).
 
-use super::{Kinematics, SteadyStates, StripEval, StripModel, StripSection};
+use super::{Kinematics, NonlinearSupport, SteadyStates, StripEval, StripModel, StripSection};
 use crate::physics::inflow::Station;
 use crate::preset::{OneraForcing, Preset};
 
@@ -889,6 +889,41 @@ impl StripModel for OneraModel {
         match self.forcing {
             OneraForcing::Rigid => self.evaluate_rigid(&strip, k, z, out, jacobian),
             OneraForcing::Coupled => self.evaluate_coupled(&strip, k, z, out, jacobian),
+        }
+    }
+
+    /// Coupled: the stall deviations read `α = w/V0` (`φ, φ̇, u̇`) and drive the three stall
+    /// rates; the drag's arm `e_a D sin α_g` makes `m_φ` bilinear in `C2D` and `sin(α_r − φ)`.
+    /// Rigid: the stall forcing is constant (`α_r`); only `m_φ` is nonlinear, through
+    /// `e_a (L cos α_g + D sin α_g)` with `L` from `C1L + C2L` and `D` from `C2D`. Everything
+    /// else (the attached flow, `f_u`, the lags) is affine with constant coefficients.
+    fn nonlinear_support(&self) -> NonlinearSupport {
+        let state = |i: usize| NonlinearSupport::FIRST_STATE + i;
+        let rate = |i: usize| NonlinearSupport::FIRST_RATE + i;
+        match self.forcing {
+            OneraForcing::Coupled => NonlinearSupport {
+                inputs: vec![
+                    NonlinearSupport::TWIST,
+                    NonlinearSupport::TWIST_RATE,
+                    NonlinearSupport::FLAP_RATE,
+                    state(coupled::STALL + 4),
+                ],
+                outputs: vec![
+                    NonlinearSupport::TWIST_LOAD,
+                    rate(coupled::STALL + 1),
+                    rate(coupled::STALL + 3),
+                    rate(coupled::STALL + 5),
+                ],
+            },
+            OneraForcing::Rigid => NonlinearSupport {
+                inputs: vec![
+                    NonlinearSupport::TWIST,
+                    state(rigid::C1L),
+                    state(rigid::STALL),
+                    state(rigid::STALL + 4),
+                ],
+                outputs: vec![NonlinearSupport::TWIST_LOAD],
+            },
         }
     }
 
