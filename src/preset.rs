@@ -289,6 +289,8 @@ pub struct View {
     pub rotor_speed_max: f64,
     /// Upper end of the wind-speed slider (m/s).
     pub wind_speed_max: f64,
+    /// Upper end of the tunnel-speed slider (m/s).
+    pub tunnel_speed_max: f64,
 }
 
 impl Default for Preset {
@@ -449,6 +451,7 @@ impl Default for View {
         View {
             rotor_speed_max: 200.0,
             wind_speed_max: 40.0,
+            tunnel_speed_max: 200.0,
         }
     }
 }
@@ -945,6 +948,14 @@ pub static KEYS: &[KeySpec] = &[
         5000.0,
         open = true,
         view.rotor_speed_max
+    ),
+    real!(
+        "view.tunnel_speed_max",
+        "m/s",
+        0.0,
+        1000.0,
+        open = true,
+        view.tunnel_speed_max
     ),
     real!(
         "view.wind_speed_max",

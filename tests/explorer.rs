@@ -469,12 +469,19 @@ fn boundary_follows_the_selected_parameter() {
     headless::press(
         &mut s,
         &engine,
-        &[Action::FocusNext, Action::FocusNext, Action::FocusNext],
+        &[
+            Action::FocusNext,
+            Action::FocusNext,
+            Action::FocusNext,
+            Action::FocusNext,
+        ],
     );
     assert_eq!(PARAMS[s.focus].label, "aero model");
     assert_eq!(s.boundary_key, "operating.pitch");
     headless::press(&mut s, &engine, &[Action::FocusNext]);
     assert_eq!(s.boundary_key, "operating.pitch");
+    // Rotor speed and pitch are searched on the way; tunnel speed is not, because the test
+    // engine is unstable at its current 0 m/s and there is nothing below it to search.
     assert_eq!(engine.boundaries.load(Ordering::SeqCst), n + 2);
     // f recomputes.
     headless::press(&mut s, &engine, &[Action::Boundary]);

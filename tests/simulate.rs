@@ -5,7 +5,9 @@
 
 use assert_cmd::Command;
 use flutterscope::analysis::eigen::{analyse, analyse_system, linear_system};
+use flutterscope::analysis::flutter::{flutter_boundary, BoundaryKind};
 use flutterscope::analysis::simulate::{propagators, simulate, RunStatus, Simulator};
+use flutterscope::analysis::sweep::track;
 use flutterscope::error::Error;
 use flutterscope::physics::system::System;
 use flutterscope::preset::Preset;
@@ -316,24 +318,37 @@ fn stall_transient_from_rest_matches_a_fine_runge_kutta_reference() {
     let p = stall(&["simulation.duration=0.1"]);
     let system = System::new(&p).unwrap();
     let reference = rk4_tip(&system, &DVector::zeros(system.dim()), 1e-5, 500, 21);
-    let mut sim = Simulator::new(&p).unwrap();
-    let samples = sim.advance(21).unwrap();
-    let mut worst: (f64, f64) = (0.0, 0.0);
-    for (s, (twist, flap)) in samples.iter().zip(&reference) {
-        worst.0 = worst.0.max((s.tip_twist - twist).abs());
-        worst.1 = worst.1.max((s.tip_flap - flap).abs());
-    }
-    // Twist swings by ~0.3 rad here.
+    let run = |tolerance: Option<f64>| {
+        let mut sim = Simulator::new(&p).unwrap();
+        if let Some(tol) = tolerance {
+            sim.set_tolerance(tol, tol * p.blade.length);
+        }
+        let samples = sim.advance(21).unwrap();
+        let mut worst: (f64, f64) = (0.0, 0.0);
+        for (s, (twist, flap)) in samples.iter().zip(&reference) {
+            worst.0 = worst.0.max((s.tip_twist - twist).abs());
+            worst.1 = worst.1.max((s.tip_flap - flap).abs());
+        }
+        (worst, sim.work().0)
+    };
+    // The twist swings by 0.3 rad here; the default tolerance keeps it within 1e-3 rad.
+    let (default, steps) = run(None);
     assert!(
-        worst.0 < 2e-3 && worst.1 < 2e-4,
+        default.0 < 1e-3 && default.1 < 1e-4,
         "largest difference: twist {:e} rad, flap {:e} m",
-        worst.0,
-        worst.1
+        default.0,
+        default.1
     );
     // Substeps were used where the stall remainder is rough, but no collapse: at most
     // 2^6 steps per sample interval.
-    let (steps, _) = sim.work();
     assert!(steps > 20 && steps <= 20 * 64, "{steps} steps");
+    // A tighter tolerance converges on the reference.
+    let (tight, tight_steps) = run(Some(1e-7));
+    assert!(
+        tight.0 < 0.2 * default.0 && tight.0 < 5e-5,
+        "tight: {tight:?}"
+    );
+    assert!(tight_steps > steps);
 }
 
 #[test]
@@ -456,4 +471,48 @@ fn every_model_simulates_and_the_json_has_the_documented_shape() {
         .success();
     let v: serde_json::Value = serde_json::from_slice(&out.get_output().stdout).unwrap();
     assert_eq!(v["status"], "diverging");
+}
+
+#[test]
+fn flutter_search_and_tracking_work_unchanged_on_the_stall_model() {
+    // Goland's wing at zero incidence stays attached: the coupled ONERA form (drag aside, and
+    // drag has no arm at ψ = 0) must find Theodorsen's flutter speed.
+    let theodorsen = flutter_boundary(
+        &preset("goland", &[]),
+        "operating.tunnel_speed",
+        110.0,
+        160.0,
+        6,
+    )
+    .unwrap();
+    let onera = flutter_boundary(
+        &preset("goland", &["aero.model=onera"]),
+        "operating.tunnel_speed",
+        110.0,
+        160.0,
+        6,
+    )
+    .unwrap();
+    let (vt, vo) = (theodorsen.critical.unwrap(), onera.critical.unwrap());
+    assert_eq!(onera.kind, Some(BoundaryKind::Flutter));
+    assert!(
+        (vo - vt).abs() <= 2e-3 * vt,
+        "onera {vo} m/s vs theodorsen {vt} m/s"
+    );
+    // The paper's stall case is stable over the wind speeds of the explorer's slider.
+    let b = flutter_boundary(&stall(&[]), "operating.wind_speed", 5.0, 40.0, 8).unwrap();
+    assert_eq!(b.critical, None);
+    // Tracked over the paper's ply angles: every point solved, flap 1 damped throughout.
+    let sweep = track(
+        &stall(&[]),
+        "section.ply_angle",
+        &[15.0, 30.0, 45.0, 60.0, 75.0],
+    )
+    .unwrap();
+    let flap1 = sweep.modes.iter().find(|m| m.label == "flap 1").unwrap();
+    assert!(
+        flap1.re.iter().all(|s| s.is_finite() && *s < 0.0),
+        "{:?}",
+        flap1.re
+    );
 }

@@ -70,6 +70,7 @@ const fn number(
 pub static PARAMS: &[Param] = &[
     number("ply angle", "section.ply_angle", 1.0, 5.0, 1, true),
     number("wind speed", "operating.wind_speed", 0.5, 5.0, 1, true),
+    number("tunnel speed", "operating.tunnel_speed", 1.0, 10.0, 1, true),
     number("rotor speed", "operating.rotor_speed", 1.0, 10.0, 0, true),
     number("pitch", "operating.pitch", 0.5, 5.0, 1, true),
     Param {
@@ -98,6 +99,7 @@ pub fn param_bounds(p: &Preset, key: &str) -> (f64, f64) {
     match key {
         "operating.rotor_speed" => hi = p.view.rotor_speed_max.max(cur),
         "operating.wind_speed" => hi = p.view.wind_speed_max.max(cur),
+        "operating.tunnel_speed" => hi = p.view.tunnel_speed_max.max(cur),
         _ => {}
     }
     (lo, hi)

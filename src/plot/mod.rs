@@ -476,8 +476,31 @@ where
     };
     let cols = fig.columns.max(1);
     let areas = body.split_evenly((fig.rows(), cols));
-    for (panel, area) in fig.panels.iter().zip(areas.iter()) {
-        draw_panel(panel, area)?;
+    let mut layouts: Vec<PanelLayout> = fig
+        .panels
+        .iter()
+        .zip(areas.iter())
+        .map(|(panel, area)| PanelLayout::new(panel, area.dim_in_pixel()))
+        .collect();
+    // Panels in one grid column share the y-label width and the legend column's width, so
+    // their plots line up.
+    let mut reserve = vec![0.0f64; cols];
+    let mut y_area = vec![0u32; cols];
+    for (i, l) in layouts.iter().enumerate() {
+        reserve[i % cols] = reserve[i % cols].max(l.legend_column.unwrap_or(0.0));
+        y_area[i % cols] = y_area[i % cols].max(l.y_area);
+    }
+    for (i, l) in layouts.iter_mut().enumerate() {
+        l.y_area = y_area[i % cols];
+    }
+    for (i, ((panel, area), layout)) in fig
+        .panels
+        .iter()
+        .zip(areas.iter())
+        .zip(&layouts)
+        .enumerate()
+    {
+        draw_panel(panel, layout, area, reserve[i % cols])?;
     }
     Ok(())
 }
@@ -804,7 +827,11 @@ impl Occupancy {
 /// Approximate pixel width of `text` at `size` (DejaVu Sans averages ~0.55 em per character;
 /// plotters' font size is 1.24 × the em).
 fn text_width(text: &str, size: f64) -> f64 {
-    text.chars().count() as f64 * 0.55 * size / 1.24 * 1.1
+    // Measured with the registered font; the estimate is the fallback before registration.
+    match (FONT, size).into_font().box_size(text) {
+        Ok((w, _)) => f64::from(w),
+        Err(_) => text.chars().count() as f64 * 0.6 * size / 1.24,
+    }
 }
 
 /// One legend row.
@@ -861,12 +888,13 @@ where
         format!("{}…", name.chars().take(keep).collect::<String>())
     };
     let names: Vec<String> = entries[..listed].iter().map(|e| cut(&e.name)).collect();
-    let more_text = format!("+ {more} more (not listed)");
+    let more_text = format!("+ {more} more");
     let text_w = names
         .iter()
         .map(|n| text_width(n, LEGEND_SIZE))
         .chain((more > 0).then(|| text_width(&more_text, LEGEND_SIZE)))
-        .fold(0.0, f64::max);
+        .fold(0.0, f64::max)
+        .min(max_text);
     let line = legend_line_height();
     let n_rows = listed + usize::from(more > 0);
     let w = (text_w + LEGEND_SWATCH + 3.0 * LEGEND_PAD) as i32;
@@ -922,73 +950,118 @@ where
     Ok(())
 }
 
-fn draw_panel<DB: DrawingBackend>(panel: &Panel, area: &DrawingArea<DB, Shift>) -> Result<()>
+/// What a panel needs before it is drawn: ranges, tick formats, colours, legend entries, and
+/// whether its legend needs a column right of the plot (its width).
+struct PanelLayout {
+    xr: (f64, f64),
+    yr: (f64, f64),
+    xd: Option<usize>,
+    yd: Option<usize>,
+    y_area: u32,
+    colors: Vec<RGBColor>,
+    entries: Vec<LegendEntry>,
+    legend_column: Option<f64>,
+}
+
+impl PanelLayout {
+    fn new(panel: &Panel, (aw, ah): (u32, u32)) -> Self {
+        let (xr, yr) = panel_ranges(panel);
+        let (xd, yd) = (
+            tick_decimals(xr.0, xr.1, X_TICKS),
+            tick_decimals(yr.0, yr.1, Y_TICKS),
+        );
+        let y_label_chars = [yr.0, yr.1, 0.5 * (yr.0 + yr.1)]
+            .iter()
+            .map(|&v| format_tick(v, yd).chars().count())
+            .max()
+            .unwrap_or(4) as u32;
+        let y_area = 12 * y_label_chars + 44;
+
+        // Series colours: given, or the palette in order.
+        let mut palette = PALETTE.iter().cycle();
+        let colors: Vec<RGBColor> = panel
+            .series
+            .iter()
+            .map(|s| {
+                color(
+                    s.style
+                        .color
+                        .unwrap_or_else(|| *palette.next().unwrap_or(&PALETTE[0])),
+                )
+            })
+            .collect();
+        let entries: Vec<LegendEntry> = if panel.legend {
+            panel
+                .series
+                .iter()
+                .zip(&colors)
+                .filter(|(s, _)| !s.name.is_empty())
+                .map(|(s, &c)| LegendEntry {
+                    name: s.name.clone(),
+                    color: c,
+                    mark: s.style.mark,
+                })
+                .collect()
+        } else {
+            Vec::new()
+        };
+
+        // A legend that would cover much of the plot goes in a column to its right.
+        let (aw, ah) = (f64::from(aw), f64::from(ah));
+        let caption_h = if panel.title.is_empty() {
+            0.0
+        } else {
+            CAPTION_SIZE * 1.4
+        };
+        let plot_h = (ah - caption_h - 24.0 - 62.0).max(40.0);
+        let plot_w = (aw - f64::from(y_area) - 36.0).max(40.0);
+        let (legend_w, legend_h) = legend_size(&entries, entries.len());
+        let outside = !entries.is_empty() && (legend_h > 0.5 * plot_h || legend_w > 0.4 * plot_w);
+        let legend_column = outside.then(|| legend_w.min(0.3 * aw).ceil());
+        PanelLayout {
+            xr,
+            yr,
+            xd,
+            yd,
+            y_area,
+            colors,
+            entries,
+            legend_column,
+        }
+    }
+}
+
+/// Draw one panel; `reserve` is the width of the legend column kept right of the plot (0: none).
+fn draw_panel<DB: DrawingBackend>(
+    panel: &Panel,
+    layout: &PanelLayout,
+    area: &DrawingArea<DB, Shift>,
+    reserve: f64,
+) -> Result<()>
 where
     DB::ErrorType: 'static,
 {
-    let (xr, yr) = panel_ranges(panel);
-    let (xd, yd) = (
-        tick_decimals(xr.0, xr.1, X_TICKS),
-        tick_decimals(yr.0, yr.1, Y_TICKS),
-    );
-    let y_label_chars = [yr.0, yr.1, 0.5 * (yr.0 + yr.1)]
-        .iter()
-        .map(|&v| format_tick(v, yd).chars().count())
-        .max()
-        .unwrap_or(4) as u32;
-    let y_area = 12 * y_label_chars + 44;
-
-    // Series colours: given, or the palette in order.
-    let mut palette = PALETTE.iter().cycle();
-    let colors: Vec<RGBColor> = panel
-        .series
-        .iter()
-        .map(|s| {
-            color(
-                s.style
-                    .color
-                    .unwrap_or_else(|| *palette.next().unwrap_or(&PALETTE[0])),
-            )
-        })
-        .collect();
-    let entries: Vec<LegendEntry> = if panel.legend {
-        panel
-            .series
-            .iter()
-            .zip(&colors)
-            .filter(|(s, _)| !s.name.is_empty())
-            .map(|(s, &c)| LegendEntry {
-                name: s.name.clone(),
-                color: c,
-                mark: s.style.mark,
-            })
-            .collect()
-    } else {
-        Vec::new()
-    };
-
-    // A legend that would cover much of the plot goes in a column to its right.
-    let (aw, ah) = area.dim_in_pixel();
-    let (aw, ah) = (aw as f64, ah as f64);
-    let caption_h = if panel.title.is_empty() {
-        0.0
-    } else {
-        CAPTION_SIZE * 1.4
-    };
-    let plot_h = (ah - caption_h - 24.0 - 62.0).max(40.0);
-    let plot_w = (aw - y_area as f64 - 36.0).max(40.0);
-    let (legend_w, legend_h) = legend_size(&entries, entries.len());
-    let outside = !entries.is_empty() && (legend_h > 0.5 * plot_h || legend_w > 0.4 * plot_w);
-    let column = if outside {
-        legend_w.min(0.3 * aw).ceil()
-    } else {
-        0.0
-    };
+    let PanelLayout {
+        xr,
+        yr,
+        xd,
+        yd,
+        y_area,
+        ref colors,
+        ref entries,
+        ..
+    } = *layout;
+    let outside = reserve > 0.0 && !entries.is_empty();
+    let column = reserve;
 
     let mut builder = ChartBuilder::on(area);
     builder
         .margin(12)
-        .margin_right(if outside { column as u32 + 20 } else { 24 })
+        .margin_right(if reserve > 0.0 {
+            reserve as u32 + 20
+        } else {
+            24
+        })
         .x_label_area_size(62)
         .y_label_area_size(y_area);
     if !panel.title.is_empty() {
@@ -1024,7 +1097,7 @@ where
         }
     }
 
-    for (series, &c) in panel.series.iter().zip(&colors) {
+    for (series, &c) in panel.series.iter().zip(colors) {
         let line_style = c.stroke_width(series.style.width.max(1));
         let mark = series.style.mark;
         if matches!(mark, Mark::Line | Mark::LinePoints) {
@@ -1109,15 +1182,15 @@ where
         let y = by - oy;
         let rows = ((plot_px.1 as f64 - 2.0 * LEGEND_PAD) / legend_line_height()).floor() as usize;
         let max_text = column - LEGEND_SWATCH - 3.0 * LEGEND_PAD;
-        draw_legend(area, (x, y), &entries, rows, max_text)?;
+        draw_legend(area, (x, y), entries, rows, max_text)?;
     } else if !entries.is_empty() {
-        let size = legend_size(&entries, entries.len());
+        let size = legend_size(entries, entries.len());
         let corner = occupancy.best_corner(size, &taken);
         let r = occupancy.rect(corner, size);
         draw_legend(
             &plot_area,
             (r.0 as i32, r.1 as i32),
-            &entries,
+            entries,
             entries.len(),
             f64::INFINITY,
         )?;
