@@ -40,3 +40,12 @@ fn readme_shows_the_two_commands() {
     assert!(text.contains("cargo run --release"));
     assert!(text.contains("cargo test"));
 }
+
+#[test]
+fn every_explorer_key_is_documented() {
+    let text = readme();
+    for b in flutterscope::explorer::keys::BINDINGS {
+        let row = format!("| `{}` | {} |", b.shown, b.help);
+        assert!(text.contains(&row), "README.md lacks the key row {row}");
+    }
+}
