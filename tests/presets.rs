@@ -230,16 +230,26 @@ fn demo_blade_follows_the_ply_angle_through_its_layup() {
         section_properties(&at(15.0)).unwrap(),
         section_properties(&at(40.0)).unwrap(),
     );
-    assert!(s15.c23 < 0.0 && s40.c23 < 0.0, "CAS coupling keeps the paper's sign");
-    assert!((s40.c22 / s15.c22 - 1.0).abs() > 0.1, "C22 must follow the ply angle");
+    assert!(
+        s15.c23 < 0.0 && s40.c23 < 0.0,
+        "CAS coupling keeps the paper's sign"
+    );
+    assert!(
+        (s40.c22 / s15.c22 - 1.0).abs() > 0.1,
+        "C22 must follow the ply angle"
+    );
 
     let rpm_max = base.view.rotor_speed_max;
     let boundary = |deg: f64| {
         let b = flutter_boundary(&at(deg), "operating.rotor_speed", 0.0, rpm_max, 41).unwrap();
-        b.critical.expect("demo blade must flutter inside the rotor-speed range")
+        b.critical
+            .expect("demo blade must flutter inside the rotor-speed range")
     };
     let (b15, b45) = (boundary(15.0), boundary(45.0));
     assert!(base.operating.rotor_speed < b15, "the demo opens stable");
     assert!(b15 < rpm_max && b45 < rpm_max);
-    assert!(b45 / b15 > 1.1, "boundary moves with ply angle: {b15} → {b45} rpm");
+    assert!(
+        b45 / b15 > 1.1,
+        "boundary moves with ply angle: {b15} → {b45} rpm"
+    );
 }

@@ -516,3 +516,100 @@ fn flutter_search_and_tracking_work_unchanged_on_the_stall_model() {
         flap1.re
     );
 }
+
+#[test]
+fn splitting_reproduces_the_right_hand_side_exactly() {
+    // ẋ = r0 + A y + B ũ(C y) must hold at any state, not only near the reference, and the
+    // remainder's tangent must be its derivative.
+    for forcing in ["coupled", "rigid"] {
+        let p = stall(&[
+            &format!("aero.onera.forcing={forcing}"),
+            "operating.pitch=2",
+        ]);
+        let system = System::new(&p).unwrap();
+        let x_ref = system
+            .equilibrium()
+            .unwrap_or_else(|_| DVector::zeros(system.dim()));
+        let split = system.splitting(&x_ref);
+        let mut scratch = system.remainder_scratch();
+        let (m, pdim) = (split.b.ncols(), split.c.nrows());
+        assert_eq!(m, 8 * split.outputs_per_station());
+        assert_eq!(pdim, 8 * split.inputs_per_station());
+        let x = busy_state(&system, &x_ref);
+        let y = &x - &x_ref;
+        let dev = &split.c * &y;
+        let mut u = DVector::zeros(m);
+        let mut tangent = vec![0.0; m * split.inputs_per_station()];
+        system.remainder(
+            &split,
+            dev.as_slice(),
+            u.as_mut_slice(),
+            Some(&mut tangent),
+            &mut scratch,
+        );
+        assert!(
+            u.amax() > 0.0,
+            "{forcing}: the busy state must leave the tangent"
+        );
+        let rebuilt = &split.r0 + &split.a * &y + &split.b * &u;
+        let exact = system.rhs(&x);
+        let d = (&rebuilt - &exact).amax() / exact.amax();
+        assert!(d < 1e-12, "{forcing}: split differs from f(x) by {d:e}");
+        // Tangent blocks against central differences of the remainder.
+        let (ps, ms) = (split.inputs_per_station(), split.outputs_per_station());
+        for j in 0..pdim {
+            let h = 1e-6 * (1.0 + dev[j].abs());
+            let at = |shift: f64| {
+                let mut d = dev.clone();
+                d[j] += shift;
+                let mut v = DVector::zeros(m);
+                system.remainder(&split, d.as_slice(), v.as_mut_slice(), None, &mut scratch);
+                v
+            };
+            let numeric = (at(h) - at(-h)) / (2.0 * h);
+            let station = j / ps;
+            for o in 0..ms {
+                let analytic = tangent[station * ms * ps + o * ps + j % ps];
+                let fd = numeric[station * ms + o];
+                assert!(
+                    (analytic - fd).abs() <= 1e-5 * (1.0 + analytic.abs().max(fd.abs())),
+                    "{forcing}: ∂ũ{o}/∂dev{j}: {analytic:e} vs {fd:e}"
+                );
+            }
+            // Other stations' outputs do not move.
+            for (i, v) in numeric.iter().enumerate() {
+                if i / ms != station {
+                    assert_eq!(*v, 0.0);
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn rigid_transient_matches_a_fine_runge_kutta_reference() {
+    let p = stall(&[
+        "aero.onera.forcing=rigid",
+        "operating.pitch=20.5",
+        "simulation.duration=0.1",
+    ]);
+    let system = System::new(&p).unwrap();
+    let reference = rk4_tip(&system, &DVector::zeros(system.dim()), 1e-5, 500, 21);
+    let mut sim = Simulator::new(&p).unwrap();
+    let samples = sim.advance(21).unwrap();
+    for (s, (twist, flap)) in samples.iter().zip(&reference) {
+        assert!(
+            (s.tip_twist - twist).abs() < 1e-4 * (1.0 + twist.abs()),
+            "t = {}: {} vs {twist}",
+            s.t,
+            s.tip_twist
+        );
+        assert!(
+            (s.tip_flap - flap).abs() < 1e-4 * (1.0 + flap.abs()),
+            "t = {}: {} vs {flap}",
+            s.t,
+            s.tip_flap
+        );
+    }
+    assert!(reference.iter().any(|(t, _)| t.abs() > 0.01));
+}

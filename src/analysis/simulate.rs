@@ -712,8 +712,10 @@ impl Simulator {
                     return Ok(());
                 }
                 Some(r) if finest => {
-                    if !self.y.iter().all(|v| v.is_finite()) {
-                        // Blown up inside the interval: the next sample reports it.
+                    if !r.is_finite() || !self.y.iter().all(|v| v.is_finite()) {
+                        // The response blew up inside the interval: stop here, as at the
+                        // bound, rather than emit a NaN.
+                        self.status = RunStatus::Diverging;
                         return Ok(());
                     }
                     return Err(Error::numerical(format!(
