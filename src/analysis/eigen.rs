@@ -15,10 +15,11 @@
 //! and the output so every failure is an [`Error::Numerical`], never a hang or a panic.
 
 use crate::error::{Error, Result};
-use crate::physics::structure::mode_labels;
+use crate::analysis::tracking::hungarian;
+use crate::physics::structure::StructuralModel;
 use crate::physics::system::{LinearSystem, System};
 use crate::preset::Preset;
-use nalgebra::{Complex, DMatrix};
+use nalgebra::{Complex, DMatrix, DVector};
 use serde::Serialize;
 
 /// The stability verdict of one operating point.
@@ -128,18 +129,25 @@ pub fn linear_system(p: &Preset) -> Result<LinearSystem> {
 }
 
 /// Eigen-analysis of an assembled linear system (sweeps reuse their own systems).
+///
+/// Left eigenvectors are computed only when there are aerodynamic states: without them every
+/// state is structural and the participation share is 1 for every root by definition.
 pub fn analyse_system(ls: &LinearSystem) -> Result<Stability> {
-    let roots = eigen_decomposition(&ls.a)?;
+    let roots = decompose(&ls.a, ls.n_aero > 0)?;
     let nq = ls.nq;
     let scale = roots.values.iter().map(|l| l.norm()).fold(1.0, f64::max);
     let tol = NEUTRAL_TOLERANCE * scale;
-    let mut structural: Vec<(Mode, f64)> = Vec::new();
+    let mut structural: Vec<Mode> = Vec::new();
     let mut lags: Vec<Mode> = Vec::new();
     for (k, lambda) in roots.values.iter().enumerate() {
         let v = roots.vectors.column(k);
         let q: Vec<Complex<f64>> = v.rows(0, nq).iter().copied().collect();
         // Structural states are q and q̇, the first 2·nq.
-        let share: f64 = roots.participation(k)[..2 * nq].iter().sum();
+        let share: f64 = if roots.left.ncols() == 0 {
+            1.0
+        } else {
+            roots.participation(k)[..2 * nq].iter().sum()
+        };
         let im = if lambda.im.abs() <= tol {
             0.0
         } else {
@@ -160,41 +168,159 @@ pub fn analyse_system(ls: &LinearSystem) -> Result<Stability> {
             shape: normalised_shape(&q),
         };
         if share >= 0.5 {
-            let torsion = ls.structure.torsion_share(&q);
-            structural.push((mode, torsion));
+            structural.push(mode);
         } else {
             lags.push(mode);
         }
     }
-    // Labels count modes of each kind in order of natural frequency |λ| (= ω_n for a damped
-    // oscillator), not of ω: heavily damped or overdamped modes (stiffness-proportional damping
-    // on a blade whose torsion is far above its flap) would otherwise jump to the front.
-    structural.sort_by(|a, b| {
-        let (la, lb) = (a.0.re.hypot(a.0.im), b.0.re.hypot(b.0.im));
-        la.total_cmp(&lb).then(b.0.re.total_cmp(&a.0.re))
-    });
-    let shares: Vec<f64> = structural.iter().map(|(_, t)| *t).collect();
-    let labels = mode_labels(&shares);
-    let mut eigenvalues: Vec<Mode> = structural
-        .into_iter()
-        .zip(labels)
-        .map(|((mut m, _), label)| {
-            m.label = label;
-            m
-        })
-        .collect();
-    eigenvalues.sort_by(|a, b| b.re.total_cmp(&a.re));
+    label_structural_roots(&mut structural, &ls.structure)?;
+    structural.sort_by(|a, b| b.re.total_cmp(&a.re));
     lags.sort_by(|a, b| b.re.total_cmp(&a.re));
     for (k, m) in lags.iter_mut().enumerate() {
         m.label = format!("aero lag {}", k + 1);
     }
-    let verdict = verdict_of(eigenvalues.iter().chain(&lags), tol);
+    let verdict = verdict_of(structural.iter().chain(&lags), tol);
     Ok(Stability {
         stable: verdict == Verdict::Stable,
         verdict,
-        eigenvalues,
+        eigenvalues: structural,
         aero_lags: lags,
     })
+}
+
+/// Suffix of a structural root left over after the one-to-one assignment (there are more
+/// structural roots than natural modes only when some mode is non-oscillatory: an overdamped
+/// or divergent mode has two real roots). The least stable of a mode's real roots carries the
+/// plain label; the other is `"torsion 4 (2nd)"`.
+pub const SECOND_ROOT_SUFFIX: &str = " (2nd)";
+
+/// Labels structural roots by the in-vacuo natural modes of (M, K_e + K_c) at the same rotor
+/// speed (MODEL.md §6): each root's q-part is expanded on the mass-normalised natural modes,
+/// η = Φᵀ M q, and roots are assigned to modes one-to-one maximising the summed energy share
+/// |η_k|² / Σ|η|² (Kuhn–Munkres), so no label repeats and none names a mode that does not
+/// exist. Reading the label off the natural modes rather than off the root's own torsion
+/// share matters on blades whose aerodynamic torsional stiffness dwarfs the structural one
+/// (the paper's blade): there the torsion roots' shapes and frequencies move far from the
+/// in-vacuo torsion modes, but their modal content still identifies them. For the weak
+/// (symmetric) form η are the exact modal coordinates; for the strong form an M-weighted
+/// projection, which is all the assignment needs.
+fn label_structural_roots(roots: &mut [Mode], structure: &StructuralModel) -> Result<()> {
+    if roots.is_empty() {
+        return Ok(());
+    }
+    let natural = structure.natural_modes()?;
+    let mass = &structure.mass;
+    // Columns of W = M Φ̂ with Φ̂ mass-normalised: η_k = W_kᵀ q.
+    let weights: Vec<DVector<f64>> = natural
+        .iter()
+        .map(|m| {
+            let mphi = mass * &m.shape;
+            let modal_mass = m.shape.dot(&mphi);
+            if modal_mass > 0.0 {
+                mphi / modal_mass.sqrt()
+            } else {
+                mphi
+            }
+        })
+        .collect();
+    let shares: Vec<Vec<f64>> = roots
+        .iter()
+        .map(|r| {
+            let energy: Vec<f64> = weights
+                .iter()
+                .map(|w| {
+                    w.iter()
+                        .zip(&r.shape)
+                        .map(|(wi, qi)| qi * *wi)
+                        .sum::<Complex<f64>>()
+                        .norm_sqr()
+                })
+                .collect();
+            let total: f64 = energy.iter().sum();
+            if total > 0.0 {
+                energy.iter().map(|e| e / total).collect()
+            } else {
+                energy
+            }
+        })
+        .collect();
+    let size = roots.len().max(natural.len());
+    let cost: Vec<Vec<f64>> = (0..size)
+        .map(|i| {
+            (0..size)
+                .map(|k| match (shares.get(i), natural.get(k)) {
+                    (Some(s), Some(_)) => -s[k],
+                    _ => 0.0,
+                })
+                .collect()
+        })
+        .collect();
+    let assigned = hungarian(&cost);
+    let mut owner: Vec<Option<usize>> = vec![None; natural.len()];
+    let mut mode_of: Vec<Option<usize>> = (0..roots.len())
+        .map(|i| Some(assigned[i]).filter(|&k| k < natural.len()))
+        .collect();
+    for (i, k) in mode_of.iter().enumerate() {
+        if let Some(k) = k {
+            owner[*k] = Some(i);
+        }
+    }
+    // Left-over roots (more structural roots than modes): the second real root of an
+    // overdamped or divergent mode. Pair them, again one-to-one by share, with the modes whose
+    // assigned root is real (aerodynamic coupling can leave such a root with little of its own
+    // mode's shape, so its best share alone would misname it); any still left take the mode
+    // they share most with.
+    let leftover: Vec<usize> = (0..roots.len()).filter(|&i| mode_of[i].is_none()).collect();
+    let real_modes: Vec<usize> = (0..natural.len())
+        .filter(|&k| owner[k].is_some_and(|j| roots[j].im == 0.0))
+        .collect();
+    let mut second: Vec<Option<usize>> = vec![None; roots.len()];
+    let size = leftover.len().max(real_modes.len());
+    let cost: Vec<Vec<f64>> = (0..size)
+        .map(|a| {
+            (0..size)
+                .map(|b| match (leftover.get(a), real_modes.get(b)) {
+                    (Some(&i), Some(&k)) if roots[i].im == 0.0 => -shares[i][k],
+                    (Some(_), Some(_)) => 1.0,
+                    _ => 0.0,
+                })
+                .collect()
+        })
+        .collect();
+    for (a, b) in hungarian(&cost).into_iter().enumerate() {
+        if let (Some(&i), Some(&k)) = (leftover.get(a), real_modes.get(b)) {
+            if roots[i].im == 0.0 {
+                second[i] = Some(k);
+            }
+        }
+    }
+    for &i in &leftover {
+        if second[i].is_none() {
+            second[i] = (0..natural.len()).max_by(|&a, &b| shares[i][a].total_cmp(&shares[i][b]));
+        }
+    }
+    // Of a mode's two real roots the less stable one carries the plain label: it is the one
+    // that decides stability (and the flutter search reports).
+    for &i in &leftover {
+        if let Some(k) = second[i] {
+            if let Some(j) = owner[k] {
+                if roots[i].im == 0.0 && roots[j].im == 0.0 && roots[i].re > roots[j].re {
+                    mode_of[i] = Some(k);
+                    mode_of[j] = None;
+                    second[j] = Some(k);
+                    owner[k] = Some(i);
+                }
+            }
+        }
+    }
+    for (i, root) in roots.iter_mut().enumerate() {
+        root.label = match (mode_of[i], second[i]) {
+            (Some(k), _) => natural[k].label.clone(),
+            (None, Some(k)) => format!("{}{SECOND_ROOT_SUFFIX}", natural[k].label),
+            (None, None) => "structural".to_string(),
+        };
+    }
+    Ok(())
 }
 
 fn verdict_of<'a>(roots: impl Iterator<Item = &'a Mode>, tol: f64) -> Verdict {

@@ -42,23 +42,6 @@ enum SolverReq {
     Quit,
 }
 
-enum JobReq {
-    Boundary {
-        gen: u64,
-        preset: Arc<Preset>,
-        key: &'static str,
-        from: f64,
-        to: f64,
-        points: usize,
-    },
-    Campbell {
-        gen: u64,
-        preset: Arc<Preset>,
-        grid: Vec<f64>,
-    },
-    Quit,
-}
-
 /// The text of a caught panic.
 pub fn panic_text(payload: &(dyn std::any::Any + Send)) -> String {
     if let Some(s) = payload.downcast_ref::<&str>() {
@@ -85,7 +68,7 @@ pub struct Worker {
     out: Sender<Msg>,
     batch_interval: Duration,
     solver: Sender<SolverReq>,
-    jobs: Sender<JobReq>,
+    jobs: Sender<Effect>,
     /// The last solve and pause requests, re-sent to a restarted solver.
     last_solve: Option<(u64, Arc<Preset>)>,
     paused: bool,
@@ -128,27 +111,11 @@ impl Worker {
                 self.paused = p;
                 self.send_solver(SolverReq::Pause(p));
             }
-            Effect::Boundary {
-                gen,
-                preset,
-                key,
-                from,
-                to,
-                points,
-            } => self.send_jobs(JobReq::Boundary {
-                gen,
-                preset,
-                key,
-                from,
-                to,
-                points,
-            }),
-            Effect::Campbell { gen, preset, grid } => {
-                self.send_jobs(JobReq::Campbell { gen, preset, grid })
-            }
+            // Background jobs travel as the effects themselves.
+            job @ (Effect::Boundary { .. } | Effect::Campbell { .. }) => self.send_jobs(job),
             Effect::Quit => {
                 let _ = self.solver.send(SolverReq::Quit);
-                let _ = self.jobs.send(JobReq::Quit);
+                let _ = self.jobs.send(Effect::Quit);
             }
         }
     }
@@ -174,7 +141,7 @@ impl Worker {
         }
     }
 
-    fn send_jobs(&mut self, req: JobReq) {
+    fn send_jobs(&mut self, req: Effect) {
         if let Err(failed) = self.jobs.send(req) {
             let _ = self.out.send(Msg::WorkerFailed(
                 "the background-job thread stopped; restarted it".into(),
@@ -211,7 +178,7 @@ fn spawn_solver(
     tx
 }
 
-fn spawn_jobs(engine: Arc<dyn Engine>, out: Sender<Msg>) -> Sender<JobReq> {
+fn spawn_jobs(engine: Arc<dyn Engine>, out: Sender<Msg>) -> Sender<Effect> {
     let (tx, rx) = unbounded();
     let spawned = std::thread::Builder::new()
         .name(JOBS_THREAD.into())
@@ -368,9 +335,9 @@ impl Solver {
     }
 }
 
-fn run_jobs(engine: &dyn Engine, out: &Sender<Msg>, rx: &Receiver<JobReq>) {
-    let mut boundary: Option<JobReq> = None;
-    let mut campbell: Option<JobReq> = None;
+fn run_jobs(engine: &dyn Engine, out: &Sender<Msg>, rx: &Receiver<Effect>) {
+    let mut boundary: Option<Effect> = None;
+    let mut campbell: Option<Effect> = None;
     loop {
         if boundary.is_none() && campbell.is_none() {
             match rx.recv() {
@@ -396,7 +363,7 @@ fn run_jobs(engine: &dyn Engine, out: &Sender<Msg>, rx: &Receiver<JobReq>) {
             }
         }
         // One job, then look at the channel again: a newer request may have replaced the other.
-        let msg = if let Some(JobReq::Boundary {
+        let msg = if let Some(Effect::Boundary {
             gen,
             preset,
             key,
@@ -412,7 +379,7 @@ fn run_jobs(engine: &dyn Engine, out: &Sender<Msg>, rx: &Receiver<JobReq>) {
                     engine.boundary(&preset, key, from, to, points)
                 }),
             }
-        } else if let Some(JobReq::Campbell { gen, preset, grid }) = campbell.take() {
+        } else if let Some(Effect::Campbell { gen, preset, grid }) = campbell.take() {
             Msg::Campbell {
                 gen,
                 result: guarded("Campbell sweep", || engine.campbell(&preset, &grid)),
@@ -427,11 +394,13 @@ fn run_jobs(engine: &dyn Engine, out: &Sender<Msg>, rx: &Receiver<JobReq>) {
 }
 
 /// File a job request (latest wins); false on quit.
-fn take(r: JobReq, boundary: &mut Option<JobReq>, campbell: &mut Option<JobReq>) -> bool {
+fn take(r: Effect, boundary: &mut Option<Effect>, campbell: &mut Option<Effect>) -> bool {
     match r {
-        JobReq::Quit => return false,
-        b @ JobReq::Boundary { .. } => *boundary = Some(b),
-        c @ JobReq::Campbell { .. } => *campbell = Some(c),
+        Effect::Quit => return false,
+        b @ Effect::Boundary { .. } => *boundary = Some(b),
+        c @ Effect::Campbell { .. } => *campbell = Some(c),
+        // Only jobs and Quit are sent to this thread.
+        _ => {}
     }
     true
 }
