@@ -361,7 +361,7 @@ fn flutter_json_shape() {
 }
 
 #[test]
-fn simulate_json_shape_and_plot_refusal() {
+fn simulate_json_shape_and_bad_plot_extension() {
     let v = json(&[
         "simulate",
         "--preset",
@@ -377,7 +377,8 @@ fn simulate_json_shape_and_plot_refusal() {
     assert_eq!(v["tip_flap"].as_array().unwrap().len(), n);
     Command::cargo_bin("flutterscope")
         .unwrap()
-        .args(["simulate", "--preset", "goland", "--plot", "x.svg"])
+        .args(["simulate", "--preset", "goland", "--plot", "response.txt"])
         .assert()
         .code(2);
+    assert!(!std::path::Path::new("response.txt").exists());
 }

@@ -105,7 +105,7 @@ fn sweep_json_shape_and_errors() {
         .collect();
     assert_eq!(torsion.len(), 3);
     assert!(torsion[0] < 0.0 && torsion[2] > 0.0);
-    for bad in [&["--shard", "5/4"][..], &["--plot", "x.svg"][..]] {
+    for bad in [&["--shard", "5/4"][..], &["--plot", "sweep.txt"][..]] {
         Command::cargo_bin("flutterscope")
             .unwrap()
             .args(

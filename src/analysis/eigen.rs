@@ -14,8 +14,8 @@
 //! spin on NaN input). faer reports non-convergence as an error; we add finite checks on the input
 //! and the output so every failure is an [`Error::Numerical`], never a hang or a panic.
 
-use crate::error::{Error, Result};
 use crate::analysis::tracking::hungarian;
+use crate::error::{Error, Result};
 use crate::physics::structure::StructuralModel;
 use crate::physics::system::{LinearSystem, System};
 use crate::preset::Preset;
@@ -490,7 +490,9 @@ fn fast_decomposition(b: &DMatrix<f64>, want_left: bool) -> Option<Decomposition
         }
     }
     let combine = |re: DMatrix<f64>, im: DMatrix<f64>| {
-        DMatrix::from_fn(re.nrows(), re.ncols(), |i, j| Complex::new(re[(i, j)], im[(i, j)]))
+        DMatrix::from_fn(re.nrows(), re.ncols(), |i, j| {
+            Complex::new(re[(i, j)], im[(i, j)])
+        })
     };
     let right = combine(&q * xr, &q * xi);
     let left = combine(&q * yr, &q * yi);
@@ -518,7 +520,8 @@ impl HessenbergLu {
             self.u[i + i * n] -= lambda;
         }
         self.mult.clear();
-        self.mult.resize(n.saturating_sub(1), Complex::new(0.0, 0.0));
+        self.mult
+            .resize(n.saturating_sub(1), Complex::new(0.0, 0.0));
         self.swapped.clear();
         self.swapped.resize(n.saturating_sub(1), false);
         let u = &mut self.u;
@@ -737,12 +740,7 @@ fn hessenberg_eigenvalues(mut h: DMatrix<f64>) -> Option<Vec<Complex<f64>>> {
                 let d = DAT1 * s + h[(l, l)];
                 (d, DAT2 * s, s, d)
             } else {
-                (
-                    h[(i - 1, i - 1)],
-                    h[(i - 1, i)],
-                    h[(i, i - 1)],
-                    h[(i, i)],
-                )
+                (h[(i - 1, i - 1)], h[(i - 1, i)], h[(i, i - 1)], h[(i, i)])
             };
             let s = h11.abs() + h12.abs() + h21.abs() + h22.abs();
             let (rt1r, rt1i, rt2r, rt2i) = if s == 0.0 {
@@ -848,7 +846,8 @@ fn hessenberg_eigenvalues(mut h: DMatrix<f64>) -> Option<Vec<Complex<f64>>> {
         if l == i {
             out[i] = Complex::new(h[(i, i)], 0.0);
         } else {
-            let (a, b) = eigenvalues_2x2(h[(i - 1, i - 1)], h[(i - 1, i)], h[(i, i - 1)], h[(i, i)]);
+            let (a, b) =
+                eigenvalues_2x2(h[(i - 1, i - 1)], h[(i - 1, i)], h[(i, i - 1)], h[(i, i)]);
             out[i - 1] = a;
             out[i] = b;
         }
@@ -1046,6 +1045,102 @@ mod tests {
         let k = r.values.iter().position(|l| l.im == 0.0).unwrap();
         let p = r.participation(k);
         assert!((p[2] - 1.0).abs() < 1e-12);
+    }
+
+    /// Every returned pair satisfies A r = λ r (and lᴴ A = λ lᴴ) to round-off.
+    fn assert_eigenpairs(a: &DMatrix<f64>, r: &Roots, tol: f64) {
+        let ac = a.map(|v| Complex::new(v, 0.0));
+        let scale = a.norm();
+        for (k, l) in r.values.iter().enumerate() {
+            let v = r.vectors.column(k);
+            let res = &ac * v - v * *l;
+            assert!(
+                res.norm() <= tol * scale * v.norm(),
+                "right {k}: {}",
+                res.norm()
+            );
+            if r.left.ncols() > 0 {
+                let w = r.left.column(k);
+                let res = w.adjoint() * &ac - w.adjoint() * *l;
+                assert!(res.norm() <= tol * scale * w.norm(), "left {k}");
+            }
+        }
+    }
+
+    #[test]
+    fn fast_path_handles_state_matrices_and_agrees_with_faer() {
+        use crate::preset::Preset;
+        let cases: [(&str, &[&str]); 4] = [
+            ("liu2017", &[]),
+            ("demo-blade", &["aero.stations=16"]),
+            ("goland", &[]),
+            ("liu2017", &["aero.model=none", "structure.loss_factor=0"]),
+        ];
+        for (name, o) in cases {
+            let o: Vec<String> = o.iter().map(|s| s.to_string()).collect();
+            let a = linear_system(&Preset::load(name, &o).unwrap()).unwrap().a;
+            let n = a.nrows();
+            let d = balancing_scale(&a);
+            let b = DMatrix::from_fn(n, n, |i, j| a[(i, j)] * d[j] / d[i]);
+            // The fast path must not fall back on the matrices we actually solve.
+            let (fast, _, _) = fast_decomposition(&b, true).expect(name);
+            let (slow, _, _) = faer_decomposition(&b, true).unwrap();
+            assert_eq!(fast.len(), slow.len(), "{name}");
+            let big = slow.iter().map(|l| l.norm()).fold(0.0, f64::max);
+            for x in &fast {
+                let d = slow
+                    .iter()
+                    .map(|y| (x - y).norm())
+                    .fold(f64::INFINITY, f64::min);
+                assert!(d <= 1e-9 * big, "{name}: {x} not among faer's roots");
+            }
+            assert_eigenpairs(&a, &eigen_decomposition(&a).unwrap(), 1e-10);
+        }
+    }
+
+    #[test]
+    fn repeated_roots_get_independent_vectors() {
+        // Two identical decoupled oscillators and a triple real root.
+        let mut a = DMatrix::<f64>::zeros(7, 7);
+        for k in 0..2 {
+            a[(2 * k, 2 * k + 1)] = 1.0;
+            a[(2 * k + 1, 2 * k)] = -4.0;
+            a[(2 * k + 1, 2 * k + 1)] = -0.2;
+        }
+        for k in 4..7 {
+            a[(k, k)] = -3.0;
+        }
+        assert!(fast_decomposition(&a, true).is_some());
+        let r = eigen_decomposition(&a).unwrap();
+        assert_eq!(r.values.len(), 5);
+        assert_eigenpairs(&a, &r, 1e-10);
+        // The eigenvectors of each repeated root span its eigenspace.
+        let rank = |cols: Vec<usize>| {
+            let m = DMatrix::from_fn(7, cols.len(), |i, j| r.vectors[(i, cols[j])]);
+            m.svd(false, false)
+                .singular_values
+                .iter()
+                .filter(|s| **s > 1e-8)
+                .count()
+        };
+        let osc: Vec<usize> = (0..5).filter(|&k| r.values[k].im > 0.0).collect();
+        let real: Vec<usize> = (0..5).filter(|&k| r.values[k].im == 0.0).collect();
+        assert_eq!((rank(osc), rank(real)), (2, 3));
+    }
+
+    #[test]
+    fn hessenberg_qr_converges_on_a_cyclic_permutation() {
+        // The classic stall case of the unshifted/standard-shift QR iteration: only the
+        // exceptional shifts break the cycle. Eigenvalues: the 6th roots of unity.
+        let n = 6;
+        let a = DMatrix::from_fn(n, n, |i, j| if i == (j + 1) % n { 1.0 } else { 0.0 });
+        assert!(hessenberg_eigenvalues(a.clone()).is_some());
+        let r = eigen_decomposition(&a).unwrap();
+        assert_eq!(r.values.len(), 4);
+        for l in &r.values {
+            assert!((l.norm() - 1.0).abs() < 1e-12);
+        }
+        assert_eigenpairs(&a, &r, 1e-10);
     }
 
     #[test]

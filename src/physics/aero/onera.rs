@@ -5,7 +5,9 @@
 //! analytic Jacobian of MODEL.md §6), the steady states, and the strip loads `f_u`, `m_φ` with
 //! their partial derivatives. Spanwise sums and basis functions belong to the caller; the one
 //! helper that touches them, [`add_generalized_force`], only weights a strip load by its
-//! quadrature weight and the basis values at the station.
+//! quadrature weight and the basis values at the station. [`OneraModel`] wraps these functions
+//! as the system's [`StripModel`], including where the model is nonlinear
+//! ([`NonlinearSupport`], for the time stepper of §7).
 //!
 //! State layout per station (MODEL.md §5.3):
 //! - `rigid` (7): `[C1L, C2L, Ċ2L, C2M, Ċ2M, C2D, Ċ2D]`, driven by the rigid angle `α_r`;
