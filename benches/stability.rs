@@ -89,7 +89,8 @@ fn part_eigen_n5(b: divan::Bencher) {
     b.bench(|| flutterscope::analysis::eigen::analyse_system(divan::black_box(&ls)).unwrap());
 }
 
-/// Breakdown: the dense eigendecomposition (left and right vectors) of a 20 × 20 state matrix.
+/// Breakdown: the dense eigendecomposition (left and right vectors) of a 20 × 20 state matrix
+/// (`analyse` skips the left vectors when there are no aero states).
 #[divan::bench]
 fn part_eigen_decomposition_20(b: divan::Bencher) {
     let p = preset("liu2017", &["structure.modes=5"]);
@@ -106,28 +107,18 @@ fn part_eigen_decomposition_random_20(b: divan::Bencher) {
     b.bench(|| flutterscope::analysis::eigen::eigen_decomposition(divan::black_box(&a)).unwrap());
 }
 
-// ---- temporary experiments ----
-fn sys_a(name: &str, o: &[&str]) -> nalgebra::DMatrix<f64> {
-    flutterscope::analysis::eigen::linear_system(&preset(name, o)).unwrap().a
+/// Breakdown: eigen-analysis with vectors of the 52-state theodorsen system (16 stations).
+#[divan::bench]
+fn part_eigen_theodorsen_n5_16_stations(b: divan::Bencher) {
+    let p = preset("demo-blade", &["structure.modes=5", "aero.stations=16"]);
+    let ls = flutterscope::analysis::eigen::linear_system(&p).unwrap();
+    b.bench(|| flutterscope::analysis::eigen::analyse_system(divan::black_box(&ls)).unwrap());
 }
-#[divan::bench(args = [0, 1])]
-fn x_schur_q(b: divan::Bencher, which: usize) {
-    let a = if which == 0 { sys_a("liu2017", &["structure.modes=5"]) } else { sys_a("demo-blade", &["structure.modes=5", "aero.stations=16"]) };
-    b.bench(|| nalgebra::Schur::try_new(divan::black_box(a.clone()), f64::EPSILON, 1000).unwrap());
-}
-#[divan::bench(args = [0, 1])]
-fn x_eig_full(b: divan::Bencher, which: usize) {
-    let a = if which == 0 { sys_a("liu2017", &["structure.modes=5"]) } else { sys_a("demo-blade", &["structure.modes=5", "aero.stations=16"]) };
-    b.bench(|| flutterscope::analysis::eigen::eigen_decomposition(divan::black_box(&a)).unwrap());
-}
-#[divan::bench(args = [0, 1])]
-fn x_linearise(b: divan::Bencher, which: usize) {
-    let p = if which == 0 { preset("liu2017", &["structure.modes=5"]) } else { preset("demo-blade", &["structure.modes=5", "aero.stations=16"]) };
-    b.bench(|| flutterscope::analysis::eigen::linear_system(divan::black_box(&p)).unwrap());
-}
-#[divan::bench(args = [0, 1])]
-fn x_natural(b: divan::Bencher, which: usize) {
-    let p = if which == 0 { preset("liu2017", &["structure.modes=5"]) } else { preset("demo-blade", &["structure.modes=5", "aero.stations=16"]) };
+
+/// Breakdown: the in-vacuo natural modes that label the structural roots (N = 5).
+#[divan::bench]
+fn part_natural_modes_n5(b: divan::Bencher) {
+    let p = preset("liu2017", &["structure.modes=5"]);
     let s = flutterscope::physics::structure::assemble(&p).unwrap();
     b.bench(|| divan::black_box(&s).natural_modes().unwrap());
 }

@@ -191,8 +191,9 @@ pub fn analyse_system(ls: &LinearSystem) -> Result<Stability> {
 /// Suffix of a structural root left over after the one-to-one assignment (there are more
 /// structural roots than natural modes only when some mode is non-oscillatory: an overdamped
 /// or divergent mode has two real roots). The least stable of a mode's real roots carries the
-/// plain label; the other is `"torsion 4 (2nd)"`.
-pub const SECOND_ROOT_SUFFIX: &str = " (2nd)";
+/// plain label; the other is primed, `"torsion 4'"` (short, so it survives the explorer's narrow
+/// modes column, where a longer suffix would be cut to a duplicate of the plain label).
+pub const SECOND_ROOT_SUFFIX: &str = "'";
 
 /// Labels structural roots by the in-vacuo natural modes of (M, K_e + K_c) at the same rotor
 /// speed (MODEL.md §6): each root's q-part is expanded on the mass-normalised natural modes,
