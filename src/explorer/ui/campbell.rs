@@ -208,11 +208,22 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
         .x_axis(x_axis())
         .y_axis(Axis::default().bounds(z).style(dim).labels([
             Span::raw(sig(z[0], 2)),
-            Span::raw(sig(0.5 * (z[0] + z[1]), 2)),
+            Span::raw(mid_label(z)),
             Span::raw(sig(z[1], 2)),
         ]));
     frame.render_widget(f_chart, f_area);
     frame.render_widget(z_chart, z_area);
+}
+
+/// The middle tick of an axis: at a terminal's resolution a midpoint within 2 % of the range
+/// from zero is drawn on the zero line, so call it 0 rather than print round-off like -0.0098.
+fn mid_label(range: [f64; 2]) -> String {
+    let mid = 0.5 * (range[0] + range[1]);
+    if mid.abs() < 0.02 * (range[1] - range[0]) {
+        "0".to_string()
+    } else {
+        sig(mid, 2)
+    }
 }
 
 #[cfg(test)]
