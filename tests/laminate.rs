@@ -26,9 +26,10 @@ const PAPER_TABLE1: [(f64, f64, f64, f64); 7] = [
 ];
 
 fn layup_preset() -> Preset {
-    let mut p = Preset::default();
-    p.origin = "test".into();
-    p
+    Preset {
+        origin: "test".into(),
+        ..Preset::default()
+    }
 }
 
 fn box_preset(width: f64, height: f64, angle: f64) -> Preset {

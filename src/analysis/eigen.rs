@@ -19,7 +19,7 @@ use crate::error::{Error, Result};
 use crate::physics::structure::StructuralModel;
 use crate::physics::system::{LinearSystem, System};
 use crate::preset::Preset;
-use nalgebra::{Complex, DMatrix, DVector};
+use nalgebra::{Complex, ComplexField, DMatrix, DVector};
 use serde::Serialize;
 
 /// The stability verdict of one operating point.
@@ -377,9 +377,13 @@ pub fn eigen_decomposition(a: &DMatrix<f64>) -> Result<Roots> {
 /// level; vectors map back by Q and D.
 ///
 /// Against faer's full decomposition (what this replaced: Schur form with its vectors, then
-/// back-substitution for all vectors) this does a fraction of the flops on our small matrices
-/// and avoids faer's fixed overheads: measured on the 20-state quasi-steady system 105 µs →
-/// see the README/bench figures. Roots of (nearly) equal value get different start vectors and
+/// back-substitution for all vectors) this does a fraction of the flops on our small matrices:
+/// measured single-threaded, 20-state quasi-steady system ≈ 110 µs → ≈ 65 µs without left
+/// vectors (what [`analyse_system`] asks for when there are no aero states), 56-state
+/// theodorsen system ≈ 1.7 ms → ≈ 1.2 ms with both (`part_eigen_*` in the stability bench).
+/// nalgebra's bounded `Schur::try_new` was also measured and is slower than faer here (it
+/// always accumulates Q, and it has no exceptional shifts). Roots of (nearly) equal value get
+/// different start vectors and
 /// are orthogonalised against each other, so an exactly repeated root still returns a basis of
 /// its eigenspace. Whenever the fast path fails — the QR iteration hits its cap, or a residual
 /// check fails (defective or extremely ill-conditioned roots) — the matrix goes to faer's
@@ -451,7 +455,6 @@ fn fast_decomposition(b: &DMatrix<f64>, want_left: bool) -> Option<Decomposition
     // One entry per real root and per conjugate pair (the member with ω > 0).
     let values: Vec<Complex<f64>> = all.into_iter().filter(|l| l.im >= 0.0).collect();
     let hnorm = h.norm().max(f64::MIN_POSITIVE);
-    let eps3 = f64::EPSILON * hnorm;
     let k = values.len();
     let mut xr = DMatrix::<f64>::zeros(n, k);
     let mut xi = DMatrix::<f64>::zeros(n, k);
@@ -460,34 +463,27 @@ fn fast_decomposition(b: &DMatrix<f64>, want_left: bool) -> Option<Decomposition
     } else {
         (DMatrix::zeros(n, 0), DMatrix::zeros(n, 0))
     };
-    let mut done_right: Vec<(Complex<f64>, Vec<Complex<f64>>)> = Vec::new();
-    let mut done_left: Vec<(Complex<f64>, Vec<Complex<f64>>)> = Vec::new();
-    let mut lu = HessenbergLu::default();
+    // Real roots in real arithmetic (a quarter of the work), pairs in complex.
+    let mut real = InverseIteration::<f64>::new(&h, hnorm);
+    let mut complex = InverseIteration::<Complex<f64>>::new(&h, hnorm);
     for (c, &lambda) in values.iter().enumerate() {
-        lu.factor(&h, lambda, eps3);
-        // Earlier roots this close share (numerically) an eigenspace with this one.
-        let near = |done: &[(Complex<f64>, Vec<Complex<f64>>)]| -> Vec<Vec<Complex<f64>>> {
-            done.iter()
-                .filter(|(l, _)| (l - lambda).norm() <= 1e3 * eps3)
-                .map(|(_, v)| v.clone())
-                .collect()
+        let (x, w): (Vec<Complex<f64>>, Option<Vec<Complex<f64>>>) = if lambda.im == 0.0 {
+            let (x, w) = real.vectors(lambda.re, want_left)?;
+            let up = |v: Vec<f64>| v.into_iter().map(|r| Complex::new(r, 0.0)).collect();
+            (up(x), w.map(up))
+        } else {
+            complex.vectors(lambda, want_left)?
         };
-        let cluster = near(&done_right);
-        let x = inverse_iteration(&h, &lu, lambda, hnorm, &cluster, false)?;
         for i in 0..n {
             xr[(i, c)] = x[i].re;
             xi[(i, c)] = x[i].im;
         }
-        done_right.push((lambda, x));
-        if want_left {
-            let cluster = near(&done_left);
-            let w = inverse_iteration(&h, &lu, lambda, hnorm, &cluster, true)?;
+        if let Some(w) = w {
             // wᵀH = λwᵀ, so l = w̄ satisfies lᴴH = λlᴴ.
             for i in 0..n {
                 yr[(i, c)] = w[i].re;
                 yi[(i, c)] = -w[i].im;
             }
-            done_left.push((lambda, w));
         }
     }
     let combine = |re: DMatrix<f64>, im: DMatrix<f64>| {
@@ -500,60 +496,190 @@ fn fast_decomposition(b: &DMatrix<f64>, want_left: bool) -> Option<Decomposition
     Some((values, right, left))
 }
 
-/// LU factors of the complex Hessenberg matrix H − λI with adjacent-row partial pivoting:
+/// Inverse iteration on one upper Hessenberg matrix for a sequence of shifts (real `f64` or
+/// complex), remembering earlier roots' vectors to separate (numerically) repeated roots.
+struct InverseIteration<'a, T> {
+    h: &'a DMatrix<f64>,
+    hnorm: f64,
+    lu: HessenbergLu<T>,
+    right: Vec<(T, Vec<T>)>,
+    left: Vec<(T, Vec<T>)>,
+}
+
+impl<'a, T: ComplexField<RealField = f64> + Copy> InverseIteration<'a, T> {
+    fn new(h: &'a DMatrix<f64>, hnorm: f64) -> Self {
+        InverseIteration {
+            h,
+            hnorm,
+            lu: HessenbergLu {
+                n: 0,
+                u: Vec::new(),
+                mult: Vec::new(),
+                swapped: Vec::new(),
+            },
+            right: Vec::new(),
+            left: Vec::new(),
+        }
+    }
+
+    /// Right eigenvector x (Hx = λx) and, if asked, w with wᵀH = λwᵀ; unit 2-norm.
+    fn vectors(&mut self, lambda: T, want_left: bool) -> Option<(Vec<T>, Option<Vec<T>>)> {
+        let eps3 = f64::EPSILON * self.hnorm;
+        self.lu.factor(self.h, lambda, eps3);
+        // Earlier roots this close share (numerically) an eigenspace with this one.
+        let near = |done: &[(T, Vec<T>)]| -> Vec<Vec<T>> {
+            done.iter()
+                .filter(|(l, _)| (*l - lambda).modulus() <= 1e3 * eps3)
+                .map(|(_, v)| v.clone())
+                .collect()
+        };
+        let cluster = near(&self.right);
+        let x = self.iterate(lambda, &cluster, false)?;
+        self.right.push((lambda, x.clone()));
+        let w = if want_left {
+            let cluster = near(&self.left);
+            let w = self.iterate(lambda, &cluster, true)?;
+            self.left.push((lambda, w.clone()));
+            Some(w)
+        } else {
+            None
+        };
+        Some((x, w))
+    }
+
+    /// At most four solves from the current factors, until the residual is at round-off level
+    /// (LAPACK `dlaein`). Without a cluster the residual of the normalised iterate is known
+    /// without a product: (H − λI)(x/‖x‖) = v/‖x‖ for the unit right-hand side v, up to the ε‖H‖
+    /// pivot perturbation, so the growth ‖x‖ decides; inside a cluster the orthogonalisation
+    /// changes the iterate and the residual is computed.
+    fn iterate(&self, lambda: T, cluster: &[Vec<T>], transposed: bool) -> Option<Vec<T>> {
+        let n = self.h.nrows();
+        let tolerance = 64.0 * (n as f64) * f64::EPSILON * self.hnorm;
+        // Start: all ones (LAPACK), or, inside a cluster, a vector that differs from the ones
+        // used before so repeated roots get independent iterates.
+        let mut x: Vec<T> = (0..n)
+            .map(|i| {
+                let t = if cluster.is_empty() {
+                    1.0
+                } else {
+                    1.0 + ((i * (cluster.len() + 1) * 7919) % 101) as f64 / 101.0
+                };
+                T::from_real(t)
+            })
+            .collect();
+        // The first right solve skips G: its right-hand side is G⁻¹·start, whose norm the
+        // growth test needs (O(n)).
+        let mut rhs_norm = if transposed || !cluster.is_empty() {
+            (n as f64).sqrt()
+        } else {
+            self.lu.start_norm(&x)
+        };
+        for iteration in 0..4 {
+            if transposed {
+                self.lu.solve_transposed(&mut x);
+            } else {
+                self.lu.solve(&mut x, iteration > 0);
+            }
+            for c in cluster {
+                let dot = c
+                    .iter()
+                    .zip(&x)
+                    .fold(T::zero(), |s, (a, b)| s + a.conjugate() * *b);
+                for (xi, ci) in x.iter_mut().zip(c) {
+                    *xi -= dot * *ci;
+                }
+            }
+            let norm = x.iter().map(|c| c.modulus_squared()).sum::<f64>().sqrt();
+            if !(norm.is_finite() && norm > 0.0) {
+                return None;
+            }
+            for c in x.iter_mut() {
+                *c = c.unscale(norm);
+            }
+            let res = if cluster.is_empty() {
+                rhs_norm / norm + 2.0 * eps_pivot(self.hnorm)
+            } else {
+                residual(self.h, &x, lambda, transposed)
+            };
+            if res <= tolerance {
+                return Some(x);
+            }
+            rhs_norm = 1.0;
+        }
+        None
+    }
+}
+
+/// The pivot perturbation ε‖H‖ of [`HessenbergLu::factor`].
+fn eps_pivot(hnorm: f64) -> f64 {
+    f64::EPSILON * hnorm
+}
+
+/// LU factors of the Hessenberg matrix H − λI with adjacent-row partial pivoting:
 /// G (H − λI) = U, G = M_{n−2}P_{n−2}⋯M_0P_0, each M_k one multiplier below the diagonal.
-#[derive(Default)]
-struct HessenbergLu {
+struct HessenbergLu<T> {
     n: usize,
     /// U, column-major n × n (upper triangle used).
-    u: Vec<Complex<f64>>,
-    mult: Vec<Complex<f64>>,
+    u: Vec<T>,
+    mult: Vec<T>,
     swapped: Vec<bool>,
 }
 
-impl HessenbergLu {
-    fn factor(&mut self, h: &DMatrix<f64>, lambda: Complex<f64>, eps3: f64) {
+impl<T: ComplexField<RealField = f64> + Copy> HessenbergLu<T> {
+    fn factor(&mut self, h: &DMatrix<f64>, lambda: T, eps3: f64) {
         let n = h.nrows();
         self.n = n;
         self.u.clear();
-        self.u.extend(h.iter().map(|&v| Complex::new(v, 0.0)));
+        self.u.extend(h.as_slice().iter().map(|&v| T::from_real(v)));
         for i in 0..n {
             self.u[i + i * n] -= lambda;
         }
         self.mult.clear();
-        self.mult
-            .resize(n.saturating_sub(1), Complex::new(0.0, 0.0));
+        self.mult.resize(n.saturating_sub(1), T::zero());
         self.swapped.clear();
         self.swapped.resize(n.saturating_sub(1), false);
         let u = &mut self.u;
-        let tiny = Complex::new(eps3, 0.0);
+        let tiny = T::from_real(eps3);
         for k in 0..n.saturating_sub(1) {
-            if u[k + 1 + k * n].norm_sqr() > u[k + k * n].norm_sqr() {
+            if u[k + 1 + k * n].modulus_squared() > u[k + k * n].modulus_squared() {
                 for j in k..n {
                     u.swap(k + j * n, k + 1 + j * n);
                 }
                 self.swapped[k] = true;
             }
-            if u[k + k * n].norm() < eps3 {
+            if u[k + k * n].modulus_squared() < eps3 * eps3 {
                 // A (numerically) exact shift: the standard perturbation of inverse iteration.
                 u[k + k * n] = tiny;
             }
             let m = u[k + 1 + k * n] / u[k + k * n];
             self.mult[k] = m;
-            u[k + 1 + k * n] = Complex::new(0.0, 0.0);
+            u[k + 1 + k * n] = T::zero();
             for j in k + 1..n {
                 let ukj = u[k + j * n];
                 u[k + 1 + j * n] -= m * ukj;
             }
         }
-        if n > 0 && u[(n - 1) * (n + 1)].norm() < eps3 {
+        if n > 0 && u[(n - 1) * (n + 1)].modulus_squared() < eps3 * eps3 {
             u[(n - 1) * (n + 1)] = tiny;
         }
     }
 
+    /// ‖G⁻¹v‖₂: the right-hand side that a solve with `apply_g = false` actually solves for.
+    fn start_norm(&self, v: &[T]) -> f64 {
+        let mut w = v.to_vec();
+        for k in (0..self.n.saturating_sub(1)).rev() {
+            let wk = w[k];
+            w[k + 1] += self.mult[k] * wk;
+            if self.swapped[k] {
+                w.swap(k, k + 1);
+            }
+        }
+        w.iter().map(|c| c.modulus_squared()).sum::<f64>().sqrt()
+    }
+
     /// Solves (H − λI) x = v in place; with `apply_g = false` solves U x = v (the first step of
     /// LAPACK's inverse iteration, whose start vector is then G⁻¹v).
-    fn solve(&self, v: &mut [Complex<f64>], apply_g: bool) {
+    fn solve(&self, v: &mut [T], apply_g: bool) {
         let n = self.n;
         if apply_g {
             for k in 0..n.saturating_sub(1) {
@@ -567,107 +693,60 @@ impl HessenbergLu {
         for j in (0..n).rev() {
             v[j] /= self.u[j + j * n];
             let vj = v[j];
-            for i in 0..j {
-                v[i] -= self.u[i + j * n] * vj;
+            let col = &self.u[j * n..j * n + j];
+            for (vi, uij) in v[..j].iter_mut().zip(col) {
+                *vi -= *uij * vj;
             }
         }
     }
 
-    /// Solves (H − λI)ᵀ w = v in place (Uᵀz = v, then w = Gᵀz); `apply_g` as in [`Self::solve`].
-    fn solve_transposed(&self, v: &mut [Complex<f64>], apply_g: bool) {
+    /// Solves (H − λI)ᵀ w = v in place: Uᵀz = v, then w = Gᵀz. (Gᵀ comes after the triangular
+    /// solve here, so unlike [`Self::solve`] it cannot be folded into the start vector.)
+    fn solve_transposed(&self, v: &mut [T]) {
         let n = self.n;
         for j in 0..n {
-            let mut s = v[j];
-            for i in 0..j {
-                s -= self.u[i + j * n] * v[i];
-            }
+            let col = &self.u[j * n..j * n + j];
+            let s = col
+                .iter()
+                .zip(&v[..j])
+                .fold(v[j], |s, (uij, vi)| s - *uij * *vi);
             v[j] = s / self.u[j + j * n];
         }
-        if apply_g {
-            for k in (0..n.saturating_sub(1)).rev() {
-                let vk1 = v[k + 1];
-                v[k] -= self.mult[k] * vk1;
-                if self.swapped[k] {
-                    v.swap(k, k + 1);
-                }
+        for k in (0..n.saturating_sub(1)).rev() {
+            let vk1 = v[k + 1];
+            v[k] -= self.mult[k] * vk1;
+            if self.swapped[k] {
+                v.swap(k, k + 1);
             }
         }
     }
-}
-
-/// Inverse iteration for a right (or, `transposed`, a left) eigenvector of the Hessenberg `h`
-/// from the factors of H − λI: at most four solves, each result orthogonalised against the
-/// vectors of earlier roots in the same cluster, until the residual is at round-off level.
-/// Unit 2-norm. `None` if it never gets there.
-fn inverse_iteration(
-    h: &DMatrix<f64>,
-    lu: &HessenbergLu,
-    lambda: Complex<f64>,
-    hnorm: f64,
-    cluster: &[Vec<Complex<f64>>],
-    transposed: bool,
-) -> Option<Vec<Complex<f64>>> {
-    let n = h.nrows();
-    // Start: all ones (LAPACK), or, inside a cluster, a vector that differs from the ones
-    // used before so repeated roots get independent iterates.
-    let mut x: Vec<Complex<f64>> = (0..n)
-        .map(|i| {
-            let t = if cluster.is_empty() {
-                1.0
-            } else {
-                1.0 + ((i * (cluster.len() + 1) * 7919) % 101) as f64 / 101.0
-            };
-            Complex::new(t, 0.0)
-        })
-        .collect();
-    let tolerance = 64.0 * (n as f64) * f64::EPSILON * hnorm;
-    for iteration in 0..4 {
-        if transposed {
-            lu.solve_transposed(&mut x, iteration > 0);
-        } else {
-            lu.solve(&mut x, iteration > 0);
-        }
-        for c in cluster {
-            let dot: Complex<f64> = c.iter().zip(&x).map(|(a, b)| a.conj() * b).sum();
-            for (xi, ci) in x.iter_mut().zip(c) {
-                *xi -= dot * ci;
-            }
-        }
-        let norm = x.iter().map(|c| c.norm_sqr()).sum::<f64>().sqrt();
-        if !(norm.is_finite() && norm > 0.0) {
-            return None;
-        }
-        for c in x.iter_mut() {
-            *c /= norm;
-        }
-        if residual(h, &x, lambda, transposed) <= tolerance {
-            return Some(x);
-        }
-    }
-    None
 }
 
 /// ‖Hx − λx‖₂ (or ‖Hᵀx − λx‖₂) for upper Hessenberg H.
-fn residual(h: &DMatrix<f64>, x: &[Complex<f64>], lambda: Complex<f64>, transposed: bool) -> f64 {
+fn residual<T: ComplexField<RealField = f64> + Copy>(
+    h: &DMatrix<f64>,
+    x: &[T],
+    lambda: T,
+    transposed: bool,
+) -> f64 {
     let n = h.nrows();
-    let mut r: Vec<Complex<f64>> = x.iter().map(|&v| -lambda * v).collect();
+    let mut r: Vec<T> = x.iter().map(|&v| -(lambda * v)).collect();
     for j in 0..n {
-        let rows = 0..(j + 2).min(n);
+        let col = &h.as_slice()[j * n..j * n + (j + 2).min(n)];
         if transposed {
             // (Hᵀx)_j = Σ_i H_ij x_i.
-            let mut s = Complex::new(0.0, 0.0);
-            for i in rows {
-                s += x[i] * h[(i, j)];
-            }
-            r[j] += s;
+            r[j] += col
+                .iter()
+                .zip(x)
+                .fold(T::zero(), |s, (hij, xi)| s + xi.scale(*hij));
         } else {
             let xj = x[j];
-            for i in rows {
-                r[i] += xj * h[(i, j)];
+            for (ri, hij) in r.iter_mut().zip(col) {
+                *ri += xj.scale(*hij);
             }
         }
     }
-    r.iter().map(|c| c.norm_sqr()).sum::<f64>().sqrt()
+    r.iter().map(|c| c.modulus_squared()).sum::<f64>().sqrt()
 }
 
 /// Every eigenvalue of an upper Hessenberg matrix (complex pairs as both members, adjacent),
@@ -862,11 +941,12 @@ fn hessenberg_eigenvalues(mut h: DMatrix<f64>) -> Option<Vec<Complex<f64>>> {
 /// (I − τ[1; u][1; u]ᵀ)[α; x] = [β; 0]; returns τ (0 when x = 0: the identity).
 fn householder(v: &mut [f64]) -> f64 {
     let alpha = v[0];
-    let xnorm = v[1..].iter().fold(0.0f64, |s, x| s.hypot(*x));
+    // Plain sum of squares (no hypot): the entries are O(‖H‖) of a balanced, finite matrix.
+    let xnorm = v[1..].iter().map(|x| x * x).sum::<f64>().sqrt();
     if xnorm == 0.0 {
         return 0.0;
     }
-    let beta = -alpha.hypot(xnorm).copysign(alpha);
+    let beta = -(alpha * alpha + xnorm * xnorm).sqrt().copysign(alpha);
     let tau = (beta - alpha) / beta;
     let scal = 1.0 / (alpha - beta);
     for x in v[1..].iter_mut() {
