@@ -984,7 +984,10 @@ pub fn key_spec(key: &str) -> Result<&'static KeySpec> {
 /// Presets shipped in `presets/` and embedded so the binary runs from anywhere.
 pub static BUILTIN: &[(&str, &str)] = &[
     ("liu2017", include_str!("../presets/liu2017.toml")),
-    ("liu2017-stall", include_str!("../presets/liu2017-stall.toml")),
+    (
+        "liu2017-stall",
+        include_str!("../presets/liu2017-stall.toml"),
+    ),
     ("goland", include_str!("../presets/goland.toml")),
     ("demo-blade", include_str!("../presets/demo-blade.toml")),
 ];

@@ -136,13 +136,6 @@ fn reproduce_table2_meets_model_targets() {
     assert!(text.stdout.contains("paper Present") && text.stdout.contains("ours AC (Eq. 13)"));
 }
 
-#[test]
-fn reproduce_figures_are_not_there_yet() {
-    for fig in ["fig2", "fig3", "fig4", "fig5"] {
-        assert_fails_naming(&run(&["reproduce", fig]), &[fig, "not available"]);
-    }
-}
-
 // ---- bad input (issue 2 item 4) ----
 
 #[test]

@@ -108,7 +108,6 @@ pub fn print_text(text: &str) -> Result<()> {
     }
 }
 
-
 /// Parse `KEY=FROM:TO:STEP` into the key and its grid (FROM and TO included when STEP divides
 /// the range; the last point never overshoots TO).
 pub fn parse_vary(spec: &str) -> Result<(String, Vec<f64>)> {

@@ -16,6 +16,9 @@ use crate::preset::Preset;
 use serde::Serialize;
 use std::path::Path;
 
+/// Figures 2–5 (terminal plots, JSON series, `--plot`).
+pub mod figures;
+
 /// The paper's Table 2 "Present" rows (Hz): `[mode][angle]`, angles as [`TABLE1_ANGLES`].
 pub const TABLE2_PRESENT: [[f64; 7]; 5] = [
     [0.0333, 0.0298, 0.0242, 0.0206, 0.0193, 0.0192, 0.0193],
@@ -68,10 +71,10 @@ pub fn run(what: Reproduction, json: bool, plot: Option<&Path>) -> Result<()> {
                 super::print_text(&render_table2(&t))
             }
         }
-        Reproduction::Fig2 => Err(Error::usage("reproduce fig2: not available yet")),
-        Reproduction::Fig3 => Err(Error::usage("reproduce fig3: not available yet")),
-        Reproduction::Fig4 => Err(Error::usage("reproduce fig4: not available yet")),
-        Reproduction::Fig5 => Err(Error::usage("reproduce fig5: not available yet")),
+        Reproduction::Fig2 => figures::run_fig2(json, plot),
+        Reproduction::Fig3 => figures::run_tip(figures::TipQuantity::TipTwist, json, plot),
+        Reproduction::Fig4 => figures::run_tip(figures::TipQuantity::TipFlap, json, plot),
+        Reproduction::Fig5 => figures::run_fig5(json, plot),
     }
 }
 

@@ -470,8 +470,11 @@ where
         root.clone()
     } else {
         // A top margin keeps the title's ascenders inside the image.
+        // Shrink a long title to fit the width.
+        let width = f64::from(root.dim_in_pixel().0);
+        let size = TITLE_SIZE * (0.96 * width / text_width(&fig.title, TITLE_SIZE)).min(1.0);
         root.margin(10, 0, 0, 0)
-            .titled(&fig.title, (FONT, TITLE_SIZE).into_font().color(&BLACK))
+            .titled(&fig.title, (FONT, size).into_font().color(&BLACK))
             .map_err(draw_error)?
     };
     let cols = fig.columns.max(1);

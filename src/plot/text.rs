@@ -14,6 +14,9 @@ use ratatui::widgets::{Axis, Chart, Dataset, GraphType, LegendPosition, Widget};
 /// Smallest panel drawn: below this the axes and legend leave no room for data.
 pub const MIN_SIZE: (u16, u16) = (30, 8);
 
+/// One ratatui dataset's owned data: points, colour, kind and legend name.
+type Layer = (Vec<(f64, f64)>, Color, GraphType, Option<String>);
+
 /// `(lo, hi)` rounded outward to multiples of a 1-2-5 step giving about four intervals.
 fn nice_bounds((lo, hi): (f64, f64)) -> (f64, f64) {
     let step = super::tick_step(lo, hi, 5);
@@ -92,7 +95,7 @@ pub fn render(panel: &Panel, width: u16, height: u16, color: bool) -> String {
 
     // Own the visible runs: ratatui datasets borrow their points.
     let mut palette = PALETTE.iter().cycle();
-    let mut owned: Vec<(Vec<(f64, f64)>, Color, GraphType, Option<String>)> = Vec::new();
+    let mut owned: Vec<Layer> = Vec::new();
     for g in &panel.guides {
         let (a, b) = match g.kind {
             super::GuideKind::Vertical(x) => ((x, yr.0), (x, yr.1)),
