@@ -291,6 +291,33 @@ pub struct View {
     pub wind_speed_max: f64,
     /// Upper end of the tunnel-speed slider (m/s).
     pub tunnel_speed_max: f64,
+    /// The parameter the explorer selects when it opens this preset, and so the one its first
+    /// boundary search runs along.
+    pub select: Selected,
+}
+
+/// An explorer parameter a preset can select at start (`view.select`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Selected {
+    PlyAngle,
+    WindSpeed,
+    TunnelSpeed,
+    RotorSpeed,
+    Pitch,
+}
+
+impl Selected {
+    /// The preset key the parameter varies.
+    pub fn key(self) -> &'static str {
+        match self {
+            Selected::PlyAngle => "section.ply_angle",
+            Selected::WindSpeed => "operating.wind_speed",
+            Selected::TunnelSpeed => "operating.tunnel_speed",
+            Selected::RotorSpeed => "operating.rotor_speed",
+            Selected::Pitch => "operating.pitch",
+        }
+    }
 }
 
 impl Default for Preset {
@@ -452,6 +479,7 @@ impl Default for View {
             rotor_speed_max: 200.0,
             wind_speed_max: 40.0,
             tunnel_speed_max: 200.0,
+            select: Selected::RotorSpeed,
         }
     }
 }

@@ -277,6 +277,9 @@ fn start_requests_one_solve_then_a_boundary_search() {
 fn arrows_adjust_the_focused_parameter_with_fine_and_coarse_steps() {
     let engine = TestEngine::default();
     let mut s = settled(&engine);
+    // Rotor speed is selected at start (its margin is the first question); ↑ reaches ply angle.
+    assert_eq!(PARAMS[s.focus].label, "rotor speed");
+    s.focus = 0;
     assert_eq!(PARAMS[s.focus].label, "ply angle");
     let ply0 = s.preset.section.ply_angle;
     let e = update(&mut s, key(KeyCode::Right, KeyModifiers::NONE));
@@ -302,6 +305,7 @@ fn arrows_adjust_the_focused_parameter_with_fine_and_coarse_steps() {
 fn slider_limits_stop_without_a_solve() {
     let engine = TestEngine::default();
     let mut s = settled(&engine);
+    s.focus = 0;
     s.preset.section.ply_angle = 0.0;
     let e = update(&mut s, Msg::Action(Action::Decrease));
     assert!(e.is_empty());
@@ -937,4 +941,26 @@ fn snapshot_command_prints_a_frame() {
         .lines()
         .all(|l| l.chars().count() <= 100 && !l.ends_with(' ')));
     assert!(text.contains("Root locus") && text.contains("Tip response"));
+}
+
+#[test]
+fn each_preset_opens_on_the_parameter_it_selects() {
+    let engine = TestEngine::default();
+    let mut s = settled(&engine);
+    // liu2017 selects nothing: rotor speed by default.
+    assert_eq!(PARAMS[s.focus].label, "rotor speed");
+    assert_eq!(s.boundary_key, "operating.rotor_speed");
+    s.focus = 0;
+    // Cycle to goland (view.select = "tunnel-speed"): tunnel speed is selected and searched.
+    let goland = s.presets.iter().position(|e| e.name == "goland").unwrap();
+    while s.preset_index != goland {
+        let e = update(&mut s, Msg::Action(Action::NextPreset));
+        settle(&mut s, &engine, e);
+    }
+    assert_eq!(PARAMS[s.focus].label, "tunnel speed");
+    assert_eq!(s.boundary_key, "operating.tunnel_speed");
+    assert_eq!(
+        s.boundary.as_ref().map(|b| b.key),
+        Some("operating.tunnel_speed")
+    );
 }

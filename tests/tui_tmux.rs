@@ -112,8 +112,11 @@ fn explorer_runs_adjusts_helps_and_quits_cleanly_in_a_terminal() {
         "{screen}"
     );
 
-    // → raises the focused parameter (ply angle) by its fine step; the worker re-solves.
+    // Rotor speed is selected at start: → raises it by its fine step and the worker re-solves;
+    // ↑ three times selects ply angle, and → raises it.
     s.keys(&["Right"]);
+    s.wait_for("61 rpm");
+    s.keys(&["Up", "Up", "Up", "Right"]);
     s.wait_for("46.0 deg");
 
     // The help overlay comes from the key table.

@@ -66,6 +66,14 @@ const fn number(
     }
 }
 
+/// The row of `PARAMS` that varies `key` (the first row if none does).
+pub fn param_index(key: &str) -> usize {
+    PARAMS
+        .iter()
+        .position(|p| matches!(p.kind, ParamKind::Number { key: k, .. } if k == key))
+        .unwrap_or(0)
+}
+
 /// The parameters the explorer varies, in pane order.
 pub static PARAMS: &[Param] = &[
     number("ply angle", "section.ply_angle", 1.0, 5.0, 1, true),
@@ -287,11 +295,12 @@ impl AppState {
         );
         let index = index.min(presets.len() - 1);
         let preset = presets[index].preset.clone();
+        let start = preset.view.select.key();
         AppState {
             presets,
             preset_index: index,
             preset,
-            focus: 0,
+            focus: param_index(start),
             gen: 0,
             solved_gen: 0,
             solved: None,
@@ -300,7 +309,7 @@ impl AppState {
             trails: Vec::new(),
             fresh: false,
             response: Response::default(),
-            boundary_key: "operating.rotor_speed",
+            boundary_key: start,
             boundary: None,
             campbell: None,
             view: ViewMode::Main,
@@ -376,6 +385,9 @@ impl AppState {
     fn load_entry(&mut self, index: usize) -> Vec<Effect> {
         self.preset_index = index;
         self.preset = self.presets[index].preset.clone();
+        // Each preset opens on the parameter it selects (`view.select`).
+        self.boundary_key = self.preset.view.select.key();
+        self.focus = param_index(self.boundary_key);
         self.trails.clear();
         self.prev_modes.clear();
         self.fresh = true;

@@ -510,7 +510,7 @@ where
 
 /// Axis range fitted to the data, widened by 5 % each side; a flat or empty range gets a
 /// sensible width.
-fn fit_range(values: impl Iterator<Item = f64>) -> (f64, f64) {
+fn fit_range(values: impl Iterator<Item = f64>, pad: f64) -> (f64, f64) {
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
     for v in values.filter(|v| v.is_finite()) {
         lo = lo.min(v);
@@ -523,11 +523,13 @@ fn fit_range(values: impl Iterator<Item = f64>) -> (f64, f64) {
         let half = if lo == 0.0 { 1.0 } else { 0.1 * lo.abs() };
         return (lo - half, hi + half);
     }
-    let pad = 0.05 * (hi - lo);
+    let pad = pad * (hi - lo);
     (lo - pad, hi + pad)
 }
 
-fn panel_ranges(panel: &Panel) -> ((f64, f64), (f64, f64)) {
+/// The panel's axis ranges: fixed ones as given, the rest fitted to the data plus `pad` (a
+/// fraction of the span) on each side.
+fn panel_ranges(panel: &Panel, pad: f64) -> ((f64, f64), (f64, f64)) {
     let x = panel.x_range.unwrap_or_else(|| {
         fit_range(
             panel
@@ -539,6 +541,7 @@ fn panel_ranges(panel: &Panel) -> ((f64, f64), (f64, f64)) {
                     GuideKind::Vertical(x) => Some(x),
                     _ => None,
                 })),
+            pad,
         )
     });
     let y = panel.y_range.unwrap_or_else(|| {
@@ -553,6 +556,7 @@ fn panel_ranges(panel: &Panel) -> ((f64, f64), (f64, f64)) {
                     GuideKind::Horizontal(y) => Some(y),
                     _ => None,
                 })),
+            pad,
         )
     });
     (x, y)
@@ -968,7 +972,7 @@ struct PanelLayout {
 
 impl PanelLayout {
     fn new(panel: &Panel, (aw, ah): (u32, u32)) -> Self {
-        let (xr, yr) = panel_ranges(panel);
+        let (xr, yr) = panel_ranges(panel, 0.05);
         let (xd, yd) = (
             tick_decimals(xr.0, xr.1, X_TICKS),
             tick_decimals(yr.0, yr.1, Y_TICKS),
@@ -1397,10 +1401,10 @@ mod tests {
 
     #[test]
     fn ranges_pad_data_and_handle_flat_or_empty() {
-        assert_eq!(fit_range([].into_iter()), (0.0, 1.0));
-        let (lo, hi) = fit_range([2.0, 2.0].into_iter());
+        assert_eq!(fit_range([].into_iter(), 0.05), (0.0, 1.0));
+        let (lo, hi) = fit_range([2.0, 2.0].into_iter(), 0.05);
         assert!(lo < 2.0 && hi > 2.0);
-        let (lo, hi) = fit_range([0.0, 10.0, f64::NAN].into_iter());
+        let (lo, hi) = fit_range([0.0, 10.0, f64::NAN].into_iter(), 0.05);
         assert_eq!((lo, hi), (-0.5, 10.5));
     }
 

@@ -87,9 +87,9 @@ fn sgr(c: Color) -> Option<&'static str> {
 /// With `color`, series are told apart by 16-colour ANSI escapes; without, the text is plain.
 pub fn render(panel: &Panel, width: u16, height: u16, color: bool) -> String {
     let (width, height) = (width.max(MIN_SIZE.0), height.max(MIN_SIZE.1));
-    let (xr, yr) = panel_ranges(panel);
-    // Ratatui spreads the labels evenly over the axis: round the bounds out to a tick step so
-    // the end labels are round numbers.
+    // Ratatui spreads the labels evenly over the axis: round the bounds of the data (unpadded,
+    // so a time axis starts at 0) out to a tick step so the end labels are round numbers.
+    let (xr, yr) = panel_ranges(panel, 0.0);
     let (xr, yr) = (nice_bounds(xr), nice_bounds(yr));
     let (xd, yd) = (label_decimals(xr), label_decimals(yr));
 
@@ -282,19 +282,17 @@ mod tests {
             .filter(|c| ('\u{2801}'..='\u{28ff}').contains(c))
             .count();
         assert!(braille > 40, "{braille} braille cells\n{text}");
-        for want in [
-            "1st",
-            "2nd",
-            "┄ σ = 0",
-            "ply angle (deg)",
-            "10",
-            "40",
-            "70",
-            "-2.5",
-            "0.5",
-        ] {
+        for want in ["1st", "2nd", "┄ σ = 0", "ply angle (deg)"] {
             assert!(text.contains(want), "no '{want}' in\n{text}");
         }
+        // Axis bounds are the data's (no padding) rounded out to a tick step: x 15..60 → 10..60
+        // with 35 in the middle, y −2..−0.2 (and the σ = 0 guide) → −2..0.
+        let x_labels: Vec<&str> = lines[17].split_whitespace().collect();
+        assert_eq!(x_labels, ["10", "35", "60"], "\n{text}");
+        assert!(
+            lines[2].starts_with("0 │") && text.contains("\n-2│"),
+            "\n{text}"
+        );
     }
 
     #[test]
