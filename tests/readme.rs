@@ -49,3 +49,25 @@ fn every_explorer_key_is_documented() {
         assert!(text.contains(&row), "README.md lacks the key row {row}");
     }
 }
+
+/// The README's capture of the explorer is what `flutterscope snapshot --size 120x40` draws now.
+#[test]
+fn readme_screenshot_is_the_current_default_frame() {
+    let out = assert_cmd::cargo::cargo_bin_cmd!("flutterscope")
+        .args(["snapshot", "--size", "120x40"])
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let frame = String::from_utf8(out.stdout).unwrap();
+    let text = readme();
+    let start = text
+        .find("```text\n┌ Parameters")
+        .expect("README.md lacks the explorer capture")
+        + "```text\n".len();
+    let end = start + text[start..].find("```").unwrap();
+    assert_eq!(
+        text[start..end].trim_end(),
+        frame.trim_end(),
+        "README.md's capture is stale: paste `flutterscope snapshot --size 120x40`"
+    );
+}

@@ -6,13 +6,13 @@
 //! of `q, q̇` in the root, from left and right eigenvectors; roots with share < ½ are aero lags,
 //! reported apart), and the stability verdict.
 //!
-//! Eigenvectors come from faer's dense real eigendecomposition (Hessenberg reduction, Francis
-//! double-shift QR with an iteration cap, back-substitution for the vectors). Why not inverse
-//! iteration on top of eigenvalues: that needs one complex LU per root (O(n⁴) for all of them
-//! against O(n³) here), it is fragile for close or repeated roots (exactly the crossings mode
-//! tracking must survive), and nalgebra's eigenvalue-only Schur solver has no iteration cap (it can
-//! spin on NaN input). faer reports non-convergence as an error; we add finite checks on the input
-//! and the output so every failure is an [`Error::Numerical`], never a hang or a panic.
+//! Eigenvectors: balancing, Hessenberg reduction, LAPACK-style double-shift QR for the
+//! eigenvalues (iteration cap), then inverse iteration per root with residual checks; faer's full
+//! real eigendecomposition is the robust fallback whenever the fast path fails (see
+//! [`decompose`]). nalgebra alone would not do: it has no non-symmetric eigenvectors and its
+//! eigenvalue-only Schur solver has no iteration cap (it can spin on NaN input). Input and output
+//! are checked for finiteness, so every failure is an [`Error::Numerical`], never a hang or a
+//! panic.
 
 use crate::analysis::tracking::hungarian;
 use crate::error::{Error, Result};
@@ -383,8 +383,7 @@ pub fn eigen_decomposition(a: &DMatrix<f64>) -> Result<Roots> {
 /// theodorsen system ≈ 1.7 ms → ≈ 1.2 ms with both (`part_eigen_*` in the stability bench).
 /// nalgebra's bounded `Schur::try_new` was also measured and is slower than faer here (it
 /// always accumulates Q, and it has no exceptional shifts). Roots of (nearly) equal value get
-/// different start vectors and
-/// are orthogonalised against each other, so an exactly repeated root still returns a basis of
+/// different start vectors and are orthogonalised against each other, so an exactly repeated root still returns a basis of
 /// its eigenspace. Whenever the fast path fails — the QR iteration hits its cap, or a residual
 /// check fails (defective or extremely ill-conditioned roots) — the matrix goes to faer's
 /// robust full decomposition (Francis QR with aggressive deflation, also capped) instead; if
