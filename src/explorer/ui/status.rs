@@ -132,16 +132,29 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
         },
     };
     let least = match (&state.solved, &state.solve_error) {
+        // A non-oscillatory root has no frequency and ζ = 1 by definition: its decay rate σ is
+        // what tells how stable it is.
         (Some(s), None) => least_damped(&s.stability).map(|m| {
-            (
-                format!(
-                    " least damped: {} {} Hz, ζ = {}",
-                    m.label,
-                    sig(m.frequency_hz, 3),
-                    sig(m.damping_ratio, 2)
-                ),
-                format!(" {} ζ = {}", m.label, sig(m.damping_ratio, 2)),
-            )
+            if m.im == 0.0 {
+                (
+                    format!(
+                        " least damped: {} (real root) σ = {} 1/s",
+                        m.label,
+                        sig(m.re, 3)
+                    ),
+                    format!(" {} σ = {} 1/s", m.label, sig(m.re, 2)),
+                )
+            } else {
+                (
+                    format!(
+                        " least damped: {} {} Hz, ζ = {}",
+                        m.label,
+                        sig(m.frequency_hz, 3),
+                        sig(m.damping_ratio, 2)
+                    ),
+                    format!(" {} ζ = {}", m.label, sig(m.damping_ratio, 2)),
+                )
+            }
         }),
         _ => None,
     };
