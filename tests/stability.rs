@@ -243,6 +243,9 @@ fn rest_start_settles_to_equilibrium_and_flutter_diverges_cleanly() {
         &[
             "operating.tunnel_speed=100",
             "operating.pitch=-2",
+            "simulation.start=rest",
+            "simulation.kick_twist=0",
+            "simulation.sample_rate=200",
             "simulation.duration=30",
         ],
     );
@@ -368,6 +371,8 @@ fn simulate_json_shape_and_bad_plot_extension() {
         "goland",
         "--set",
         "simulation.duration=0.5",
+        "--set",
+        "simulation.sample_rate=200",
         "--json",
     ]);
     assert_eq!(v["status"], "ok");
