@@ -252,4 +252,35 @@ fn demo_blade_follows_the_ply_angle_through_its_layup() {
         b45 / b15 > 1.1,
         "boundary moves with ply angle: {b15} → {b45} rpm"
     );
+
+    // Issue 3 item 7: flap about 1 Hz and torsion 15–20 Hz (in vacuo, at rest), and a wind
+    // flutter boundary inside the wind slider's range at the opening rotor speed.
+    let mut rest = base.clone();
+    rest.set("operating.rotor_speed", 0.0).unwrap();
+    let modes = flutterscope::physics::structure::assemble(&rest)
+        .unwrap()
+        .natural_modes()
+        .unwrap();
+    let first = |kind: &str| {
+        modes
+            .iter()
+            .find(|m| m.label.starts_with(kind))
+            .unwrap()
+            .frequency_hz
+    };
+    let (flap, torsion) = (first("flap"), first("torsion"));
+    assert!((0.7..1.3).contains(&flap), "flap 1 at {flap} Hz");
+    assert!((15.0..20.0).contains(&torsion), "torsion 1 at {torsion} Hz");
+    let wind = flutter_boundary(
+        &base,
+        "operating.wind_speed",
+        0.0,
+        base.view.wind_speed_max,
+        41,
+    )
+    .unwrap();
+    assert!(
+        wind.critical.is_some(),
+        "demo blade must flutter inside the wind range"
+    );
 }
