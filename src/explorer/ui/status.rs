@@ -64,14 +64,17 @@ pub fn margin_text(state: &AppState) -> Option<String> {
                 } else {
                     String::new()
                 };
-                let mode = b
-                    .mode
-                    .as_ref()
-                    .map(|m| format!(" ({m})"))
-                    .unwrap_or_default();
                 if job.unstable {
-                    format!("{kind} from {}{pct}{mode}", with_unit(c))
+                    // The search ran up from the slider's low end, so its mode label is the
+                    // mode's identity there; the verdict beside this already names the mode
+                    // that is unstable here, and two names for one root only confuse.
+                    format!("{kind} from {}{pct}", with_unit(c))
                 } else {
+                    let mode = b
+                        .mode
+                        .as_ref()
+                        .map(|m| format!(" ({m})"))
+                        .unwrap_or_default();
                     format!("{kind} at {}{pct}{mode}", with_unit(c))
                 }
             }
