@@ -93,6 +93,38 @@ fn no_crossing_is_reported_as_none() {
 }
 
 #[test]
+fn an_unstable_start_is_reported_and_not_searched() {
+    // Goland flutters above 137 m/s: a search that starts at 150 m/s has no stable side.
+    let out = Command::cargo_bin("flutterscope")
+        .unwrap()
+        .args([
+            "flutter",
+            "--preset",
+            "goland",
+            "--vary",
+            "operating.tunnel_speed",
+            "--from",
+            "150",
+            "--to",
+            "100",
+            "--points",
+            "3",
+        ])
+        .assert()
+        .success();
+    let text = String::from_utf8_lossy(&out.get_output().stdout).to_string();
+    assert!(
+        text.contains("already unstable at the start of the range")
+            && text.contains("operating.tunnel_speed = 150 m/s")
+            && text.contains("where the blade is stable"),
+        "{text}"
+    );
+    let p = preset("goland", &[]);
+    let b = flutter_boundary(&p, "operating.tunnel_speed", 150.0, 100.0, 3).unwrap();
+    assert!(b.critical.is_none());
+}
+
+#[test]
 fn eigen_solve_rejects_non_finite_input_without_hanging() {
     let mut a = DMatrix::<f64>::from_fn(6, 6, |i, j| (i as f64 - j as f64).sin());
     a[(3, 2)] = f64::NAN;

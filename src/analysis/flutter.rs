@@ -130,7 +130,8 @@ pub fn flutter_search(p: &Preset, key: &str, from: f64, to: f64, points: usize) 
         let m = results[0].critical().map(describe).unwrap_or_default();
         return Ok(none(format!(
             "already unstable at the start of the range, {key} = {from}{unit} ({m}); \
-             start the search lower"
+             start the search from a value where the blade is stable (--from is where it \
+             starts; the range may run downward)"
         )));
     }
     let Some(first) = results.iter().position(unstable) else {
