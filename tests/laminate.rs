@@ -348,6 +348,13 @@ mod cli {
             .stdout(contains("section.source = \"table\""))
             .stdout(contains("C22 =   9.04714e-1 N·m²"))
             .stdout(contains("Q11 = 2.68465e10"));
+        // Ply angles read as a layup is written, without degree–radian round-trip noise.
+        section()
+            .args(["--preset", "demo-blade"])
+            .assert()
+            .success()
+            .stdout(contains("CAS [+15]16 upper"))
+            .stdout(contains("lower wall [-15]\n"));
     }
 
     #[test]

@@ -166,13 +166,13 @@ pub fn section_text(p: &Preset, s: &LayupSection) -> String {
         s.density
     ));
     o.push_str(&format!(
-        "laminate   {} × {:.4} mm plies, wall t = {:.4} mm; CAS [{:+}]{} upper (z ≥ 0), [{:+}]{} lower (z < 0);\n           side walls split at z = 0, each half with its side's angle\n",
+        "laminate   {} × {:.4} mm plies, wall t = {:.4} mm; CAS [{}]{} upper (z ≥ 0), [{}]{} lower (z < 0);\n           side walls split at z = 0, each half with its side's angle\n",
         s.plies,
         s.ply_thickness * 1e3,
         s.wall_thickness * 1e3,
-        s.upper.angle_deg,
+        ply(s.upper.angle_deg),
         s.plies,
-        s.lower.angle_deg,
+        ply(s.lower.angle_deg),
         s.plies
     ));
     o.push_str(&format!(
@@ -182,21 +182,21 @@ pub fn section_text(p: &Preset, s: &LayupSection) -> String {
     o.push_str("membrane stiffness A (N/m), order (x, s, xs)\n");
     matrix_lines(
         &mut o,
-        &format!("upper wall [{:+}]", s.upper.angle_deg),
+        &format!("upper wall [{}]", ply(s.upper.angle_deg)),
         &s.upper.a,
     );
     matrix_lines(
         &mut o,
-        &format!("lower wall [{:+}]", s.lower.angle_deg),
+        &format!("lower wall [{}]", ply(s.lower.angle_deg)),
         &s.lower.a,
     );
     o.push_str("reduced wall stiffness, hoop resultant free (N/m)\n");
     o.push_str(&wall_line(
-        &format!("upper [{:+}]", s.upper.angle_deg),
+        &format!("upper [{}]", ply(s.upper.angle_deg)),
         &s.upper,
     ));
     o.push_str(&wall_line(
-        &format!("lower [{:+}]", s.lower.angle_deg),
+        &format!("lower [{}]", ply(s.lower.angle_deg)),
         &s.lower,
     ));
     o.push('\n');
@@ -261,4 +261,11 @@ pub fn vary_text(p: &Preset, key: &str, values: &[f64], sections: &[LayupSection
         o.push('\n');
     }
     o
+}
+
+/// A ply angle as a layup shows it: signed, without the float noise of the degree–radian round
+/// trip (`+15`, `-22.5`).
+fn ply(deg: f64) -> String {
+    let t = format!("{deg:+.4}");
+    t.trim_end_matches('0').trim_end_matches('.').to_string()
 }
