@@ -182,7 +182,7 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
         frame.render_widget(
             Paragraph::new(Line::styled(
                 format!(
-                    "diverging: the response grew past the bound at t = {} s and the run stopped (r restarts)",
+                    "diverging: grew past the bound at t = {} s, run stopped (r restarts)",
                     sig(t_last, 3)
                 ),
                 theme.flutter(),
