@@ -1062,17 +1062,17 @@ impl Preset {
         let mut table: toml::Table = text
             .parse()
             .map_err(|e: toml::de::Error| preset_err(e.to_string().trim_end().to_string()))?;
+        // A schema error in the file itself (unknown field, wrong type) is reported from the
+        // text, so it carries the line and a caret; the table below has lost its spans.
+        toml::from_str::<Preset>(text)
+            .map_err(|e: toml::de::Error| preset_err(e.to_string().trim_end().to_string()))?;
         for ov in overrides {
             apply_override(&mut table, ov)?;
         }
         let mut preset: Preset = Preset::deserialize(table).map_err(|e| {
-            let msg = e.to_string();
-            let msg = msg.trim_end();
-            if overrides.is_empty() {
-                preset_err(msg.to_string())
-            } else {
-                preset_err(format!("{msg} (after --set {})", overrides.join(" --set ")))
-            }
+            // Without spans the message is "…\nin `table`": keep it on one line.
+            let msg = e.to_string().trim_end().replace('\n', " ");
+            preset_err(format!("{msg} (after --set {})", overrides.join(" --set ")))
         })?;
         preset.origin = origin.to_string();
         preset.validate()?;

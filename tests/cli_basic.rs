@@ -149,7 +149,19 @@ fn malformed_toml_names_the_file() {
 fn unknown_field_names_file_and_field() {
     let path = preset_file("unknown.toml", "[blade]\nlength = 3.0\nwingspan = 4.0\n");
     let p = path.to_str().unwrap();
-    assert_fails_naming(&run(&["modes", "--preset", p]), &[p, "wingspan"]);
+    // The file's own schema errors point at the line.
+    assert_fails_naming(&run(&["modes", "--preset", p]), &[p, "wingspan", "line 3"]);
+    // An override's error names the override, on one line.
+    let out = run(&["modes", "--set", "blade.wingspan=4"]);
+    assert_fails_naming(
+        &out,
+        &[
+            "unknown field `wingspan`",
+            "in `blade`",
+            "--set blade.wingspan=4",
+        ],
+    );
+    assert_eq!(out.stderr.trim_end().lines().count(), 1, "{}", out.stderr);
 }
 
 #[test]
