@@ -1023,6 +1023,10 @@ pub static BUILTIN: &[(&str, &str)] = &[
 /// The preset the explorer opens with no arguments.
 pub const DEFAULT_PRESET: &str = "liu2017";
 
+/// Most samples one time response may hold (`simulation.duration × simulation.sample_rate`):
+/// 2e6 samples is 10⁴ s at 200/s; time, tip twist and flap take 48 MB.
+pub const MAX_SAMPLES: f64 = 2e6;
+
 /// Names of the built-in presets, in display order.
 pub fn builtin_names() -> Vec<&'static str> {
     BUILTIN.iter().map(|(n, _)| *n).collect()
@@ -1101,6 +1105,15 @@ impl Preset {
             return Err(invalid(format!(
                 "aero.onera.alpha2 = {} must exceed aero.onera.alpha1 = {}",
                 o.alpha2, o.alpha1
+            )));
+        }
+        let sim = &self.simulation;
+        let samples = sim.duration * sim.sample_rate;
+        if !(1.0..=MAX_SAMPLES).contains(&samples) {
+            return Err(invalid(format!(
+                "simulation.duration × simulation.sample_rate = {} s × {} 1/s = {samples:.4e} \
+                 samples; allowed: 1 … {MAX_SAMPLES:e} (the response is kept in memory)",
+                sim.duration, sim.sample_rate
             )));
         }
         if self.section.ea_offset.abs() > self.section.chord {

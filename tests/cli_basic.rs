@@ -165,6 +165,21 @@ fn unknown_field_names_file_and_field() {
 }
 
 #[test]
+fn a_response_too_long_to_hold_is_refused_before_it_runs() {
+    // 10⁴ s at 10⁵ samples/s would be 10⁹ samples (24 GB): refused, naming both keys.
+    assert_fails_naming(
+        &run(&[
+            "simulate",
+            "--set",
+            "simulation.duration=1e4",
+            "--set",
+            "simulation.sample_rate=1e5",
+        ]),
+        &["simulation.duration", "simulation.sample_rate", "2e6"],
+    );
+}
+
+#[test]
 fn negative_length_names_key_value_and_range() {
     let path = preset_file("negative.toml", "[blade]\nlength = -2.5\n");
     let p = path.to_str().unwrap();
