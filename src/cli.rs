@@ -119,9 +119,9 @@ pub enum Command {
         /// End of the search range.
         #[arg(long, allow_negative_numbers = true)]
         to: f64,
-        /// Grid points used to bracket the crossing before refinement.
-        #[arg(long, default_value_t = 41)]
-        points: usize,
+        /// Grid points used to bracket the crossing before refinement (2 to 10000).
+        #[arg(long, default_value_t = 41, value_parser = clap::value_parser!(u32).range(2..=10_000))]
+        points: u32,
         #[arg(long)]
         json: bool,
         /// Write a plot (SVG or PNG by extension).

@@ -180,6 +180,27 @@ fn a_response_too_long_to_hold_is_refused_before_it_runs() {
 }
 
 #[test]
+fn a_flutter_grid_too_large_to_hold_is_a_usage_error() {
+    let r = run(&[
+        "flutter",
+        "--vary",
+        "operating.rotor_speed",
+        "--from",
+        "1",
+        "--to",
+        "100",
+        "--points",
+        "100000000",
+    ]);
+    assert_eq!(r.code, Some(2), "{}", r.stderr);
+    assert!(
+        r.stderr.contains("--points") && r.stderr.contains("2..=10000"),
+        "{}",
+        r.stderr
+    );
+}
+
+#[test]
 fn negative_length_names_key_value_and_range() {
     let path = preset_file("negative.toml", "[blade]\nlength = -2.5\n");
     let p = path.to_str().unwrap();

@@ -37,7 +37,7 @@ pub fn run(command: Command) -> Result<()> {
             &vary,
             from,
             to,
-            points,
+            points as usize,
             json,
             plot.as_deref(),
         ),
