@@ -1063,21 +1063,22 @@ impl Preset {
             origin: origin.to_string(),
             message,
         };
-        let mut table: toml::Table = text
-            .parse()
-            .map_err(|e: toml::de::Error| preset_err(e.to_string().trim_end().to_string()))?;
-        // A schema error in the file itself (unknown field, wrong type) is reported from the
-        // text, so it carries the line and a caret; the table below has lost its spans.
-        toml::from_str::<Preset>(text)
-            .map_err(|e: toml::de::Error| preset_err(e.to_string().trim_end().to_string()))?;
-        for ov in overrides {
-            apply_override(&mut table, ov)?;
+        let file_err = |e: toml::de::Error| preset_err(e.to_string().trim_end().to_string());
+        // The file alone, deserialized from its text so that every error in it (syntax, unknown
+        // field, wrong type) carries the line and a caret.
+        let mut preset: Preset = toml::from_str(text).map_err(file_err)?;
+        if !overrides.is_empty() {
+            // Overrides edit the parsed table; its errors have no spans and read "…\nin
+            // `table`", kept on one line and blamed on the --set.
+            let mut table: toml::Table = text.parse().map_err(file_err)?;
+            for ov in overrides {
+                apply_override(&mut table, ov)?;
+            }
+            preset = Preset::deserialize(table).map_err(|e| {
+                let msg = e.to_string().trim_end().replace('\n', " ");
+                preset_err(format!("{msg} (after --set {})", overrides.join(" --set ")))
+            })?;
         }
-        let mut preset: Preset = Preset::deserialize(table).map_err(|e| {
-            // Without spans the message is "…\nin `table`": keep it on one line.
-            let msg = e.to_string().trim_end().replace('\n', " ");
-            preset_err(format!("{msg} (after --set {})", overrides.join(" --set ")))
-        })?;
         preset.origin = origin.to_string();
         preset.validate()?;
         Ok(preset)

@@ -5,6 +5,7 @@
 use crate::commands::{parse_vary, print_json};
 use crate::error::{Error, Result};
 use crate::physics::laminate::{layup_section, LayupSection, Stiffness3, WallLaminate};
+use crate::physics::section::SectionProps;
 use crate::preset::{ContourShape, Preset, SectionSource};
 use serde::Serialize;
 use std::path::Path;
@@ -166,13 +167,13 @@ pub fn section_text(p: &Preset, s: &LayupSection) -> String {
         s.density
     ));
     o.push_str(&format!(
-        "laminate   {} × {:.4} mm plies, wall t = {:.4} mm; CAS [{}]{} upper (z ≥ 0), [{}]{} lower (z < 0);\n           side walls split at z = 0, each half with its side's angle\n",
+        "laminate   {} × {:.4} mm plies, wall t = {:.4} mm; CAS [{:+}]{} upper (z ≥ 0), [{:+}]{} lower (z < 0);\n           side walls split at z = 0, each half with its side's angle\n",
         s.plies,
         s.ply_thickness * 1e3,
         s.wall_thickness * 1e3,
-        ply(s.upper.angle_deg),
+        s.upper.angle_deg,
         s.plies,
-        ply(s.lower.angle_deg),
+        s.lower.angle_deg,
         s.plies
     ));
     o.push_str(&format!(
@@ -182,21 +183,21 @@ pub fn section_text(p: &Preset, s: &LayupSection) -> String {
     o.push_str("membrane stiffness A (N/m), order (x, s, xs)\n");
     matrix_lines(
         &mut o,
-        &format!("upper wall [{}]", ply(s.upper.angle_deg)),
+        &format!("upper wall [{:+}]", s.upper.angle_deg),
         &s.upper.a,
     );
     matrix_lines(
         &mut o,
-        &format!("lower wall [{}]", ply(s.lower.angle_deg)),
+        &format!("lower wall [{:+}]", s.lower.angle_deg),
         &s.lower.a,
     );
     o.push_str("reduced wall stiffness, hoop resultant free (N/m)\n");
     o.push_str(&wall_line(
-        &format!("upper [{}]", ply(s.upper.angle_deg)),
+        &format!("upper [{:+}]", s.upper.angle_deg),
         &s.upper,
     ));
     o.push_str(&wall_line(
-        &format!("lower [{}]", ply(s.lower.angle_deg)),
+        &format!("lower [{:+}]", s.lower.angle_deg),
         &s.lower,
     ));
     o.push('\n');
@@ -209,7 +210,9 @@ pub fn section_text(p: &Preset, s: &LayupSection) -> String {
     ));
     o.push_str(&format!(
         "stiffness  C22 = {:>12.5e} N·m²  (torsion)\n           C23 = {:>12.5e} N·m²  (bending–twist; paper's sign)\n           C33 = {:>12.5e} N·m²  (flap bending)\n\n",
-        sp.c22, sp.c23, sp.c33
+        sp.c22,
+        shown_c23(sp),
+        sp.c33
     ));
     o.push_str(&format!(
         "mass       m = {:.5e} kg/m (walls {:.5e}, non-structural {:.5e}), wall area A0 = {:.5e} m²\n",
@@ -250,26 +253,25 @@ pub fn vary_text(p: &Preset, key: &str, values: &[f64], sections: &[LayupSection
     type Pick = fn(&LayupSection) -> f64;
     let rows: [(&str, Pick); 3] = [
         ("C22 (N·m²)", |s| s.props.c22),
-        ("C23 (N·m²)", |s| s.props.c23),
+        ("C23 (N·m²)", |s| shown_c23(&s.props)),
         ("C33 (N·m²)", |s| s.props.c33),
     ];
     for (name, pick) in rows {
         o.push_str(&format!("{name:<26}"));
         for s in sections {
-            // C23 vanishes at 0° and 90° by symmetry; print the round-off there as the zero it is.
-            let scale = s.props.c22.abs().max(s.props.c33.abs());
-            let v = pick(s);
-            let v = if v.abs() < 1e-12 * scale { 0.0 } else { v };
-            o.push_str(&format!("{v:>13.5e}"));
+            o.push_str(&format!("{:>13.5e}", pick(s)));
         }
         o.push('\n');
     }
     o
 }
 
-/// A ply angle as a layup shows it: signed, without the float noise of the degree–radian round
-/// trip (`+15`, `-22.5`).
-fn ply(deg: f64) -> String {
-    let t = format!("{deg:+.4}");
-    t.trim_end_matches('0').trim_end_matches('.').to_string()
+/// C23 as reported: it vanishes at 0° and 90° by symmetry, where the trigonometry leaves
+/// round-off (≈1e-17 of C22, C33); print that as the zero it is. JSON keeps the raw value.
+fn shown_c23(p: &SectionProps) -> f64 {
+    if p.c23.abs() < 1e-12 * p.c22.abs().max(p.c33.abs()) {
+        0.0
+    } else {
+        p.c23
+    }
 }

@@ -236,16 +236,16 @@ pub fn reduced_wall_stiffness(a: &Stiffness3) -> WallStiffness {
     }
 }
 
-/// One wall of the CAS layup at angle θ (rad).
+/// One wall of the CAS layup at ply angle `angle_deg` (degrees, kept as given for reports).
 pub fn wall_laminate(
     q: &PlyStiffness,
-    theta: f64,
+    angle_deg: f64,
     plies: usize,
     ply_thickness: f64,
 ) -> WallLaminate {
-    let a = membrane_stiffness(q, theta, plies, ply_thickness);
+    let a = membrane_stiffness(q, angle_deg.to_radians(), plies, ply_thickness);
     WallLaminate {
-        angle_deg: theta.to_degrees(),
+        angle_deg,
         a,
         k: reduced_wall_stiffness(&a),
     }
@@ -287,9 +287,8 @@ pub fn cas_stiffness(
     ply_thickness: f64,
     g: &ContourMoments,
 ) -> CasStiffness {
-    let upper = wall_laminate(q, theta, plies, ply_thickness);
-    let lower = wall_laminate(q, -theta, plies, ply_thickness);
-    closed_section_stiffness(g, &upper.k, &lower.k)
+    let wall = |t: f64| reduced_wall_stiffness(&membrane_stiffness(q, t, plies, ply_thickness));
+    closed_section_stiffness(g, &wall(theta), &wall(-theta))
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -575,9 +574,9 @@ pub fn layup_section(p: &Preset) -> Result<LayupSection> {
     let l = &p.section.layup;
     let material = ply_material(p);
     let q = ply_stiffness(&material);
-    let theta = p.section.ply_angle.to_radians();
-    let upper = wall_laminate(&q, theta, l.plies, l.ply_thickness);
-    let lower = wall_laminate(&q, -theta, l.plies, l.ply_thickness);
+    let angle = p.section.ply_angle;
+    let upper = wall_laminate(&q, angle, l.plies, l.ply_thickness);
+    let lower = wall_laminate(&q, -angle, l.plies, l.ply_thickness);
     let g = contour_moments(p);
     let stiff = closed_section_stiffness(&g, &upper.k, &lower.k);
 
