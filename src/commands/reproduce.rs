@@ -38,7 +38,7 @@ pub const TABLE2_AC: [[f64; 7]; 5] = [
 ];
 
 /// Galerkin modes per field for our weak-form column: converged to < 0.1 % for the first five
-/// flap modes on the paper's blade (see `tests/validation.rs`).
+/// flap modes on the paper's blade (see `tests/integration/validation.rs`).
 pub const WEAK_MODES: usize = 10;
 
 /// The paper's N for its "Present" column.

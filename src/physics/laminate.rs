@@ -13,7 +13,7 @@
 //! - CAS (MODEL.md §2.1): `[θ]ₙ` where the mid-line lies at `z ≥ 0`, `[−θ]ₙ` where `z < 0`,
 //!   `z` measured from the contour centroid. **Side walls** (a box's vertical walls, any segment
 //!   that straddles `z = 0`) are split at `z = 0`: each half takes the angle of its side. This is
-//!   the literal reading of the §2.1 rule and it reproduces Table 1 (see `tests/laminate.rs`).
+//!   the literal reading of the §2.1 rule and it reproduces Table 1 (see `tests/integration/laminate.rs`).
 //! - Sign of C23: the paper's (MODEL.md §2): `C23 < 0` for `0 < θ < 70°` with `[θ]` on the upper
 //!   wall. With the orientation above the thin-walled integral `2A_e∮(K12 z/K22)ds/∮ds/K22` is
 //!   positive there, so we report its negative; the convention is fixed here, once, for every
@@ -39,7 +39,7 @@ use std::f64::consts::PI;
 /// The box is exact with its four corners.
 pub const SMOOTH_SEGMENTS: usize = 512;
 
-/// Relative tolerance the contour integrals are converged to (tested in `tests/laminate.rs`).
+/// Relative tolerance the contour integrals are converged to (tested in `tests/integration/laminate.rs`).
 pub const CONTOUR_TOLERANCE: f64 = 1e-6;
 
 /// Ply material in the wall's principal axes (MODEL.md §2.1).

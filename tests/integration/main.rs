@@ -1,0 +1,18 @@
+//! The integration tests, one binary (one link on the 2-core CI machine): each module is an
+//! area of the program, driven through the library or the real `flutterscope` binary.
+
+mod cli_basic;
+mod eigen;
+mod explorer;
+mod figures;
+mod laminate;
+mod onera;
+mod plot;
+mod presets;
+mod readme;
+mod simulate;
+mod stability;
+mod structure;
+mod sweep;
+mod tui_tmux;
+mod validation;
