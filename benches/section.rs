@@ -2,17 +2,17 @@
 //! Target (issue 5): under 100 µs, so dragging the ply angle re-solves within one frame.
 
 use flutterscope::physics::laminate::layup_section_props;
-use flutterscope::preset::{ContourShape, Preset};
+use flutterscope::preset::{ContourShape, Preset, ValidPreset};
 
 fn main() {
     divan::main();
 }
 
-fn preset(shape: ContourShape) -> Preset {
+fn preset(shape: ContourShape) -> ValidPreset {
     let mut p = Preset::default();
     p.section.contour.shape = shape;
     p.section.ply_angle = 30.0;
-    p
+    p.validate().unwrap()
 }
 
 /// The paper's Table 1 box (exact with four corners): the default layup section.

@@ -4,13 +4,13 @@
 
 use flutterscope::analysis::eigen::{analyse_system, linear_system};
 use flutterscope::analysis::simulate::simulate;
-use flutterscope::preset::Preset;
+use flutterscope::preset::{Preset, ValidPreset};
 
 fn main() {
     divan::main();
 }
 
-fn preset(name: &str, overrides: &[&str]) -> Preset {
+fn preset(name: &str, overrides: &[&str]) -> ValidPreset {
     let o: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
     Preset::load(name, &o).unwrap()
 }

@@ -6,13 +6,13 @@ use flutterscope::analysis::eigen::analyse;
 use flutterscope::analysis::flutter::flutter_boundary;
 use flutterscope::analysis::simulate::simulate;
 use flutterscope::analysis::sweep::{grid_sweep, Grid};
-use flutterscope::preset::Preset;
+use flutterscope::preset::{Preset, ValidPreset};
 
 fn main() {
     divan::main();
 }
 
-fn preset(name: &str, overrides: &[&str]) -> Preset {
+fn preset(name: &str, overrides: &[&str]) -> ValidPreset {
     let o: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
     Preset::load(name, &o).unwrap()
 }

@@ -4,14 +4,14 @@
 //! Run: `cargo bench --bench structure`.
 
 use flutterscope::physics::structure::assemble;
-use flutterscope::preset::Preset;
+use flutterscope::preset::{Preset, ValidPreset};
 
 fn main() {
     divan::main();
 }
 
 /// The paper's blade at its operating point (60 rpm: the centrifugal terms are live).
-fn paper_blade(n: usize, form: &str) -> Preset {
+fn paper_blade(n: usize, form: &str) -> ValidPreset {
     Preset::load(
         "liu2017",
         &[

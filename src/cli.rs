@@ -1,6 +1,8 @@
 //! The command line: one clap definition for every subcommand. Parsing only; each command's
 //! work lives in `commands/`.
 
+use crate::explorer::display::{ColorMode, MarkerKind, ViewKind};
+use clap::builder::PossibleValue;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
 #[derive(Debug, Parser)]
@@ -29,35 +31,26 @@ pub struct PresetArgs {
 }
 
 impl PresetArgs {
-    pub fn load(&self) -> crate::error::Result<crate::preset::Preset> {
+    pub fn load(&self) -> crate::error::Result<crate::preset::ValidPreset> {
         crate::preset::Preset::load(&self.preset, &self.set)
     }
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum ColorMode {
-    #[value(name = "16")]
-    Ansi16,
-    #[value(name = "256")]
-    Ansi256,
-    Truecolor,
-    None,
+/// The explorer's display settings as command-line values, named as the explorer names them.
+macro_rules! value_enum {
+    ($($ty:ty),+) => {$(
+        impl ValueEnum for $ty {
+            fn value_variants<'a>() -> &'a [Self] {
+                &<$ty>::ALL
+            }
+            fn to_possible_value(&self) -> Option<PossibleValue> {
+                Some(PossibleValue::new(self.name()))
+            }
+        }
+    )+};
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum MarkerKind {
-    Braille,
-    Halfblock,
-    Block,
-    Dot,
-}
-
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum ViewKind {
-    Main,
-    Campbell,
-    Help,
-}
+value_enum!(ColorMode, MarkerKind, ViewKind);
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum Reproduction {
@@ -191,9 +184,16 @@ pub enum Command {
         #[arg(long, value_enum, default_value = "braille")]
         marker: MarkerKind,
     },
-    /// List the built-in presets.
+    /// List the built-in presets, or print one in full.
     Presets {
         #[arg(long)]
         json: bool,
+        /// Print this preset (built-in name or path) as TOML with every key, defaults included,
+        /// after --set overrides: what the engine actually uses.
+        #[arg(long, value_name = "NAME|PATH", conflicts_with = "json")]
+        show: Option<String>,
+        /// Override a key of the shown preset (repeatable; needs --show).
+        #[arg(long = "set", value_name = "KEY=VALUE", requires = "show")]
+        set: Vec<String>,
     },
 }

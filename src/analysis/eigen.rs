@@ -18,7 +18,7 @@ use crate::analysis::tracking::hungarian;
 use crate::error::{Error, Result};
 use crate::physics::structure::StructuralModel;
 use crate::physics::system::{LinearSystem, System};
-use crate::preset::Preset;
+use crate::preset::ValidPreset;
 use nalgebra::{Complex, ComplexField, DMatrix, DVector};
 use serde::Serialize;
 
@@ -119,12 +119,12 @@ impl Roots {
 pub const NEUTRAL_TOLERANCE: f64 = 1e-9;
 
 /// Stability of a preset's operating point.
-pub fn analyse(p: &Preset) -> Result<Stability> {
+pub fn analyse(p: &ValidPreset) -> Result<Stability> {
     analyse_system(&linear_system(p)?)
 }
 
 /// The linearised system of a preset (assemble, equilibrium, state matrix).
-pub fn linear_system(p: &Preset) -> Result<LinearSystem> {
+pub fn linear_system(p: &ValidPreset) -> Result<LinearSystem> {
     System::new(p)?.linearise()
 }
 

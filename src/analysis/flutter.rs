@@ -13,7 +13,7 @@
 use crate::analysis::eigen::{analyse, Mode, Stability, NEUTRAL_TOLERANCE};
 use crate::analysis::tracking::track_modes;
 use crate::error::{Error, Result};
-use crate::preset::{key_spec, Preset};
+use crate::preset::{key_spec, ValidPreset};
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -50,17 +50,19 @@ pub struct Search {
 /// Relative accuracy of the critical value (MODEL.md §6).
 pub const RELATIVE_TOLERANCE: f64 = 1e-4;
 
-/// The preset with `key` set to `value` and re-validated (cross-field rules included).
-pub fn with_value(p: &Preset, key: &str, value: f64) -> Result<Preset> {
-    let mut q = p.clone();
-    q.set(key, value)?;
-    q.validate()?;
-    Ok(q)
+/// Stability with `key` set to `value`.
+pub fn stability_at(p: &ValidPreset, key: &str, value: f64) -> Result<Stability> {
+    analyse(&p.with(key, value)?)
 }
 
-/// Stability with `key` set to `value`.
-pub fn stability_at(p: &Preset, key: &str, value: f64) -> Result<Stability> {
-    analyse(&with_value(p, key, value)?)
+/// Where a boundary search looks: along `key` from `from` toward `to`, bracketing the crossing
+/// on `points` grid points first.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SearchRange {
+    pub key: String,
+    pub from: f64,
+    pub to: f64,
+    pub points: usize,
 }
 
 /// Whether a stability result counts as unstable: its critical root has σ above the neutral
@@ -71,7 +73,7 @@ fn unstable(s: &Stability) -> bool {
 
 /// The first stability boundary along `key` from `from` toward `to`.
 pub fn flutter_boundary(
-    p: &Preset,
+    p: &ValidPreset,
     key: &str,
     from: f64,
     to: f64,
@@ -81,7 +83,13 @@ pub fn flutter_boundary(
 }
 
 /// [`flutter_boundary`] with a plain-words account of the result.
-pub fn flutter_search(p: &Preset, key: &str, from: f64, to: f64, points: usize) -> Result<Search> {
+pub fn flutter_search(
+    p: &ValidPreset,
+    key: &str,
+    from: f64,
+    to: f64,
+    points: usize,
+) -> Result<Search> {
     let spec = key_spec(key)?;
     if spec.integer {
         return Err(Error::usage(format!(
@@ -97,12 +105,8 @@ pub fn flutter_search(p: &Preset, key: &str, from: f64, to: f64, points: usize) 
         )));
     }
     for v in [from, to] {
-        if !spec.contains(v) {
-            return Err(Error::usage(format!(
-                "flutter: {key} = {v} is out of range (allowed: {})",
-                spec.allowed()
-            )));
-        }
+        spec.check("flutter --from/--to", v)
+            .map_err(|e| Error::usage(e.to_string()))?;
     }
     let grid: Vec<f64> = (0..points)
         .map(|i| from + (to - from) * i as f64 / (points - 1) as f64)

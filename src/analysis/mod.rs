@@ -4,5 +4,6 @@
 pub mod eigen;
 pub mod flutter;
 pub mod simulate;
+pub mod solve;
 pub mod sweep;
 pub mod tracking;

@@ -37,7 +37,7 @@
 
 use crate::error::{Error, Result};
 use crate::physics::system::{check_finite, LinearSystem, RemainderScratch, Splitting, System};
-use crate::preset::{Preset, Start};
+use crate::preset::ValidPreset;
 use nalgebra::{DMatrix, DVector, Dyn, LU};
 use serde::Serialize;
 use std::sync::Arc;
@@ -484,28 +484,17 @@ pub struct Simulator {
 }
 
 impl Simulator {
-    /// Set up the preset's model and the start state of `simulation.*`.
-    pub fn new(p: &Preset) -> Result<Simulator> {
-        let sim = &p.simulation;
-        let system = System::new(p)?;
-        let mut s = if system.model().nonlinear_support().is_affine() {
-            Simulator::from_linear(system.linearise()?, sim.sample_rate, p.blade.length)?
-        } else {
-            let x_ref = match (system.equilibrium(), sim.start) {
-                (Ok(x), _) => x,
-                // A run from rest needs no equilibrium (the load may exceed what the blade can
-                // carry): split about the rest state instead.
-                (Err(_), Start::Rest) => DVector::zeros(system.dim()),
-                (Err(e), Start::Equilibrium) => return Err(e),
-            };
-            Simulator::from_system(Arc::new(system), &x_ref, sim.sample_rate, p.blade.length)?
-        };
-        if sim.start == Start::Rest {
-            s.y = -s.linear.x_eq.clone();
-            s.restart_history();
-        }
-        s.kick(sim.kick_twist.to_radians(), sim.kick_flap);
-        Ok(s)
+    /// Set up the preset's model and the start state of `simulation.*` (one build, see
+    /// [`crate::analysis::solve`]).
+    pub fn new(p: &ValidPreset) -> Result<Simulator> {
+        crate::analysis::solve::solve(p)?.simulator(p)
+    }
+
+    /// Start from rest instead of the reference state: `q = 0, q̇ = 0`, aerodynamic states 0 (the
+    /// load switched on at t = 0).
+    pub fn start_from_rest(&mut self) {
+        self.y = -self.linear.x_eq.clone();
+        self.restart_history();
     }
 
     /// A stepper on an already linearised system, starting at its equilibrium: exact stepping
@@ -539,22 +528,22 @@ impl Simulator {
         })
     }
 
-    /// A stepper on the full (nonlinear) system split about `x_ref`, starting at `x_ref`.
+    /// A stepper on the full (nonlinear) system split about the reference state of `tangent`
+    /// (its tangent system there), starting at that state.
     pub fn from_system(
         system: Arc<System>,
-        x_ref: &DVector<f64>,
+        linear: LinearSystem,
         sample_rate: f64,
         flap_bound: f64,
     ) -> Result<Simulator> {
         let interval = sample_interval(sample_rate)?;
-        let split = system.splitting(x_ref);
-        check_finite("state matrix", &split.a)?;
+        check_finite("state matrix", &linear.a)?;
+        let split = system.splitting_with(&linear.x_eq, linear.a.clone());
         if !split.r0.iter().all(|v| v.is_finite()) {
             return Err(Error::numerical(
                 "non-finite right-hand side at the reference state",
             ));
         }
-        let linear = system.tangent(x_ref.clone(), split.a.clone());
         let tip = DMatrix::from_fn(2, split.a.nrows(), |r, c| {
             let row = if r == 0 {
                 &linear.tip_twist
@@ -759,12 +748,12 @@ pub struct Response {
 }
 
 /// Samples in `[0, duration]` at the preset's sample rate, both ends included.
-pub fn sample_count(p: &Preset) -> usize {
+pub fn sample_count(p: &ValidPreset) -> usize {
     (p.simulation.duration * p.simulation.sample_rate + 1e-9).floor() as usize + 1
 }
 
 /// Simulate the preset for `simulation.duration`.
-pub fn simulate(p: &Preset) -> Result<Response> {
+pub fn simulate(p: &ValidPreset) -> Result<Response> {
     let mut sim = Simulator::new(p)?;
     let samples = sim.advance(sample_count(p))?;
     let status = sim.status();

@@ -11,10 +11,9 @@
 //! shards' rows in order reproduces the unsharded output exactly.
 
 use crate::analysis::eigen::{analyse, Mode, Stability};
-use crate::analysis::flutter::with_value;
 use crate::analysis::tracking::track_modes;
 use crate::error::{Error, Result};
-use crate::preset::Preset;
+use crate::preset::ValidPreset;
 use rayon::prelude::*;
 use serde::Serialize;
 use std::ops::Range;
@@ -40,10 +39,10 @@ pub struct TrackedSweep {
 /// Tracked structural modes of `p` along `key` over `grid`. Values where a mode has no partner
 /// (e.g. a pair that split into real roots) or where the point could not be solved (a numerical
 /// failure such as no static equilibrium) are NaN (null in JSON); input errors still fail.
-pub fn track(p: &Preset, key: &str, grid: &[f64]) -> Result<TrackedSweep> {
+pub fn track(p: &ValidPreset, key: &str, grid: &[f64]) -> Result<TrackedSweep> {
     let points: Vec<Option<Stability>> = grid
         .par_iter()
-        .map(|&v| solved_or_gap(with_value(p, key, v).and_then(|q| analyse(&q))))
+        .map(|&v| solved_or_gap(p.with(key, v).and_then(|q| analyse(&q))))
         .collect::<Result<_>>()?;
     Ok(tracked_with_gaps(key, grid, &points))
 }
@@ -170,7 +169,7 @@ const BATCH_POINTS: usize = 4096;
 /// `progress` is called with the number of points just solved (warm-up included). Returns how
 /// many of the shard's points could not be solved (numerical failure: their rows are NaN).
 pub fn grid_sweep(
-    p: &Preset,
+    p: &ValidPreset,
     grid: &Grid,
     shard: Option<Shard>,
     progress: &(dyn Fn(u64) + Sync),
@@ -251,13 +250,14 @@ pub fn grid_sweep(
     Ok(failed)
 }
 
-fn solve_point(p: &Preset, grid: &Grid, i: usize) -> Result<Stability> {
-    let mut q = p.clone();
-    for (key, v) in grid.keys.iter().zip(grid.values(i)) {
-        q.set(key, v)?;
-    }
-    q.validate()?;
-    analyse(&q)
+fn solve_point(p: &ValidPreset, grid: &Grid, i: usize) -> Result<Stability> {
+    let values: Vec<(&str, f64)> = grid
+        .keys
+        .iter()
+        .map(String::as_str)
+        .zip(grid.values(i))
+        .collect();
+    analyse(&p.with_all(&values)?)
 }
 
 #[cfg(test)]

@@ -2,9 +2,9 @@
 
 use crate::analysis::eigen::{analyse, Mode, Stability, Verdict};
 use crate::error::Result;
-use crate::preset::Preset;
+use crate::preset::ValidPreset;
 
-pub fn run(p: &Preset, json: bool) -> Result<()> {
+pub fn run(p: &ValidPreset, json: bool) -> Result<()> {
     let s = analyse(p)?;
     if json {
         return super::print_json(&s);
@@ -14,7 +14,7 @@ pub fn run(p: &Preset, json: bool) -> Result<()> {
 }
 
 /// The text report: a table of the structural modes, the aero-lag roots apart, the verdict.
-pub fn render(p: &Preset, s: &Stability) -> String {
+pub fn render(p: &ValidPreset, s: &Stability) -> String {
     let mut out = format!(
         "{} — aero model {}, U = {} m/s, Ω = {} rpm, V_t = {} m/s, pitch {}°\n\n",
         p.display_name(),

@@ -3,11 +3,11 @@
 use crate::analysis::flutter::flutter_search;
 use crate::analysis::sweep::track;
 use crate::error::Result;
-use crate::preset::Preset;
+use crate::preset::ValidPreset;
 use std::path::Path;
 
 pub fn run(
-    p: &Preset,
+    p: &ValidPreset,
     key: &str,
     from: f64,
     to: f64,

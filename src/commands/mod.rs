@@ -74,7 +74,10 @@ pub fn run(command: Command) -> Result<()> {
             view,
             marker,
         } => snapshot::run(&preset, &size, view, marker),
-        Command::Presets { json } => presets::run(json),
+        Command::Presets { json, show, set } => match show {
+            Some(name) => presets::show(&name, &set),
+            None => presets::run(json),
+        },
     }
 }
 

@@ -3,9 +3,9 @@
 
 use crate::error::Result;
 use crate::physics::structure::{assemble, NaturalMode};
-use crate::preset::{Form, Preset};
+use crate::preset::{Form, ValidPreset};
 
-pub fn run(p: &Preset, json: bool) -> Result<()> {
+pub fn run(p: &ValidPreset, json: bool) -> Result<()> {
     let model = assemble(p)?;
     let modes = model.natural_modes()?;
     if json {
@@ -15,7 +15,7 @@ pub fn run(p: &Preset, json: bool) -> Result<()> {
 }
 
 /// The human-readable table.
-fn render(p: &Preset, modes: &[NaturalMode]) -> String {
+fn render(p: &ValidPreset, modes: &[NaturalMode]) -> String {
     let form = match p.structure.form {
         Form::Weak => "weak",
         Form::Strong => "strong",

@@ -1,4 +1,5 @@
-//! `flutterscope presets`: the built-in presets with one-line descriptions.
+//! `flutterscope presets`: the built-in presets with one-line descriptions, or one preset in full
+//! (`--show`), defaults included.
 
 use crate::error::Result;
 use crate::preset::{Preset, BUILTIN};
@@ -29,5 +30,13 @@ pub fn run(json: bool) -> Result<()> {
         println!("{:width$}  {}", e.name, e.description);
     }
     println!("\nUse one with --preset NAME, or --preset path/to/file.toml for your own.");
+    Ok(())
+}
+
+/// One preset as TOML with every key, the defaults it leaves out included.
+pub fn show(name: &str, overrides: &[String]) -> Result<()> {
+    let p = Preset::load(name, overrides)?;
+    println!("# {} (every key, defaults included)", p.origin);
+    print!("{}", p.to_toml());
     Ok(())
 }

@@ -12,7 +12,7 @@ use crate::physics::section::{
     section_properties, SectionProps, TABLE1_ANGLES, TABLE1_PRINTED, TABLE1_UNIT_FACTORS,
 };
 use crate::physics::structure::{ac_frequency_hz, assemble};
-use crate::preset::Preset;
+use crate::preset::{Preset, ValidPreset};
 use serde::Serialize;
 use std::path::Path;
 
@@ -135,7 +135,7 @@ pub struct Table1 {
 }
 
 /// The paper's blade with overrides (Ω = 0 and no damping for the tables).
-fn paper_blade(sets: &[String]) -> Result<Preset> {
+fn paper_blade(sets: &[String]) -> Result<ValidPreset> {
     Preset::load("liu2017", sets)
 }
 

@@ -6,12 +6,12 @@ use crate::commands::{parse_vary, print_json};
 use crate::error::{Error, Result};
 use crate::physics::laminate::{layup_section, LayupSection, Stiffness3, WallLaminate};
 use crate::physics::section::SectionProps;
-use crate::preset::{ContourShape, Preset, SectionSource};
+use crate::preset::{ContourShape, SectionSource, ValidPreset};
 use serde::Serialize;
 use std::path::Path;
 
 /// The header line's note: this command evaluates the layup even when the model does not.
-fn source_note(p: &Preset) -> String {
+fn source_note(p: &ValidPreset) -> String {
     let source = source_name(p.section.source);
     if p.section.source == SectionSource::Layup {
         "section.source = \"layup\": these are the properties the model uses".into()
@@ -48,7 +48,7 @@ struct VaryReport<'a> {
     sections: Vec<LayupSection>,
 }
 
-pub fn run(p: &Preset, vary: Option<&str>, json: bool, plot: Option<&Path>) -> Result<()> {
+pub fn run(p: &ValidPreset, vary: Option<&str>, json: bool, plot: Option<&Path>) -> Result<()> {
     if plot.is_some() && vary.is_none() {
         return Err(Error::usage(
             "section --plot draws C22/C23/C33 over a grid: add --vary KEY=A:B:STEP, e.g. section.ply_angle=0:90:15",
@@ -99,15 +99,10 @@ pub fn run(p: &Preset, vary: Option<&str>, json: bool, plot: Option<&Path>) -> R
 }
 
 /// The layup section at every grid value of `key` (range- and cross-checked like `--set`).
-pub fn vary_sections(p: &Preset, key: &str, values: &[f64]) -> Result<Vec<LayupSection>> {
+pub fn vary_sections(p: &ValidPreset, key: &str, values: &[f64]) -> Result<Vec<LayupSection>> {
     values
         .iter()
-        .map(|&v| {
-            let mut q = p.clone();
-            q.set(key, v)?;
-            q.validate()?;
-            layup_section(&q)
-        })
+        .map(|&v| layup_section(&p.with(key, v)?))
         .collect()
 }
 
@@ -128,7 +123,7 @@ fn wall_line(name: &str, w: &WallLaminate) -> String {
     )
 }
 
-fn contour_description(p: &Preset) -> String {
+fn contour_description(p: &ValidPreset) -> String {
     let c = &p.section.contour;
     match c.shape {
         ContourShape::Box => format!(
@@ -149,7 +144,7 @@ fn contour_description(p: &Preset) -> String {
 }
 
 /// The single-section report.
-pub fn section_text(p: &Preset, s: &LayupSection) -> String {
+pub fn section_text(p: &ValidPreset, s: &LayupSection) -> String {
     let mut o = String::new();
     let m = &s.material;
     let sp = &s.props;
@@ -233,7 +228,7 @@ pub fn section_text(p: &Preset, s: &LayupSection) -> String {
 }
 
 /// The Table-1-like grid: one column per value, rows C22, C23, C33.
-pub fn vary_text(p: &Preset, key: &str, values: &[f64], sections: &[LayupSection]) -> String {
+pub fn vary_text(p: &ValidPreset, key: &str, values: &[f64], sections: &[LayupSection]) -> String {
     let mut o = format!(
         "section of {} over {key} — layup (MODEL.md §2.1)\n  {}\n\n",
         p.display_name(),

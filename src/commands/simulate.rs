@@ -2,11 +2,11 @@
 
 use crate::analysis::simulate::{simulate, Response, RunStatus};
 use crate::error::{Error, Result};
-use crate::preset::Preset;
+use crate::preset::ValidPreset;
 use std::io::Write;
 use std::path::Path;
 
-pub fn run(p: &Preset, json: bool, csv: bool, plot: Option<&Path>) -> Result<()> {
+pub fn run(p: &ValidPreset, json: bool, csv: bool, plot: Option<&Path>) -> Result<()> {
     if let Some(path) = plot {
         crate::plot::format_for(path)?;
     }
@@ -37,7 +37,7 @@ fn write_csv(r: &Response) -> Result<()> {
 }
 
 /// Start, end, extremes and status in a few lines.
-pub fn summary(p: &Preset, r: &Response) -> String {
+pub fn summary(p: &ValidPreset, r: &Response) -> String {
     let extreme = |v: &[f64]| {
         v.iter()
             .fold(0.0f64, |m, x| if x.abs() > m.abs() { *x } else { m })

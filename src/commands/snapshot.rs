@@ -1,8 +1,9 @@
 //! `flutterscope snapshot`: one explorer frame as plain text, after every solve has finished
 //! (deterministic: the tip simulation runs a fixed number of samples, no threads, no timing).
 
-use crate::cli::{MarkerKind, PresetArgs, ViewKind};
+use crate::cli::PresetArgs;
 use crate::error::Result;
+use crate::explorer::display::{MarkerKind, ViewKind};
 use crate::explorer::headless::{parse_size, render_text, settled_state};
 use crate::explorer::Physics;
 

@@ -3,13 +3,13 @@
 
 use crate::analysis::sweep::{grid_sweep, Grid, Shard, SweepRow};
 use crate::error::{Error, Result};
-use crate::preset::Preset;
+use crate::preset::ValidPreset;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::{IsTerminal, Write};
 use std::path::Path;
 
 pub fn run(
-    p: &Preset,
+    p: &ValidPreset,
     vary: &[String],
     json: bool,
     shard: Option<&str>,

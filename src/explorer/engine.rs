@@ -1,21 +1,27 @@
 //! The explorer's view of the analysis layer: a small trait the worker calls, so the whole explorer
 //! (state, worker, rendering) can be driven and tested with any engine. [`Physics`] is the real
-//! one; it only forwards to `physics::section`, `analysis::eigen`, `analysis::flutter`,
-//! `analysis::sweep` and `analysis::simulate`.
+//! one; it only forwards to `analysis` (`solve`, `flutter`, `sweep`, `simulate`).
 
 use crate::analysis::eigen::Stability;
-use crate::analysis::flutter::Boundary;
-use crate::analysis::simulate::{RunStatus, TipSample};
+use crate::analysis::flutter::{Boundary, SearchRange};
+use crate::analysis::simulate::{RunStatus, Simulator, TipSample};
 use crate::analysis::sweep::TrackedSweep;
 use crate::error::Result;
 use crate::physics::section::SectionProps;
-use crate::preset::Preset;
+use crate::preset::ValidPreset;
 
 /// One operating point, solved: the live section stiffnesses and the eigen-analysis.
 #[derive(Debug, Clone)]
 pub struct Solved {
     pub section: SectionProps,
     pub stability: Stability,
+}
+
+/// What one solve gives the explorer: the analysis and the tip simulation started from the same
+/// build. Either can fail alone (a nonlinear model with no equilibrium still runs from rest).
+pub struct Solve {
+    pub solved: Result<Solved>,
+    pub stream: Result<Box<dyn Stream>>,
 }
 
 /// A running time simulation of the blade tip.
@@ -29,62 +35,54 @@ pub trait Stream: Send {
 
 /// Everything the explorer asks of the analysis layer.
 pub trait Engine: Send + Sync {
-    fn solve(&self, p: &Preset) -> Result<Solved>;
-    /// First stability crossing along `key` in `[from, to]`.
-    fn boundary(
-        &self,
-        p: &Preset,
-        key: &str,
-        from: f64,
-        to: f64,
-        points: usize,
-    ) -> Result<Boundary>;
+    /// Solve `p` and start its tip simulation (`simulation.*`).
+    fn solve(&self, p: &ValidPreset) -> Solve;
+    /// First stability crossing in `range`.
+    fn boundary(&self, p: &ValidPreset, range: &SearchRange) -> Result<Boundary>;
     /// Tracked modes over rotor speeds `grid` (rpm).
-    fn campbell(&self, p: &Preset, grid: &[f64]) -> Result<TrackedSweep>;
-    /// A new tip simulation of `p` from its start state.
-    fn stream(&self, p: &Preset) -> Result<Box<dyn Stream>>;
+    fn campbell(&self, p: &ValidPreset, grid: &[f64]) -> Result<TrackedSweep>;
 }
 
 /// The real engine: the analysis layer, unchanged.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Physics;
 
-impl Stream for crate::analysis::simulate::Simulator {
+impl Stream for Simulator {
     fn advance(&mut self, samples: usize) -> Result<Vec<TipSample>> {
-        crate::analysis::simulate::Simulator::advance(self, samples)
+        Simulator::advance(self, samples)
     }
     fn kick(&mut self, twist_rad: f64, flap_m: f64) {
-        crate::analysis::simulate::Simulator::kick(self, twist_rad, flap_m)
+        Simulator::kick(self, twist_rad, flap_m)
     }
     fn status(&self) -> RunStatus {
-        crate::analysis::simulate::Simulator::status(self)
+        Simulator::status(self)
     }
 }
 
 impl Engine for Physics {
-    fn solve(&self, p: &Preset) -> Result<Solved> {
-        Ok(Solved {
-            section: crate::physics::section::section_properties(p)?,
-            stability: crate::analysis::eigen::analyse(p)?,
-        })
+    fn solve(&self, p: &ValidPreset) -> Solve {
+        match crate::analysis::solve::solve(p) {
+            Ok(solution) => Solve {
+                solved: solution.stability().map(|stability| Solved {
+                    section: *solution.section(),
+                    stability,
+                }),
+                stream: solution
+                    .simulator(p)
+                    .map(|s| Box::new(s) as Box<dyn Stream>),
+            },
+            Err(e) => Solve {
+                solved: Err(e.clone()),
+                stream: Err(e),
+            },
+        }
     }
 
-    fn boundary(
-        &self,
-        p: &Preset,
-        key: &str,
-        from: f64,
-        to: f64,
-        points: usize,
-    ) -> Result<Boundary> {
-        crate::analysis::flutter::flutter_boundary(p, key, from, to, points)
+    fn boundary(&self, p: &ValidPreset, r: &SearchRange) -> Result<Boundary> {
+        crate::analysis::flutter::flutter_boundary(p, &r.key, r.from, r.to, r.points)
     }
 
-    fn campbell(&self, p: &Preset, grid: &[f64]) -> Result<TrackedSweep> {
+    fn campbell(&self, p: &ValidPreset, grid: &[f64]) -> Result<TrackedSweep> {
         crate::analysis::sweep::track(p, "operating.rotor_speed", grid)
-    }
-
-    fn stream(&self, p: &Preset) -> Result<Box<dyn Stream>> {
-        Ok(Box::new(crate::analysis::simulate::Simulator::new(p)?))
     }
 }

@@ -2,75 +2,43 @@
 //! so a frame is a pure function of the preset and the keys pressed (snapshots, tests,
 //! benchmarks). The tip simulation runs for a fixed number of samples instead of real time.
 
-use crate::cli::{MarkerKind, ViewKind};
 use crate::error::{Error, Result};
+use crate::explorer::display::{ColorMode, MarkerKind, ViewKind};
 use crate::explorer::engine::Engine;
 use crate::explorer::keys::Action;
+use crate::explorer::runner;
 use crate::explorer::state::{update, AppState, Effect, Msg, Options, PresetEntry};
-use crate::explorer::worker::guarded;
-use crate::preset::{builtin_names, Preset};
+use crate::preset::{builtin_names, Preset, ValidPreset};
 use ratatui::backend::TestBackend;
 use ratatui::buffer::CellWidth;
 use ratatui::Terminal;
 
 /// Samples a headless run simulates: one `simulation.duration` at `simulation.sample_rate`
 /// (what the response pane holds), capped so a long preset cannot stall a snapshot.
-pub fn fixed_samples(p: &Preset) -> usize {
+pub fn fixed_samples(p: &ValidPreset) -> usize {
     const CAP: f64 = 20_000.0;
     (p.simulation.duration * p.simulation.sample_rate)
         .round()
         .clamp(1.0, CAP) as usize
 }
 
-/// Carry out `effects` and every effect they lead to, synchronously.
+/// Carry out `effects` and every effect they lead to, synchronously, through the same
+/// [`runner`] as the worker threads.
 pub fn settle(state: &mut AppState, engine: &dyn Engine, effects: Vec<Effect>) {
     let mut queue: std::collections::VecDeque<Effect> = effects.into();
     while let Some(effect) = queue.pop_front() {
-        let msgs: Vec<Msg> = match effect {
+        let msgs: Vec<Msg> = match &effect {
             Effect::Solve { gen, preset } => {
-                let mut msgs = vec![Msg::Solved {
-                    gen,
-                    result: guarded("solve", || engine.solve(&preset)),
-                }];
-                match guarded("simulation", || engine.stream(&preset)) {
-                    Ok(mut stream) => {
-                        let n = fixed_samples(&preset);
-                        match guarded("simulation", || {
-                            let samples = stream.advance(n)?;
-                            Ok((samples, stream.status()))
-                        }) {
-                            Ok((samples, status)) => msgs.push(Msg::Samples {
-                                gen,
-                                samples,
-                                status,
-                            }),
-                            Err(error) => msgs.push(Msg::SimFailed { gen, error }),
-                        }
-                    }
-                    Err(error) => msgs.push(Msg::SimFailed { gen, error }),
-                }
-                msgs
+                let (solved, stream) = runner::solve(engine, *gen, preset);
+                let samples = match stream {
+                    Ok(mut stream) => runner::advance(&mut *stream, *gen, fixed_samples(preset)),
+                    Err(failed) => failed,
+                };
+                vec![solved, samples]
             }
-            Effect::Boundary {
-                gen,
-                preset,
-                key,
-                from,
-                to,
-                points,
-            } => vec![Msg::Boundary {
-                gen,
-                key: key.to_string(),
-                result: guarded("boundary search", || {
-                    engine.boundary(&preset, key, from, to, points)
-                }),
-            }],
-            Effect::Campbell { gen, preset, grid } => vec![Msg::Campbell {
-                gen,
-                result: guarded("Campbell sweep", || engine.campbell(&preset, &grid)),
-            }],
             // No running simulation to kick or pause between headless frames.
             Effect::Kick { .. } | Effect::Pause(_) | Effect::Quit => Vec::new(),
+            job => runner::job(engine, job).into_iter().collect(),
         };
         for m in msgs {
             queue.extend(update(state, m));
@@ -89,7 +57,7 @@ pub fn press(state: &mut AppState, engine: &dyn Engine, actions: &[Action]) {
 /// The presets `[`/`]` cycle through: the built-ins, with `first` (a loaded file or a built-in
 /// with `--set` overrides) in its built-in's place or in front. Returns the entries and the index
 /// of `first`.
-pub fn preset_entries(first_name: &str, first: Preset) -> (Vec<PresetEntry>, usize) {
+pub fn preset_entries(first_name: &str, first: ValidPreset) -> (Vec<PresetEntry>, usize) {
     let mut entries = Vec::new();
     let mut index = None;
     for name in builtin_names() {
@@ -125,14 +93,14 @@ pub fn preset_entries(first_name: &str, first: Preset) -> (Vec<PresetEntry>, usi
 /// A settled explorer on `preset` in `view`, as the snapshot command and the tests see it.
 pub fn settled_state(
     name: &str,
-    preset: Preset,
+    preset: ValidPreset,
     engine: &dyn Engine,
     view: ViewKind,
     marker: MarkerKind,
 ) -> AppState {
     let (entries, index) = preset_entries(name, preset);
     let opts = Options {
-        color: crate::cli::ColorMode::None,
+        color: ColorMode::None,
         marker,
     };
     let mut state = AppState::new(entries, index, opts);

@@ -1,6 +1,8 @@
 //! The one key table: every binding with its action and help text. [`action_for`] uses it to
 //! handle keys and the help overlay lists it, so the two cannot disagree.
 
+use crate::explorer::display::MarkerKind;
+use crate::preset::AeroModel;
 use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 
 /// What a key asks for. Pure intent: [`crate::explorer::state::update`] decides what it means.
@@ -66,7 +68,21 @@ pub struct Binding {
     /// How the keys are shown in the help overlay.
     pub shown: &'static str,
     pub action: Action,
+    /// What the keys do; see [`Binding::help_text`].
     pub help: &'static str,
+}
+
+impl Binding {
+    /// The help line: [`Binding::help`], and for the actions that cycle through a list, the list
+    /// in the order the key walks it (taken from the list itself).
+    pub fn help_text(&self) -> String {
+        let cycle: Vec<&str> = match self.action {
+            Action::CycleAero => AeroModel::ALL.iter().map(|m| m.name()).collect(),
+            Action::CycleMarker => MarkerKind::ALL.iter().map(|m| m.name()).collect(),
+            _ => return self.help.to_string(),
+        };
+        format!("{}: {}", self.help, cycle.join(", "))
+    }
 }
 
 /// Every key the explorer understands, in help-overlay order. `k` kicks the tip (as documented),
@@ -128,7 +144,7 @@ pub static BINDINGS: &[Binding] = &[
         keys: &[ch('a')],
         shown: "a",
         action: Action::CycleAero,
-        help: "cycle the aero model: none, quasi-steady, theodorsen, onera",
+        help: "cycle the aero model",
     },
     Binding {
         keys: &[ch(' ')],
@@ -164,7 +180,7 @@ pub static BINDINGS: &[Binding] = &[
         keys: &[ch('m')],
         shown: "m",
         action: Action::CycleMarker,
-        help: "cycle plot markers: braille, halfblock, block, dot",
+        help: "cycle plot markers",
     },
     Binding {
         keys: &[ch('?')],

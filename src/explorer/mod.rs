@@ -7,13 +7,15 @@
 //! [`state::Msg`]s → `update` stores them → [`ui::render`] draws the next frame. `update` and
 //! `render` do no I/O; only `terminal` touches the terminal.
 
+pub mod display;
 pub mod engine;
 pub mod headless;
 pub mod keys;
+pub mod runner;
 pub mod state;
 pub mod terminal;
 pub mod ui;
 pub mod worker;
 
-pub use engine::{Engine, Physics, Solved, Stream};
+pub use engine::{Engine, Physics, Solve, Solved, Stream};
 pub use state::{AppState, Effect, Msg, Options};

@@ -4,12 +4,13 @@
 
 use crate::analysis::eigen::Mode;
 use crate::analysis::flutter::Boundary;
+use crate::analysis::flutter::SearchRange;
 use crate::analysis::simulate::{RunStatus, TipSample};
 use crate::analysis::sweep::TrackedSweep;
-use crate::cli::{ColorMode, MarkerKind};
+use crate::explorer::display::{ColorMode, MarkerKind};
 use crate::explorer::engine::Solved;
 use crate::explorer::keys::Action;
-use crate::preset::{key_spec, AeroModel, Preset};
+use crate::preset::{key_spec, Preset, SectionSource, ValidPreset};
 use std::sync::Arc;
 
 /// Grid points the background boundary search brackets on (as `flutterscope flutter`).
@@ -98,7 +99,7 @@ pub static PARAMS: &[Param] = &[
 
 /// The slider range of a numeric key: the key table's range, with wind and rotor speed capped by
 /// the preset's `view` maxima (but never below the current value).
-pub fn param_bounds(p: &Preset, key: &str) -> (f64, f64) {
+pub fn param_bounds(p: &ValidPreset, key: &str) -> (f64, f64) {
     let Ok(spec) = key_spec(key) else {
         return (f64::NEG_INFINITY, f64::INFINITY);
     };
@@ -122,7 +123,7 @@ pub fn unit(key: &str) -> &'static str {
 #[derive(Debug, Clone)]
 pub struct PresetEntry {
     pub name: String,
-    pub preset: Preset,
+    pub preset: ValidPreset,
 }
 
 /// Display options from the command line.
@@ -188,7 +189,7 @@ pub struct AppState {
     pub presets: Vec<PresetEntry>,
     pub preset_index: usize,
     /// The parameters being explored.
-    pub preset: Preset,
+    pub preset: ValidPreset,
     pub focus: usize,
     /// Bumped on every parameter change; results of older generations are ignored.
     pub gen: u64,
@@ -261,19 +262,16 @@ pub enum Effect {
     /// Solve these parameters and restart the tip simulation from them.
     Solve {
         gen: u64,
-        preset: Arc<Preset>,
+        preset: Arc<ValidPreset>,
     },
     Boundary {
         gen: u64,
-        preset: Arc<Preset>,
-        key: &'static str,
-        from: f64,
-        to: f64,
-        points: usize,
+        preset: Arc<ValidPreset>,
+        range: SearchRange,
     },
     Campbell {
         gen: u64,
-        preset: Arc<Preset>,
+        preset: Arc<ValidPreset>,
         grid: Vec<f64>,
     },
     /// Kick the running simulation of generation `gen`.
@@ -429,16 +427,18 @@ impl AppState {
         Some(Effect::Boundary {
             gen: self.gen,
             preset: Arc::new(self.preset.clone()),
-            key,
-            from,
-            to,
-            points: BOUNDARY_POINTS,
+            range: SearchRange {
+                key: key.to_string(),
+                from,
+                to,
+                points: BOUNDARY_POINTS,
+            },
         })
     }
 
     /// The preset as the Campbell diagram sees it (rotor speed is its axis).
     fn campbell_key(&self) -> Preset {
-        let mut p = self.preset.clone();
+        let mut p = self.preset.clone().into_preset();
         p.operating.rotor_speed = 0.0;
         p
     }
@@ -470,23 +470,25 @@ impl AppState {
         })
     }
 
+    /// The next (or previous) aerodynamic model.
+    fn cycle_aero(&mut self, forward: bool) -> Vec<Effect> {
+        let model = self.preset.aero.model.cycle(forward);
+        match self.preset.edited(|p| p.aero.model = model) {
+            Ok(p) => {
+                self.preset = p;
+                self.changed()
+            }
+            Err(e) => {
+                self.notice = Some(e.to_string());
+                Vec::new()
+            }
+        }
+    }
+
     /// Step the focused parameter by `steps` fine or coarse steps.
     fn adjust(&mut self, up: bool, coarse: bool) -> Vec<Effect> {
         match self.focused().kind {
-            ParamKind::Aero => {
-                let all = AeroModel::ALL;
-                let i = all
-                    .iter()
-                    .position(|m| *m == self.preset.aero.model)
-                    .unwrap_or(0);
-                let j = if up {
-                    (i + 1) % all.len()
-                } else {
-                    (i + all.len() - 1) % all.len()
-                };
-                self.preset.aero.model = all[j];
-                self.changed()
-            }
+            ParamKind::Aero => self.cycle_aero(up),
             ParamKind::Number {
                 key,
                 step,
@@ -515,10 +517,11 @@ impl AppState {
                     ));
                     return Vec::new();
                 }
-                match self.preset.set(key, next) {
-                    Ok(()) => {
+                match self.preset.with(key, next) {
+                    Ok(p) => {
+                        self.preset = p;
                         if key == "section.ply_angle"
-                            && self.preset.section.source == crate::preset::SectionSource::Direct
+                            && self.preset.section.source == SectionSource::Direct
                         {
                             self.notice = Some(
                                 "ply angle has no effect: this preset gives C22, C23, C33 directly \
@@ -578,10 +581,7 @@ impl AppState {
                 };
                 self.load_entry(i)
             }
-            Action::CycleAero => {
-                self.preset.aero.model = self.preset.aero.model.next();
-                self.changed()
-            }
+            Action::CycleAero => self.cycle_aero(true),
             Action::TogglePause => {
                 self.paused = !self.paused;
                 vec![Effect::Pause(self.paused)]
@@ -620,12 +620,7 @@ impl AppState {
                 self.campbell_effect().into_iter().collect()
             }
             Action::CycleMarker => {
-                self.opts.marker = match self.opts.marker {
-                    MarkerKind::Braille => MarkerKind::Halfblock,
-                    MarkerKind::Halfblock => MarkerKind::Block,
-                    MarkerKind::Block => MarkerKind::Dot,
-                    MarkerKind::Dot => MarkerKind::Braille,
-                };
+                self.opts.marker = self.opts.marker.next();
                 Vec::new()
             }
             Action::ToggleHelp => {

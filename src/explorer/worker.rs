@@ -9,16 +9,16 @@
 //! - the **jobs** thread runs the latest boundary search and the latest Campbell sweep, once the
 //!   requests have settled for a moment.
 //!
-//! Every engine call runs under `catch_unwind`: an error or a panic becomes an `Err` result that the
-//! status line shows, and the thread keeps serving. If a thread dies anyway, the next send spawns
-//! it again and the state is told.
+//! Effects become messages through [`crate::explorer::runner`] (errors and panics included), as
+//! in the headless explorer. If a thread dies anyway, the next send spawns it again and the state
+//! is told.
 
 use crate::analysis::simulate::RunStatus;
 use crate::explorer::engine::{Engine, Stream};
+use crate::explorer::runner;
 use crate::explorer::state::{Effect, Msg};
-use crate::preset::Preset;
+use crate::preset::ValidPreset;
 use crossbeam_channel::{unbounded, Receiver, RecvTimeoutError, Sender};
-use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
@@ -36,30 +36,10 @@ const MAX_CATCH_UP_S: f64 = 0.25;
 const JOB_SETTLE: Duration = Duration::from_millis(120);
 
 enum SolverReq {
-    Solve { gen: u64, preset: Arc<Preset> },
+    Solve { gen: u64, preset: Arc<ValidPreset> },
     Kick { gen: u64, twist: f64, flap: f64 },
     Pause(bool),
     Quit,
-}
-
-/// The text of a caught panic.
-pub fn panic_text(payload: &(dyn std::any::Any + Send)) -> String {
-    if let Some(s) = payload.downcast_ref::<&str>() {
-        (*s).to_string()
-    } else if let Some(s) = payload.downcast_ref::<String>() {
-        s.clone()
-    } else {
-        "unknown panic".to_string()
-    }
-}
-
-/// Run an engine call; errors and panics become the message shown to the user.
-pub fn guarded<T>(what: &str, f: impl FnOnce() -> crate::error::Result<T>) -> Result<T, String> {
-    match catch_unwind(AssertUnwindSafe(f)) {
-        Ok(Ok(v)) => Ok(v),
-        Ok(Err(e)) => Err(format!("{what}: {e}")),
-        Err(payload) => Err(format!("{what} panicked: {}", panic_text(&*payload))),
-    }
 }
 
 /// Handle to the worker threads.
@@ -70,7 +50,7 @@ pub struct Worker {
     solver: Sender<SolverReq>,
     jobs: Sender<Effect>,
     /// The last solve and pause requests, re-sent to a restarted solver.
-    last_solve: Option<(u64, Arc<Preset>)>,
+    last_solve: Option<(u64, Arc<ValidPreset>)>,
     paused: bool,
 }
 
@@ -252,12 +232,8 @@ impl Solver {
                             continue;
                         }
                         if let Some(sim) = self.sim.as_mut().filter(|s| s.gen == gen) {
-                            let stream = &mut sim.stream;
-                            if let Err(e) = guarded("kick", || {
-                                stream.kick(twist, flap);
-                                Ok(())
-                            }) {
-                                let _ = self.out.send(Msg::SimFailed { gen, error: e });
+                            if let Some(failed) = runner::kick(&mut *sim.stream, gen, twist, flap) {
+                                let _ = self.out.send(failed);
                                 self.sim = None;
                             }
                         }
@@ -268,28 +244,25 @@ impl Solver {
         }
     }
 
-    fn solve(&mut self, gen: u64, preset: &Preset) {
-        let engine = &self.engine;
-        let result = guarded("solve", || engine.solve(preset));
-        if self.out.send(Msg::Solved { gen, result }).is_err() {
+    fn solve(&mut self, gen: u64, preset: &ValidPreset) {
+        let (solved, stream) = runner::solve(&*self.engine, gen, preset);
+        if self.out.send(solved).is_err() {
             return;
         }
-        self.sim = None;
-        match guarded("simulation", || engine.stream(preset)) {
-            Ok(stream) => {
-                self.sim = Some(Sim {
-                    gen,
-                    stream,
-                    sample_rate: preset.simulation.sample_rate,
-                    owed: 0.0,
-                    last_tick: Instant::now(),
-                    done: false,
-                });
+        self.sim = match stream {
+            Ok(stream) => Some(Sim {
+                gen,
+                stream,
+                sample_rate: preset.simulation.sample_rate,
+                owed: 0.0,
+                last_tick: Instant::now(),
+                done: false,
+            }),
+            Err(failed) => {
+                let _ = self.out.send(failed);
+                None
             }
-            Err(error) => {
-                let _ = self.out.send(Msg::SimFailed { gen, error });
-            }
-        }
+        };
     }
 
     /// Produce the samples owed since the last batch (real time), if streaming.
@@ -312,26 +285,12 @@ impl Solver {
             return;
         }
         sim.owed -= n as f64;
-        let stream = &mut sim.stream;
-        let batch = guarded("simulation", || {
-            let samples = stream.advance(n)?;
-            Ok((samples, stream.status()))
-        });
-        let gen = sim.gen;
-        match batch {
-            Ok((samples, status)) => {
-                sim.done = status == RunStatus::Diverging;
-                let _ = self.out.send(Msg::Samples {
-                    gen,
-                    samples,
-                    status,
-                });
-            }
-            Err(error) => {
-                self.sim = None;
-                let _ = self.out.send(Msg::SimFailed { gen, error });
-            }
+        let msg = runner::advance(&mut *sim.stream, sim.gen, n);
+        match &msg {
+            Msg::Samples { status, .. } => sim.done = *status == RunStatus::Diverging,
+            _ => self.sim = None,
         }
+        let _ = self.out.send(msg);
     }
 }
 
@@ -363,28 +322,11 @@ fn run_jobs(engine: &dyn Engine, out: &Sender<Msg>, rx: &Receiver<Effect>) {
             }
         }
         // One job, then look at the channel again: a newer request may have replaced the other.
-        let msg = if let Some(Effect::Boundary {
-            gen,
-            preset,
-            key,
-            from,
-            to,
-            points,
-        }) = boundary.take()
-        {
-            Msg::Boundary {
-                gen,
-                key: key.to_string(),
-                result: guarded("boundary search", || {
-                    engine.boundary(&preset, key, from, to, points)
-                }),
-            }
-        } else if let Some(Effect::Campbell { gen, preset, grid }) = campbell.take() {
-            Msg::Campbell {
-                gen,
-                result: guarded("Campbell sweep", || engine.campbell(&preset, &grid)),
-            }
-        } else {
+        let Some(msg) = boundary
+            .take()
+            .or_else(|| campbell.take())
+            .and_then(|job| runner::job(engine, &job))
+        else {
             continue;
         };
         if out.send(msg).is_err() {

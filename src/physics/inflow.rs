@@ -10,7 +10,7 @@
 //! grows, and never evaluating at the root or tip where the Galerkin functions vanish or peak).
 
 use crate::physics::basis::gauss_legendre;
-use crate::preset::{Inflow, Preset};
+use crate::preset::{Inflow, ValidPreset};
 
 /// The rigid (structure-independent) flow seen by one strip.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -49,7 +49,7 @@ pub struct OperatingPoint {
 }
 
 impl OperatingPoint {
-    pub fn from_preset(p: &Preset) -> OperatingPoint {
+    pub fn from_preset(p: &ValidPreset) -> OperatingPoint {
         let o = &p.operating;
         OperatingPoint {
             wind: o.wind_speed,
@@ -104,7 +104,7 @@ pub fn stations(length: f64, hub_radius: f64, op: &OperatingPoint, count: usize)
 }
 
 /// The stations of a preset (`aero.stations` of them).
-pub fn preset_stations(p: &Preset) -> Vec<Station> {
+pub fn preset_stations(p: &ValidPreset) -> Vec<Station> {
     stations(
         p.blade.length,
         p.blade.hub_radius,

@@ -26,8 +26,8 @@
 //!   which carry no wall bending (D) stiffness.
 
 use crate::error::{Error, Result};
-use crate::physics::section::SectionProps;
-use crate::preset::{key_spec, ContourShape, Preset};
+use crate::physics::section::{SectionProps, TABLE1_ANGLES};
+use crate::preset::{Contour, ContourShape, Layup, Preset, ValidPreset};
 use serde::Serialize;
 use std::f64::consts::PI;
 
@@ -298,7 +298,7 @@ pub fn cas_stiffness(
 /// The preset's contour as a closed polyline, counterclockwise, `segments` points for the smooth
 /// shapes (the box is exact with its four corners and ignores `segments`).
 /// `chord` scales the paper's contour (e = chord/4).
-pub fn contour_polyline(p: &Preset, segments: usize) -> Vec<[f64; 2]> {
+pub fn contour_polyline(p: &ValidPreset, segments: usize) -> Vec<[f64; 2]> {
     let c = &p.section.contour;
     let mut pts: Vec<[f64; 2]> = match c.shape {
         ContourShape::Box => {
@@ -420,7 +420,7 @@ fn richardson(coarse: f64, fine: f64) -> f64 {
 /// samples, `segments` chords. The polyline's error expands in even powers of the parameter step,
 /// so the two are Richardson-combined (error O(h⁴), plus an O(h³) remainder from where a chord is
 /// cut at z = 0, below 1e-7 relative at 512 segments).
-pub fn contour_moments_with(p: &Preset, segments: usize) -> ContourMoments {
+pub fn contour_moments_with(p: &ValidPreset, segments: usize) -> ContourMoments {
     let shape = p.section.contour.shape;
     if shape == ContourShape::Box {
         return polyline_moments(shape, &contour_polyline(p, 4));
@@ -440,16 +440,12 @@ pub fn contour_moments_with(p: &Preset, segments: usize) -> ContourMoments {
 }
 
 /// [`contour_moments_with`] at the production resolution [`SMOOTH_SEGMENTS`].
-pub fn contour_moments(p: &Preset) -> ContourMoments {
+pub fn contour_moments(p: &ValidPreset) -> ContourMoments {
     contour_moments_with(p, SMOOTH_SEGMENTS)
 }
 
-// ---------------------------------------------------------------------------------------------
-// Validation
-// ---------------------------------------------------------------------------------------------
-
 /// The preset's ply material.
-pub fn ply_material(p: &Preset) -> PlyMaterial {
+pub fn ply_material(p: &ValidPreset) -> PlyMaterial {
     let l = &p.section.layup;
     PlyMaterial {
         e11: l.e11,
@@ -457,102 +453,6 @@ pub fn ply_material(p: &Preset) -> PlyMaterial {
         nu12: l.nu12,
         g12: l.g12,
     }
-}
-
-/// Range-check one key through the preset key table (a preset built in code may skip
-/// `Preset::validate`; the layup must not run on it).
-fn check_key(p: &Preset, key: &str) -> Result<()> {
-    let spec = key_spec(key)?;
-    let v = (spec.get)(p);
-    if spec.contains(v) {
-        Ok(())
-    } else {
-        Err(Error::Range {
-            origin: p.origin.clone(),
-            key: key.to_string(),
-            value: format!("{v}"),
-            allowed: spec.allowed(),
-        })
-    }
-}
-
-/// Reject a ply whose compliance is not positive definite: positive moduli (key ranges) and
-/// `Δ = 1 − ν12²E22/E11 > 0` (MODEL.md §2.1 item 1).
-pub fn check_material(p: &Preset) -> Result<()> {
-    for key in [
-        "section.layup.e11",
-        "section.layup.e22",
-        "section.layup.g12",
-        "section.layup.nu12",
-        "section.layup.density",
-    ] {
-        check_key(p, key)?;
-    }
-    let m = ply_material(p);
-    let delta = poisson_determinant(&m);
-    if delta <= 0.0 {
-        return Err(Error::Invalid {
-            origin: p.origin.clone(),
-            message: format!(
-                "section.layup.nu12 = {} gives Δ = 1 − ν12·ν21 = 1 − ν12²·E22/E11 = {:.4} with \
-                 section.layup.e11 = {:e} Pa and section.layup.e22 = {:e} Pa; a physical ply needs \
-                 Δ > 0, i.e. |ν12| < √(E11/E22) = {:.4}",
-                m.nu12,
-                delta,
-                m.e11,
-                m.e22,
-                (m.e11 / m.e22).sqrt()
-            ),
-        });
-    }
-    Ok(())
-}
-
-/// Reject a layup or contour that is not a closed thin-walled section: thickness and plies in
-/// range, contour dimensions positive, and the wall thinner than the section it encloses
-/// (otherwise the inner faces overlap).
-pub fn check_section(p: &Preset) -> Result<()> {
-    check_material(p)?;
-    check_key(p, "section.layup.ply_thickness")?;
-    check_key(p, "section.layup.plies")?;
-    check_key(p, "section.layup.nonstructural_mass")?;
-    check_key(p, "section.layup.nonstructural_position")?;
-    check_key(p, "section.chord")?;
-    let c = &p.section.contour;
-    let t = p.section.layup.plies as f64 * p.section.layup.ply_thickness;
-    let (key, inner) = match c.shape {
-        ContourShape::Box => {
-            check_key(p, "section.contour.width")?;
-            check_key(p, "section.contour.height")?;
-            if c.width < c.height {
-                ("section.contour.width", c.width)
-            } else {
-                ("section.contour.height", c.height)
-            }
-        }
-        ContourShape::Ellipse => {
-            check_key(p, "section.contour.a")?;
-            check_key(p, "section.contour.b")?;
-            if c.a < c.b {
-                ("section.contour.a", 2.0 * c.a)
-            } else {
-                ("section.contour.b", 2.0 * c.b)
-            }
-        }
-        // The Eq. (1) line is nearly a circle of diameter ≈ 1.7e = 0.43 chord.
-        ContourShape::Paper => ("section.chord", 1.7 * p.section.chord / 4.0),
-    };
-    if t >= inner {
-        return Err(Error::Invalid {
-            origin: p.origin.clone(),
-            message: format!(
-                "wall thickness section.layup.plies × section.layup.ply_thickness = {t:e} m is not \
-                 smaller than the section's inner dimension {inner:e} m (from {key}); the walls \
-                 would overlap"
-            ),
-        });
-    }
-    Ok(())
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -569,8 +469,7 @@ pub fn check_section(p: &Preset) -> Result<()> {
 /// `cg_offset`: the preset's `section.cg_offset` is taken as the centre of the structural mass
 /// relative to the elastic axis; the non-structural mass moves it to the mass-weighted mean
 /// `d = d_p + m_ns (x_ns − d_p)/m`.
-pub fn layup_section(p: &Preset) -> Result<LayupSection> {
-    check_section(p)?;
+pub fn layup_section(p: &ValidPreset) -> Result<LayupSection> {
     let l = &p.section.layup;
     let material = ply_material(p);
     let q = ply_stiffness(&material);
@@ -631,44 +530,25 @@ pub fn layup_section(p: &Preset) -> Result<LayupSection> {
 /// The section properties the structure model consumes, from the layup (`section.source =
 /// "layup"`): m, I, K_A², K_m1², K_m2² from the contour, C22/C23/C33 from CLT; chord and e_a
 /// from the preset; d as in [`layup_section`].
-pub fn layup_section_props(p: &Preset) -> Result<SectionProps> {
+pub fn layup_section_props(p: &ValidPreset) -> Result<SectionProps> {
     Ok(layup_section(p)?.props)
 }
 
-/// The ply angles of the paper's Table 1 (deg).
-pub const TABLE1_ANGLES: [f64; 7] = [0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 90.0];
-
-/// The paper's Table 1 recomputed from the layup: the paper's material and six 0.127 mm plies
-/// (MODEL.md §2.1) on the flat box of mid-line 18.33 × 2.470 mm (MODEL.md §2), at each of
-/// [`TABLE1_ANGLES`]. Spelled out rather than taken from the defaults, so it stays the paper's.
+/// The paper's Table 1 recomputed from the layup: the paper's laminate ([`Layup::PAPER`]) on the
+/// flat box of mid-line 18.33 × 2.470 mm ([`Contour::PAPER_BOX`]), at each of [`TABLE1_ANGLES`].
+/// Named rather than taken from the defaults, so it stays the paper's.
 pub fn paper_table1_from_layup() -> Result<Vec<(f64, SectionProps)>> {
-    let base = Preset::default();
-    let mut p = Preset {
-        origin: "paper Table 1 layup".into(),
-        ..base.clone()
-    };
-    p.section.layup = crate::preset::Layup {
-        e11: 25.8e9,
-        e22: 8.7e9,
-        nu12: 0.34,
-        g12: 3.5e9,
-        density: 1672.0,
-        ply_thickness: 0.127e-3,
-        plies: 6,
-        nonstructural_mass: 0.0,
-        ..base.section.layup
-    };
-    p.section.contour = crate::preset::Contour {
-        shape: ContourShape::Box,
-        width: 18.33e-3,
-        height: 2.470e-3,
-        ..base.section.contour
-    };
     TABLE1_ANGLES
         .iter()
         .map(|&deg| {
+            let mut p = Preset {
+                origin: "paper Table 1 layup".into(),
+                ..Preset::default()
+            };
+            p.section.layup = Layup::PAPER;
+            p.section.contour = Contour::PAPER_BOX;
             p.section.ply_angle = deg;
-            Ok((deg, layup_section_props(&p)?))
+            Ok((deg, layup_section_props(&p.validate()?)?))
         })
         .collect()
 }

@@ -1,7 +1,7 @@
 //! Cross-section properties from the three stiffness sources (MODEL.md §2).
 
 use crate::error::{Error, Result};
-use crate::preset::{Preset, SectionSource};
+use crate::preset::{SectionSource, ValidPreset};
 
 /// Per-length section properties in SI, whatever their source.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
@@ -34,13 +34,13 @@ pub struct SectionProps {
 /// `c22, c23, c33` from the preset, `table` interpolates the paper's Table 1 at
 /// `section.ply_angle`, `layup` computes everything from the laminate and contour (§2.1). Mass
 /// properties come from the preset for `direct` and `table`.
-pub fn section_properties(p: &Preset) -> Result<SectionProps> {
+pub fn section_properties(p: &ValidPreset) -> Result<SectionProps> {
     let props = match p.section.source {
         SectionSource::Direct => {
             let s = &p.section;
             with_preset_mass(p, [s.c22, s.c23, s.c33])
         }
-        SectionSource::Table => with_preset_mass(p, table1_stiffness(p.section.ply_angle)?),
+        SectionSource::Table => with_preset_mass(p, table1_stiffness(p.section.ply_angle)),
         SectionSource::Layup => crate::physics::laminate::layup_section_props(p)?,
     };
     check_finite(&props)?;
@@ -49,7 +49,7 @@ pub fn section_properties(p: &Preset) -> Result<SectionProps> {
 
 /// Stiffness `[C22, C23, C33]` with the mass, inertia and geometry given in the preset (the
 /// direct and table sources).
-fn with_preset_mass(p: &Preset, [c22, c23, c33]: [f64; 3]) -> SectionProps {
+fn with_preset_mass(p: &ValidPreset, [c22, c23, c33]: [f64; 3]) -> SectionProps {
     let s = &p.section;
     SectionProps {
         m: s.mass_per_length,
@@ -117,28 +117,21 @@ pub fn table1_si() -> [[f64; 7]; 3] {
     t
 }
 
-/// `[C22, C23, C33]` (N·m²) at ply angle `theta_deg` ∈ [0°, 90°] from Table 1 (MODEL.md §2), by a
+/// `[C22, C23, C33]` (N·m²) at ply angle `theta_deg` ∈ [0°, 90°] (the range of
+/// `section.ply_angle`) from Table 1 (MODEL.md §2), by a
 /// cubic spline whose end conditions come from the symmetry of a CAS section rather than being
 /// invented: flipping every ply angle mirrors the section, so C22 and C33 are even in θ and C23 is
 /// odd; fibre directions repeat every 180°, so θ = 90° is a symmetry point too. Hence C22 and C33
 /// have zero slope at 0° and 90° (clamped spline, f' = 0) and C23 has zero curvature there (natural
 /// spline, f'' = 0) — both exact properties of the true curves. The result is C², passes through
 /// every table entry, and reproduces the table exactly at its nodes.
-pub fn table1_stiffness(theta_deg: f64) -> Result<[f64; 3]> {
-    if !(0.0..=90.0).contains(&theta_deg) {
-        return Err(Error::Range {
-            origin: "Table 1".into(),
-            key: "section.ply_angle".into(),
-            value: format!("{theta_deg}"),
-            allowed: "[0, 90] deg".into(),
-        });
-    }
+pub fn table1_stiffness(theta_deg: f64) -> [f64; 3] {
     let t = table1_si();
-    Ok([
+    [
         CubicSpline::new(&TABLE1_ANGLES, &t[0], EndCondition::ZeroSlope).eval(theta_deg),
         CubicSpline::new(&TABLE1_ANGLES, &t[1], EndCondition::ZeroCurvature).eval(theta_deg),
         CubicSpline::new(&TABLE1_ANGLES, &t[2], EndCondition::ZeroSlope).eval(theta_deg),
-    ])
+    ]
 }
 
 /// End condition of an interpolating cubic spline, applied at both ends.
@@ -220,7 +213,7 @@ mod tests {
     fn table_source_is_exact_at_nodes() {
         let t = table1_si();
         for (k, &a) in TABLE1_ANGLES.iter().enumerate() {
-            let c = table1_stiffness(a).unwrap();
+            let c = table1_stiffness(a);
             for row in 0..3 {
                 assert!((c[row] - t[row][k]).abs() <= 1e-12 * t[row][k].abs().max(1e-12));
             }
@@ -230,15 +223,13 @@ mod tests {
     #[test]
     fn spline_end_conditions_hold() {
         let d = 1e-4;
-        let s0 = table1_stiffness(0.0).unwrap();
-        let s1 = table1_stiffness(d).unwrap();
+        let s0 = table1_stiffness(0.0);
+        let s1 = table1_stiffness(d);
         // C22 and C33: zero slope at 0°, so a first difference is O(d) relative to the table step.
         assert!(((s1[0] - s0[0]) / d).abs() < 1e-6 * s0[0]);
-        let e0 = table1_stiffness(90.0).unwrap();
-        let e1 = table1_stiffness(90.0 - d).unwrap();
+        let e0 = table1_stiffness(90.0);
+        let e1 = table1_stiffness(90.0 - d);
         assert!(((e1[2] - e0[2]) / d).abs() < 1e-6 * e0[2]);
-        assert!(table1_stiffness(90.5).is_err());
-        assert!(table1_stiffness(-0.5).is_err());
     }
 
     #[test]

@@ -9,7 +9,7 @@
 use crate::error::{Error, Result};
 use crate::physics::basis::{torsion_wavenumber, Basis, BendingMode};
 use crate::physics::section::{section_properties, SectionProps};
-use crate::preset::{Form, Preset};
+use crate::preset::{Form, ValidPreset};
 use nalgebra::{Complex, DMatrix, DVector};
 use std::sync::{Arc, OnceLock};
 
@@ -48,7 +48,7 @@ pub struct NaturalMode {
 /// Assemble the structure of a preset: section from its source, N from `structure.modes`, form
 /// from `structure.form`, rotor speed from `operating.rotor_speed`, damping from
 /// `structure.loss_factor` (MODEL.md §3–§4).
-pub fn assemble(p: &Preset) -> Result<StructuralModel> {
+pub fn assemble(p: &ValidPreset) -> Result<StructuralModel> {
     let section = section_properties(p)?;
     let spec = BladeSpec {
         n: p.structure.modes,

@@ -22,7 +22,7 @@ use crate::physics::aero::{
 };
 use crate::physics::inflow::{preset_stations, Station};
 use crate::physics::structure::{assemble, StructuralModel};
-use crate::preset::Preset;
+use crate::preset::ValidPreset;
 use nalgebra::{DMatrix, DVector};
 use std::sync::Arc;
 
@@ -79,7 +79,7 @@ pub struct LinearSystem {
 
 impl System {
     /// Assemble structure, stations and the preset's aerodynamic model.
-    pub fn new(p: &Preset) -> Result<System> {
+    pub fn new(p: &ValidPreset) -> Result<System> {
         let structure = assemble(p)?;
         let model = model_for(p)?;
         System::from_parts(structure, preset_stations(p), model)
@@ -512,6 +512,12 @@ impl Splitting {
 impl System {
     /// The split of the right-hand side about `x_ref` ([`Splitting`]).
     pub fn splitting(&self, x_ref: &DVector<f64>) -> Splitting {
+        self.splitting_with(x_ref, self.jacobian(x_ref))
+    }
+
+    /// [`System::splitting`] with the Jacobian at `x_ref` already known (`a`), as the
+    /// linearisation that found the equilibrium has it.
+    pub fn splitting_with(&self, x_ref: &DVector<f64>, a: DMatrix<f64>) -> Splitting {
         let (n, nq, ns) = (self.n, self.nq(), self.ns);
         let dim = self.dim();
         let support = self.model.nonlinear_support();
@@ -560,7 +566,7 @@ impl System {
         }
         Splitting {
             x_ref: x_ref.clone(),
-            a: self.jacobian(x_ref),
+            a,
             r0: self.rhs(x_ref),
             b,
             c,

@@ -258,3 +258,41 @@ fn wrong_type_names_the_key() {
         &["modes", "many"],
     );
 }
+
+/// `presets --show` prints what the engine uses: the keys a preset leaves out at their defaults
+/// (the stall preset does not restate the ONERA coefficients), overrides applied, and the text
+/// loads back as the same preset.
+#[test]
+fn presets_show_prints_every_key_with_defaults_and_overrides() {
+    let r = run(&[
+        "presets",
+        "--show",
+        "liu2017-stall",
+        "--set",
+        "aero.onera.alpha1=10",
+    ]);
+    assert_eq!(r.code, Some(0), "{}", r.stderr);
+    let body: String = r
+        .stdout
+        .lines()
+        .filter(|l| !l.starts_with('#'))
+        .collect::<Vec<_>>()
+        .join("\n");
+    let shown: toml::Table = body.parse().expect("presets --show prints TOML");
+    let onera = &shown["aero"]["onera"];
+    assert_eq!(onera["alpha1"].as_float(), Some(10.0), "override applied");
+    assert_eq!(onera["alpha2"].as_float(), Some(18.0), "default filled in");
+    assert_eq!(onera["a_l1"].as_float(), Some(4.4));
+    let again = flutterscope::preset::Preset::from_toml(&body, "shown", &[]).unwrap();
+    let direct =
+        flutterscope::preset::Preset::load("liu2017-stall", &["aero.onera.alpha1=10".to_string()])
+            .unwrap();
+    assert_eq!(
+        again.into_preset().to_toml(),
+        direct.into_preset().to_toml()
+    );
+    assert_fails_naming(
+        &run(&["presets", "--show", "no-such-blade"]),
+        &["no-such-blade"],
+    );
+}

@@ -2,10 +2,10 @@
 
 use flutterscope::analysis::eigen::{analyse, SECOND_ROOT_SUFFIX};
 use flutterscope::physics::structure::assemble;
-use flutterscope::preset::Preset;
+use flutterscope::preset::{Preset, ValidPreset};
 use std::collections::HashSet;
 
-fn preset(name: &str, overrides: &[&str]) -> Preset {
+fn preset(name: &str, overrides: &[&str]) -> ValidPreset {
     let o: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
     Preset::load(name, &o).unwrap()
 }

@@ -5,20 +5,20 @@
 use crossbeam_channel::{bounded, unbounded, Receiver, Sender};
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use flutterscope::analysis::eigen::{Mode, Stability, Verdict};
-use flutterscope::analysis::flutter::{Boundary, BoundaryKind};
+use flutterscope::analysis::flutter::{Boundary, BoundaryKind, SearchRange};
 use flutterscope::analysis::simulate::{RunStatus, TipSample};
 use flutterscope::analysis::sweep::{TrackedMode, TrackedSweep};
-use flutterscope::cli::{MarkerKind, ViewKind};
 use flutterscope::error::{Error, Result};
+use flutterscope::explorer::display::{MarkerKind, ViewKind};
 use flutterscope::explorer::headless::{
     self, parse_size, preset_entries, render_text, settle, settled_state,
 };
 use flutterscope::explorer::keys::{action_for, Action, BINDINGS};
 use flutterscope::explorer::state::{update, AppState, Effect, Msg, Options, ViewMode, PARAMS};
 use flutterscope::explorer::worker::Worker;
-use flutterscope::explorer::{Engine, Physics, Solved, Stream};
+use flutterscope::explorer::{Engine, Physics, Solve, Solved, Stream};
 use flutterscope::physics::section::SectionProps;
-use flutterscope::preset::{AeroModel, Preset, BUILTIN, DEFAULT_PRESET};
+use flutterscope::preset::{AeroModel, Preset, ValidPreset, BUILTIN, DEFAULT_PRESET};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
@@ -55,7 +55,7 @@ fn mode(label: &str, re: f64, im: f64) -> Mode {
     }
 }
 
-fn test_stability(p: &Preset) -> Stability {
+fn test_stability(p: &ValidPreset) -> Stability {
     let rpm = p.operating.rotor_speed;
     let flap_sigma = -0.05 + 0.01 * p.operating.wind_speed - 0.1;
     let eigenvalues = vec![
@@ -104,8 +104,8 @@ impl Stream for TestStream {
     }
 }
 
-impl Engine for TestEngine {
-    fn solve(&self, p: &Preset) -> Result<Solved> {
+impl TestEngine {
+    fn solved(&self, p: &ValidPreset) -> Result<Solved> {
         self.started.fetch_add(1, Ordering::SeqCst);
         if let Some(gate) = self.gate.lock().unwrap().take() {
             gate.recv().ok();
@@ -143,16 +143,22 @@ impl Engine for TestEngine {
             stability: test_stability(p),
         })
     }
+}
 
-    fn boundary(
-        &self,
-        p: &Preset,
-        key: &str,
-        from: f64,
-        to: f64,
-        _points: usize,
-    ) -> Result<Boundary> {
+impl Engine for TestEngine {
+    fn solve(&self, p: &ValidPreset) -> Solve {
+        Solve {
+            solved: self.solved(p),
+            stream: Ok(Box::new(TestStream {
+                t: 0.0,
+                rate: p.simulation.sample_rate,
+            })),
+        }
+    }
+
+    fn boundary(&self, p: &ValidPreset, range: &SearchRange) -> Result<Boundary> {
         self.boundaries.fetch_add(1, Ordering::SeqCst);
+        let (key, from, to) = (range.key.as_str(), range.from, range.to);
         // Flutter where the flap σ of `test_stability` crosses zero along the wind speed.
         let critical = if key == "operating.wind_speed" {
             Some(15.0).filter(|c| (from..=to).contains(c))
@@ -169,7 +175,7 @@ impl Engine for TestEngine {
         })
     }
 
-    fn campbell(&self, p: &Preset, grid: &[f64]) -> Result<TrackedSweep> {
+    fn campbell(&self, p: &ValidPreset, grid: &[f64]) -> Result<TrackedSweep> {
         self.campbells.fetch_add(1, Ordering::SeqCst);
         let modes = ["flap 1", "torsion 1"]
             .iter()
@@ -177,11 +183,7 @@ impl Engine for TestEngine {
             .map(|(k, label)| {
                 let stab: Vec<Stability> = grid
                     .iter()
-                    .map(|&r| {
-                        let mut q = p.clone();
-                        q.operating.rotor_speed = r;
-                        test_stability(&q)
-                    })
+                    .map(|&r| test_stability(&p.with("operating.rotor_speed", r).unwrap()))
                     .collect();
                 TrackedMode {
                     label: label.to_string(),
@@ -200,16 +202,9 @@ impl Engine for TestEngine {
             modes,
         })
     }
-
-    fn stream(&self, p: &Preset) -> Result<Box<dyn Stream>> {
-        Ok(Box::new(TestStream {
-            t: 0.0,
-            rate: p.simulation.sample_rate,
-        }))
-    }
 }
 
-fn default_preset() -> Preset {
+fn default_preset() -> ValidPreset {
     Preset::load(DEFAULT_PRESET, &[]).expect("default preset loads")
 }
 
@@ -257,17 +252,14 @@ fn start_requests_one_solve_then_a_boundary_search() {
         &mut s,
         Msg::Solved {
             gen: *gen,
-            result: engine.solve(preset).map_err(|e| e.to_string()),
+            result: engine.solved(preset).map_err(|e| e.to_string()),
         },
     );
     assert!(!s.solving());
     assert!(
         matches!(
             follow.as_slice(),
-            [Effect::Boundary {
-                key: "operating.rotor_speed",
-                ..
-            }]
+            [Effect::Boundary { range, .. }] if range.key == "operating.rotor_speed"
         ),
         "{follow:?}"
     );
@@ -306,7 +298,7 @@ fn slider_limits_stop_without_a_solve() {
     let engine = TestEngine::default();
     let mut s = settled(&engine);
     s.focus = 0;
-    s.preset.section.ply_angle = 0.0;
+    s.preset = s.preset.with("section.ply_angle", 0.0).unwrap();
     let e = update(&mut s, Msg::Action(Action::Decrease));
     assert!(e.is_empty());
     assert!(
@@ -319,7 +311,8 @@ fn slider_limits_stop_without_a_solve() {
         .iter()
         .position(|p| p.label == "rotor speed")
         .unwrap();
-    s.preset.operating.rotor_speed = s.preset.view.rotor_speed_max;
+    let max = s.preset.view.rotor_speed_max;
+    s.preset = s.preset.with("operating.rotor_speed", max).unwrap();
     assert!(update(&mut s, Msg::Action(Action::IncreaseCoarse)).is_empty());
     assert_eq!(
         s.preset.operating.rotor_speed,
@@ -377,7 +370,7 @@ fn aero_key_cycles_models_and_reset_restores_the_preset() {
     let mut s = settled(&engine);
     let m0 = s.preset.aero.model;
     let e = update(&mut s, key(KeyCode::Char('a'), KeyModifiers::NONE));
-    assert_eq!(s.preset.aero.model, m0.next());
+    assert_eq!(s.preset.aero.model, m0.cycle(true));
     assert_eq!(solve_gens(&e).len(), 1);
     for _ in 0..AeroModel::ALL.len() - 1 {
         update(&mut s, Msg::Action(Action::CycleAero));
@@ -455,12 +448,13 @@ fn boundary_follows_the_selected_parameter() {
     // Select wind speed: a new search along it.
     s.focus = 0;
     let e = update(&mut s, Msg::Action(Action::FocusNext));
-    let Some(Effect::Boundary { key, from, to, .. }) = e.first() else {
+    let Some(Effect::Boundary { range, .. }) = e.first() else {
         panic!("{e:?}")
     };
+    let (key, from, to) = (range.key.as_str(), &range.from, &range.to);
     // The test engine's flap mode is unstable at 20 m/s, so the search runs below the current
     // value (stable operating points search above it, up to view.wind_speed_max).
-    assert_eq!(*key, "operating.wind_speed");
+    assert_eq!(key, "operating.wind_speed");
     assert_eq!(*from, 0.0);
     assert_eq!(*to, s.preset.operating.wind_speed);
     settle(&mut s, &engine, e);
@@ -499,7 +493,8 @@ fn margin_reads_like_a_sentence() {
     let mut s = settled(&engine);
     s.focus = PARAMS.iter().position(|p| p.label == "wind speed").unwrap();
     s.boundary_key = "operating.wind_speed";
-    s.preset.operating.wind_speed = 10.0; // the test engine's flap σ < 0 below 15 m/s
+    // The test engine's flap σ < 0 below 15 m/s.
+    s.preset = s.preset.with("operating.wind_speed", 10.0).unwrap();
     let e = update(&mut s, Msg::Action(Action::Decrease));
     settle(&mut s, &engine, e);
     assert_eq!(s.preset.operating.wind_speed, 9.5);
@@ -565,8 +560,9 @@ fn trails_and_trends_start_afresh_on_a_new_preset() {
 
 #[test]
 fn a_preset_file_joins_the_cycle_in_front() {
-    let mut p = default_preset();
-    p.meta.name = "my blade".into();
+    let p = default_preset()
+        .edited(|p| p.meta.name = "my blade".into())
+        .unwrap();
     let (entries, index) = preset_entries("blades/mine.toml", p);
     assert_eq!(index, 0);
     assert_eq!(entries[0].name, "my blade");
@@ -580,7 +576,8 @@ fn help_lists_every_binding() {
     headless::press(&mut s, &engine, &[Action::ToggleHelp]);
     let text = render_text(&s, 120, 40);
     for b in BINDINGS {
-        assert!(text.contains(b.help), "help misses '{}'\n{text}", b.help);
+        let help = b.help_text();
+        assert!(text.contains(&help), "help misses '{help}'\n{text}");
     }
 }
 
@@ -614,8 +611,7 @@ fn size_argument_is_checked() {
 // ---------------------------------------------------------------------------------------------
 
 fn solve_effect(gen: u64, rpm: f64) -> Effect {
-    let mut p = default_preset();
-    p.operating.rotor_speed = rpm;
+    let p = default_preset().with("operating.rotor_speed", rpm).unwrap();
     Effect::Solve {
         gen,
         preset: Arc::new(p),
@@ -752,10 +748,12 @@ fn worker_jobs_run_the_latest_request() {
         worker.send(Effect::Boundary {
             gen: g,
             preset: p.clone(),
-            key: "operating.wind_speed",
-            from: 0.0,
-            to: 40.0,
-            points: 41,
+            range: SearchRange {
+                key: "operating.wind_speed".into(),
+                from: 0.0,
+                to: 40.0,
+                points: 41,
+            },
         });
     }
     let msgs = collect_until(&rx, |m| matches!(m, Msg::Boundary { gen: 50, .. }));
@@ -824,26 +822,19 @@ fn snapshot_large_window() {
 struct FailingSolve;
 
 impl Engine for FailingSolve {
-    fn solve(&self, _p: &Preset) -> Result<Solved> {
-        Err(Error::numerical(
-            "eigenvalues of the state matrix did not converge (test)",
-        ))
+    fn solve(&self, p: &ValidPreset) -> Solve {
+        Solve {
+            solved: Err(Error::numerical(
+                "eigenvalues of the state matrix did not converge (test)",
+            )),
+            ..Physics.solve(p)
+        }
     }
-    fn boundary(
-        &self,
-        p: &Preset,
-        key: &str,
-        from: f64,
-        to: f64,
-        points: usize,
-    ) -> Result<Boundary> {
-        Physics.boundary(p, key, from, to, points)
+    fn boundary(&self, p: &ValidPreset, range: &SearchRange) -> Result<Boundary> {
+        Physics.boundary(p, range)
     }
-    fn campbell(&self, p: &Preset, grid: &[f64]) -> Result<TrackedSweep> {
+    fn campbell(&self, p: &ValidPreset, grid: &[f64]) -> Result<TrackedSweep> {
         Physics.campbell(p, grid)
-    }
-    fn stream(&self, p: &Preset) -> Result<Box<dyn Stream>> {
-        Physics.stream(p)
     }
 }
 

@@ -25,18 +25,23 @@ fn paper_strip(alpha_r: f64) -> Strip {
     }
 }
 
-/// The static lift curve written out from MODEL.md §5.3 with the default numbers, independently
-/// of the library: 2π α, minus 4.4 (|α| − 0.1396) past stall onset, minus a further
-/// 2.4 (|α| − 0.3142) past full stall, odd in α.
+/// The default stall onset α1 = 8° and full-stall angle α2 = 18° (docs/model.md §5.3; the paper's
+/// 0.1396 and 0.3142 rad), in radians as the library converts them.
+const A1: f64 = 8.0 * (std::f64::consts::PI / 180.0);
+const A2: f64 = 18.0 * (std::f64::consts::PI / 180.0);
+
+/// The static lift curve written out from docs/model.md §5.3 with the default numbers,
+/// independently of the library: 2π α, minus 4.4 (|α| − α1) past stall onset, minus a further
+/// 2.4 (|α| − α2) past full stall, odd in α.
 fn static_lift_by_hand(alpha: f64) -> f64 {
     let m = alpha.abs();
-    let deviation = 4.4 * (m - 0.1396).max(0.0) + 2.4 * (m - 0.3142).max(0.0);
+    let deviation = 4.4 * (m - A1).max(0.0) + 2.4 * (m - A2).max(0.0);
     2.0 * std::f64::consts::PI * alpha - alpha.signum() * deviation
 }
 
 /// Angles across both breakpoints, both signs, including the breakpoints themselves.
 const ANGLES: [f64; 13] = [
-    0.0, 0.05, -0.05, 0.1396, -0.1396, 0.2, -0.2, 0.3142, -0.3142, 0.4, -0.4, 0.7, -0.7,
+    0.0, 0.05, -0.05, A1, -A1, 0.2, -0.2, A2, -A2, 0.4, -0.4, 0.7, -0.7,
 ];
 
 fn close(a: f64, b: f64, tol: f64) -> bool {
@@ -56,8 +61,8 @@ fn static_lift_curve_matches_model() {
     }
     // Spot values: the curve's peak at α2 and its negative slope beyond.
     assert!(close(
-        coef.static_lift(0.3142),
-        2.0 * std::f64::consts::PI * 0.3142 - 4.4 * 0.1746,
+        coef.static_lift(A2),
+        2.0 * std::f64::consts::PI * A2 - 4.4 * (A2 - A1),
         1e-12
     ));
     assert!(coef.static_lift(0.5) < coef.static_lift(0.4));
@@ -133,7 +138,7 @@ fn steady_states_are_fixed_points() {
 #[test]
 fn deviations_are_odd_even_and_continuous() {
     let coef = defaults();
-    for alpha in [0.05, 0.1396, 0.2, 0.3142, 0.5] {
+    for alpha in [0.05, A1, 0.2, A2, 0.5] {
         let p = coef.deviation(alpha);
         let n = coef.deviation(-alpha);
         assert_eq!(p.value[0], -n.value[0]);
@@ -142,7 +147,7 @@ fn deviations_are_odd_even_and_continuous() {
         assert_eq!(p.slope[0], n.slope[0]);
         assert_eq!(p.slope[2], -n.slope[2]);
     }
-    for brk in [0.1396, 0.3142] {
+    for brk in [A1, A2] {
         let below = coef.deviation(brk - 1e-12);
         let above = coef.deviation(brk + 1e-12);
         for i in 0..3 {
@@ -159,11 +164,7 @@ fn deviations_are_odd_even_and_continuous() {
         0.014 + 0.5 * 0.09 + 2.0 * 0.027,
         1e-12
     ));
-    assert!(close(
-        coef.static_moment(0.2),
-        -0.15 * (0.2 - 0.1396),
-        1e-12
-    ));
+    assert!(close(coef.static_moment(0.2), -0.15 * (0.2 - A1), 1e-12));
 }
 
 #[test]
@@ -450,7 +451,7 @@ fn rigid_states_ignore_the_structure_and_loads_use_the_geometric_arm() {
         0.17 * w * (coef.a0l * 0.25 - 0.9),
         1e-12
     ));
-    let dl = 4.4 * (0.25 - 0.1396);
+    let dl = 4.4 * (0.25 - A1);
     assert!(close(
         r[rigid::STALL + 1],
         -0.30 * w * 40.0 - 0.0324 * w * w * (-0.3 + dl),
@@ -726,7 +727,7 @@ fn steady_moment_of_both_forms_follows_the_static_curves() {
         // static curves; the lift acts at the aerodynamic centre, so its arm is e_a.
         let dev = |a: f64| {
             let m = a.abs();
-            let lm = 0.15 * (m - 0.1396).max(0.0) + 0.6 * (m - 0.3142).max(0.0);
+            let lm = 0.15 * (m - A1).max(0.0) + 0.6 * (m - A2).max(0.0);
             let d = -0.1 * m - 0.5 * a * a - 2.0 * m * m * m;
             (a.signum() * lm, d)
         };

@@ -221,11 +221,7 @@ fn demo_blade_follows_the_ply_angle_through_its_layup() {
 
     let base = Preset::load("demo-blade", &[]).unwrap();
     assert_eq!(base.section.source, SectionSource::Layup);
-    let at = |deg: f64| {
-        let mut p = base.clone();
-        p.set("section.ply_angle", deg).unwrap();
-        p
-    };
+    let at = |deg: f64| base.with("section.ply_angle", deg).unwrap();
     let (s15, s40) = (
         section_properties(&at(15.0)).unwrap(),
         section_properties(&at(40.0)).unwrap(),
@@ -255,8 +251,7 @@ fn demo_blade_follows_the_ply_angle_through_its_layup() {
 
     // Issue 3 item 7: flap about 1 Hz and torsion 15–20 Hz (in vacuo, at rest), and a wind
     // flutter boundary inside the wind slider's range at the opening rotor speed.
-    let mut rest = base.clone();
-    rest.set("operating.rotor_speed", 0.0).unwrap();
+    let rest = base.with("operating.rotor_speed", 0.0).unwrap();
     let modes = flutterscope::physics::structure::assemble(&rest)
         .unwrap()
         .natural_modes()

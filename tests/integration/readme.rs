@@ -1,14 +1,15 @@
 //! The README is the user's reference: keep it true to the code.
 
-use flutterscope::preset::{builtin_names, KEYS};
+use flutterscope::preset::{builtin_names, Preset, KEYS};
 
 fn readme() -> String {
     std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap()
 }
 
 #[test]
-fn every_numeric_key_is_documented_with_its_range() {
+fn every_numeric_key_is_documented_with_its_range_and_default() {
     let text = readme();
+    let defaults = Preset::default();
     for spec in KEYS {
         let row = text
             .lines()
@@ -19,6 +20,19 @@ fn every_numeric_key_is_documented_with_its_range() {
             "README row for {} does not show its upper bound {}: {row}",
             spec.key,
             spec.max
+        );
+        let shown = row.trim_end_matches('|').rsplit('|').next().unwrap().trim();
+        let shown = match shown {
+            "2π" => std::f64::consts::TAU,
+            v => v.parse::<f64>().unwrap_or_else(|_| {
+                panic!("README default of {} is not a number: {row}", spec.key)
+            }),
+        };
+        let default = (spec.get)(&defaults);
+        assert!(
+            (shown - default).abs() <= 1e-12 * default.abs(),
+            "README shows {shown} as the default of {}, the code has {default}",
+            spec.key
         );
     }
 }
@@ -45,7 +59,7 @@ fn readme_shows_the_two_commands() {
 fn every_explorer_key_is_documented() {
     let text = readme();
     for b in flutterscope::explorer::keys::BINDINGS {
-        let row = format!("| `{}` | {} |", b.shown, b.help);
+        let row = format!("| `{}` | {} |", b.shown, b.help_text());
         assert!(text.contains(&row), "README.md lacks the key row {row}");
     }
 }

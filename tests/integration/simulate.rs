@@ -10,15 +10,15 @@ use flutterscope::analysis::simulate::{propagators, simulate, RunStatus, Simulat
 use flutterscope::analysis::sweep::track;
 use flutterscope::error::Error;
 use flutterscope::physics::system::System;
-use flutterscope::preset::Preset;
+use flutterscope::preset::{Preset, ValidPreset};
 use nalgebra::{DMatrix, DVector};
 
-fn preset(name: &str, overrides: &[&str]) -> Preset {
+fn preset(name: &str, overrides: &[&str]) -> ValidPreset {
     let o: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
     Preset::load(name, &o).unwrap()
 }
 
-fn stall(overrides: &[&str]) -> Preset {
+fn stall(overrides: &[&str]) -> ValidPreset {
     preset("liu2017-stall", overrides)
 }
 

@@ -9,13 +9,13 @@ use flutterscope::analysis::sweep::track;
 use flutterscope::error::Error;
 use flutterscope::physics::structure::assemble;
 use flutterscope::physics::system::System;
-use flutterscope::preset::Preset;
+use flutterscope::preset::{Preset, ValidPreset};
 use nalgebra::{DMatrix, DVector};
 use std::f64::consts::PI;
 use std::sync::mpsc;
 use std::time::Duration;
 
-fn preset(name: &str, overrides: &[&str]) -> Preset {
+fn preset(name: &str, overrides: &[&str]) -> ValidPreset {
     let o: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
     Preset::load(name, &o).unwrap()
 }

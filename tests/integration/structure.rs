@@ -2,7 +2,7 @@
 
 use flutterscope::physics::basis::{bending_root, gauss_legendre, Basis};
 use flutterscope::physics::structure::{assemble, mode_labels};
-use flutterscope::preset::Preset;
+use flutterscope::preset::{Preset, ValidPreset};
 use nalgebra::{Complex, DMatrix};
 
 /// ∫₀ᴸ f over a Gauss rule of `points` points.
@@ -142,7 +142,7 @@ fn bending_functions_satisfy_cantilever_conditions_for_large_j() {
     }
 }
 
-fn paper_blade(extra: &[&str]) -> Preset {
+fn paper_blade(extra: &[&str]) -> ValidPreset {
     let mut sets = vec![
         "operating.rotor_speed=0".to_string(),
         "structure.loss_factor=0".to_string(),
@@ -238,17 +238,19 @@ fn labels_count_within_their_kind() {
     );
 }
 
+/// A non-finite section never reaches the structure: the structure takes only a checked preset,
+/// and checking names the key.
 #[test]
-fn non_finite_section_is_a_numerical_error_not_a_hang() {
-    let mut p = paper_blade(&["section.source=direct"]);
+fn non_finite_section_is_refused_before_assembly() {
+    let mut p = paper_blade(&["section.source=direct"]).into_preset();
     p.section.c33 = f64::NAN;
-    match assemble(&p) {
-        Err(flutterscope::error::Error::Numerical(msg)) => assert!(msg.contains("C33"), "{msg}"),
-        other => panic!("expected a numerical error, got {other:?}"),
+    match p.validate() {
+        Err(flutterscope::error::Error::Range { key, .. }) => assert_eq!(key, "section.c33"),
+        other => panic!("expected a range error, got {other:?}"),
     }
-    let mut p = paper_blade(&[]);
+    let mut p = paper_blade(&[]).into_preset();
     p.blade.length = f64::INFINITY;
-    assert!(assemble(&p).is_err());
+    assert!(p.validate().is_err());
 }
 
 #[test]

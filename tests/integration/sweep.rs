@@ -2,9 +2,9 @@
 
 use assert_cmd::Command;
 use flutterscope::analysis::sweep::{grid_sweep, Grid, Shard, SweepRow};
-use flutterscope::preset::Preset;
+use flutterscope::preset::{Preset, ValidPreset};
 
-fn rows(p: &Preset, grid: &Grid, shard: Option<Shard>) -> Vec<SweepRow> {
+fn rows(p: &ValidPreset, grid: &Grid, shard: Option<Shard>) -> Vec<SweepRow> {
     let mut out = Vec::new();
     grid_sweep(p, grid, shard, &|_| {}, &mut |batch| {
         out.extend_from_slice(batch);

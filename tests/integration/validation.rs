@@ -5,11 +5,11 @@ use flutterscope::commands::reproduce::{TABLE2_AC, TABLE2_PRESENT};
 use flutterscope::physics::basis::bending_root;
 use flutterscope::physics::section::{section_properties, TABLE1_ANGLES};
 use flutterscope::physics::structure::{ac_frequency_hz, assemble, NaturalMode};
-use flutterscope::preset::Preset;
+use flutterscope::preset::{Preset, ValidPreset};
 use std::f64::consts::PI;
 
 /// The paper's blade for its §4.1 free-vibration check: Ω = 0, a_s = 0, I = 2.3e-6 ≤ 1e-4.
-fn paper_blade(angle: f64, form: &str, n: usize) -> Preset {
+fn paper_blade(angle: f64, form: &str, n: usize) -> ValidPreset {
     let p = Preset::load(
         "liu2017",
         &[
@@ -26,7 +26,7 @@ fn paper_blade(angle: f64, form: &str, n: usize) -> Preset {
     p
 }
 
-fn flap_modes(p: &Preset) -> Vec<NaturalMode> {
+fn flap_modes(p: &ValidPreset) -> Vec<NaturalMode> {
     assemble(p)
         .unwrap()
         .natural_modes()
@@ -78,7 +78,7 @@ fn table2_present_rows_by_strong_form_within_one_percent() {
 }
 
 /// `ω_n = (β_nL)² √((C33 − C23²/C22)/(mL⁴))`, the cantilever with twist condensed out (I → 0).
-fn effective_stiffness_hz(p: &Preset, n: usize) -> f64 {
+fn effective_stiffness_hz(p: &ValidPreset, n: usize) -> f64 {
     let s = section_properties(p).unwrap();
     let l = p.blade.length;
     let ei = s.c33 - s.c23 * s.c23 / s.c22;
@@ -118,7 +118,7 @@ fn weak_form_frequencies_decrease_with_n() {
 }
 
 /// A direct-stiffness blade from TOML text.
-fn direct_blade(extra: &str) -> Preset {
+fn direct_blade(extra: &str) -> ValidPreset {
     let text = format!(
         "[section]\nsource = \"direct\"\nka2 = 0.0\nkm1_2 = 0.0\nkm2_2 = 0.0\ncg_offset = 0.0\n{extra}"
     );

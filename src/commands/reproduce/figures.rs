@@ -9,10 +9,11 @@
 //! pair) ordered by real part, largest first — the paper's "1st, 2nd, … eigenvalue" (§4.2).
 
 use crate::analysis::eigen::{analyse, Mode, Stability};
-use crate::analysis::simulate::{sample_count, simulate, RunStatus, Simulator};
+use crate::analysis::simulate::{sample_count, simulate, RunStatus};
+use crate::analysis::solve::solve;
 use crate::error::Result;
 use crate::plot::{self, Figure, Guide, Mark, Panel, Series};
-use crate::preset::Preset;
+use crate::preset::{Preset, ValidPreset};
 use rayon::prelude::*;
 use serde::Serialize;
 use std::io::IsTerminal;
@@ -33,7 +34,7 @@ pub const PAPER_CLASSICAL: &str =
 pub const PAPER_STALL: &str = "stall: 45° most stable (four eigenvalues almost minimum); \
      from the responses (Fig. 4), 15° the least stable";
 
-fn paper_preset(name: &str, angle: f64) -> Result<Preset> {
+fn paper_preset(name: &str, angle: f64) -> Result<ValidPreset> {
     Preset::load(name, &[format!("section.ply_angle={angle}")])
 }
 
@@ -411,8 +412,9 @@ pub fn fig2() -> Result<Fig2> {
     let preset = MODELS[1].1;
     let ply_angle = 45.0;
     let p = paper_preset(preset, ply_angle)?;
-    let eigenvalues = rightmost(&analyse(&p)?, 10);
-    let mut sim = Simulator::new(&p)?;
+    let solution = solve(&p)?;
+    let eigenvalues = rightmost(&solution.stability()?, 10);
+    let mut sim = solution.simulator(&p)?;
     let linear = sim.linear();
     let (nq, n_aero) = (linear.nq, linear.n_aero);
     let names = state_names(nq / 2, n_aero);

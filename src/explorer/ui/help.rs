@@ -18,7 +18,7 @@ pub fn render(theme: &Theme, frame: &mut Frame, area: Rect) {
         .map(|b| {
             Line::from(vec![
                 Span::styled(format!(" {:<key_w$}  ", b.shown), theme.title()),
-                Span::raw(b.help),
+                Span::raw(b.help_text()),
             ])
         })
         .collect();

@@ -9,7 +9,7 @@ pub mod response;
 pub mod status;
 pub mod theme;
 
-use crate::cli::MarkerKind;
+use crate::explorer::display::MarkerKind;
 use crate::explorer::state::{AppState, ViewMode};
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::symbols::Marker;

@@ -1,7 +1,7 @@
 //! Colours and modifiers for `--color 16|256|truecolor|none`. The 16-colour theme is the default
 //! (safe over any SSH link); `none` uses no colour at all, only bold, dim, reversed, underline.
 
-use crate::cli::ColorMode;
+use crate::explorer::display::ColorMode;
 use ratatui::style::{Color, Modifier, Style};
 
 #[derive(Debug, Clone, Copy)]

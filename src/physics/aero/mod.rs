@@ -22,7 +22,7 @@ pub mod theodorsen;
 
 use crate::error::Result;
 use crate::physics::inflow::Station;
-use crate::preset::{AeroModel, Preset};
+use crate::preset::{AeroModel, ValidPreset};
 
 /// Local kinematics of one strip, in the blade's sign conventions (MODEL.md §1).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -53,7 +53,7 @@ pub struct StripSection {
 }
 
 impl StripSection {
-    pub fn from_preset(p: &Preset) -> StripSection {
+    pub fn from_preset(p: &ValidPreset) -> StripSection {
         StripSection {
             chord: p.section.chord,
             ea_offset: p.section.ea_offset,
@@ -221,7 +221,7 @@ impl StripModel for NoAero {
 }
 
 /// The model a preset selects.
-pub fn model_for(p: &Preset) -> Result<Box<dyn StripModel>> {
+pub fn model_for(p: &ValidPreset) -> Result<Box<dyn StripModel>> {
     let section = StripSection::from_preset(p);
     match p.aero.model {
         AeroModel::None => Ok(Box::new(NoAero)),

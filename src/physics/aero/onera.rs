@@ -20,7 +20,7 @@
 
 use super::{Kinematics, NonlinearSupport, SteadyStates, StripEval, StripModel, StripSection};
 use crate::physics::inflow::Station;
-use crate::preset::{OneraForcing, Preset};
+use crate::preset::{OneraForcing, ValidPreset};
 
 /// R.T. Jones' two-lag approximation `(A_i, ε_i)`, shared with the attached flow of §5.2.
 pub use super::theodorsen::JONES;
@@ -88,6 +88,7 @@ pub struct Coefficients {
 }
 
 impl From<&crate::preset::Onera> for Coefficients {
+    /// The preset's coefficients; its stall angles are in degrees.
     fn from(o: &crate::preset::Onera) -> Self {
         Coefficients {
             lambda_l: o.lambda_l,
@@ -99,8 +100,8 @@ impl From<&crate::preset::Onera> for Coefficients {
             drag_polynomial: (o.a_d1, o.a_d2, o.a_d3),
             cm0: o.cm0,
             cd0: o.cd0,
-            alpha1: o.alpha1,
-            alpha2: o.alpha2,
+            alpha1: o.alpha1.to_radians(),
+            alpha2: o.alpha2.to_radians(),
         }
     }
 }
@@ -745,7 +746,7 @@ impl OneraModel {
     }
 
     /// The preset's section, air and `aero.onera.*` coefficients and form.
-    pub fn from_preset(p: &Preset) -> Self {
+    pub fn from_preset(p: &ValidPreset) -> Self {
         OneraModel::new(
             StripSection::from_preset(p),
             Coefficients::from(&p.aero.onera),

@@ -1,0 +1,74 @@
+//! One operating point, built once (MODEL.md §6–§7): section, structure, stations, aerodynamic
+//! model, static equilibrium and the linearisation about it. The eigen-analysis and the time
+//! response both start from this build, so a re-solve (an explorer key press, `reproduce fig2`)
+//! never assembles or linearises anything twice.
+
+use crate::analysis::eigen::{analyse_system, Stability};
+use crate::analysis::simulate::Simulator;
+use crate::error::Result;
+use crate::physics::section::SectionProps;
+use crate::physics::system::{LinearSystem, System};
+use crate::preset::{Start, ValidPreset};
+use nalgebra::DVector;
+use std::sync::Arc;
+
+/// The coupled system of one preset and its linearisation.
+pub struct Solution {
+    system: Arc<System>,
+    /// About the static equilibrium; an error when there is none (a nonlinear model loaded past
+    /// what the blade carries). A time response from rest still runs without it.
+    linear: Result<LinearSystem>,
+}
+
+/// Build the preset's system once and linearise it about its static equilibrium.
+pub fn solve(p: &ValidPreset) -> Result<Solution> {
+    let system = Arc::new(System::new(p)?);
+    let linear = system.linearise();
+    Ok(Solution { system, linear })
+}
+
+impl Solution {
+    /// The section properties the structure was assembled from.
+    pub fn section(&self) -> &SectionProps {
+        &self.system.structure().section
+    }
+
+    /// The linearisation about the equilibrium, or why there is none.
+    pub fn linear(&self) -> Result<&LinearSystem> {
+        self.linear.as_ref().map_err(Clone::clone)
+    }
+
+    /// Eigenvalues, labels and verdict (MODEL.md §6).
+    pub fn stability(&self) -> Result<Stability> {
+        analyse_system(self.linear()?)
+    }
+
+    /// The tip response of `simulation.*` (MODEL.md §7), stepping the linearisation of this
+    /// build: exactly for the affine models, split about it for the nonlinear ones. A run from
+    /// rest of a nonlinear model without an equilibrium is split about the rest state instead.
+    pub fn simulator(self, p: &ValidPreset) -> Result<Simulator> {
+        let sim = &p.simulation;
+        let affine = self.system.model().nonlinear_support().is_affine();
+        let mut s = match (self.linear, affine, sim.start) {
+            (Ok(linear), true, _) => {
+                Simulator::from_linear(linear, sim.sample_rate, p.blade.length)?
+            }
+            (Ok(tangent), false, _) => {
+                Simulator::from_system(self.system, tangent, sim.sample_rate, p.blade.length)?
+            }
+            (Err(_), false, Start::Rest) => {
+                let rest = DVector::zeros(self.system.dim());
+                let tangent = self
+                    .system
+                    .tangent(rest.clone(), self.system.jacobian(&rest));
+                Simulator::from_system(self.system, tangent, sim.sample_rate, p.blade.length)?
+            }
+            (Err(e), _, _) => return Err(e),
+        };
+        if sim.start == Start::Rest {
+            s.start_from_rest();
+        }
+        s.kick(sim.kick_twist.to_radians(), sim.kick_flap);
+        Ok(s)
+    }
+}

@@ -1,0 +1,105 @@
+//! Carrying out effects through an [`Engine`]: the one place that turns an effect into the
+//! messages it produces. The worker threads (real time) and the headless explorer (snapshots,
+//! tests, benchmarks) both run effects through these functions; only when they run differs.
+//!
+//! Every engine call runs under `catch_unwind`: an error or a panic becomes an `Err` that the
+//! status line shows, and the caller keeps serving.
+
+use crate::explorer::engine::{Engine, Stream};
+use crate::explorer::state::{Effect, Msg};
+use crate::preset::ValidPreset;
+use std::panic::{catch_unwind, AssertUnwindSafe};
+
+/// The text of a caught panic.
+pub fn panic_text(payload: &(dyn std::any::Any + Send)) -> String {
+    if let Some(s) = payload.downcast_ref::<&str>() {
+        (*s).to_string()
+    } else if let Some(s) = payload.downcast_ref::<String>() {
+        s.clone()
+    } else {
+        "unknown panic".to_string()
+    }
+}
+
+/// Run an engine call; errors and panics become the message shown to the user.
+pub fn guarded<T>(what: &str, f: impl FnOnce() -> crate::error::Result<T>) -> Result<T, String> {
+    match catch_unwind(AssertUnwindSafe(f)) {
+        Ok(Ok(v)) => Ok(v),
+        Ok(Err(e)) => Err(format!("{what}: {e}")),
+        Err(payload) => Err(format!("{what} panicked: {}", panic_text(&*payload))),
+    }
+}
+
+/// Solve `preset`: the [`Msg::Solved`] for the state, and the tip simulation started from the
+/// same build, or the [`Msg::SimFailed`] saying why there is none.
+pub fn solve(
+    engine: &dyn Engine,
+    gen: u64,
+    preset: &ValidPreset,
+) -> (Msg, Result<Box<dyn Stream>, Msg>) {
+    match catch_unwind(AssertUnwindSafe(|| engine.solve(preset))) {
+        Ok(s) => (
+            Msg::Solved {
+                gen,
+                result: s.solved.map_err(|e| format!("solve: {e}")),
+            },
+            s.stream.map_err(|e| Msg::SimFailed {
+                gen,
+                error: format!("simulation: {e}"),
+            }),
+        ),
+        Err(payload) => {
+            let error = format!("solve panicked: {}", panic_text(&*payload));
+            (
+                Msg::Solved {
+                    gen,
+                    result: Err(error.clone()),
+                },
+                Err(Msg::SimFailed { gen, error }),
+            )
+        }
+    }
+}
+
+/// The next `samples` samples of a simulation as a [`Msg::Samples`], or the [`Msg::SimFailed`]
+/// that ends it.
+pub fn advance(stream: &mut dyn Stream, gen: u64, samples: usize) -> Msg {
+    match guarded("simulation", || {
+        let out = stream.advance(samples)?;
+        Ok((out, stream.status()))
+    }) {
+        Ok((samples, status)) => Msg::Samples {
+            gen,
+            samples,
+            status,
+        },
+        Err(error) => Msg::SimFailed { gen, error },
+    }
+}
+
+/// Kick a running simulation; a failure ends it with this message.
+pub fn kick(stream: &mut dyn Stream, gen: u64, twist_rad: f64, flap_m: f64) -> Option<Msg> {
+    guarded("kick", || {
+        stream.kick(twist_rad, flap_m);
+        Ok(())
+    })
+    .err()
+    .map(|error| Msg::SimFailed { gen, error })
+}
+
+/// Run a background job (a boundary search or a Campbell sweep) to its result message; `None`
+/// for effects that are not jobs.
+pub fn job(engine: &dyn Engine, effect: &Effect) -> Option<Msg> {
+    match effect {
+        Effect::Boundary { gen, preset, range } => Some(Msg::Boundary {
+            gen: *gen,
+            key: range.key.clone(),
+            result: guarded("boundary search", || engine.boundary(preset, range)),
+        }),
+        Effect::Campbell { gen, preset, grid } => Some(Msg::Campbell {
+            gen: *gen,
+            result: guarded("Campbell sweep", || engine.campbell(preset, grid)),
+        }),
+        _ => None,
+    }
+}

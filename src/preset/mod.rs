@@ -1,0 +1,217 @@
+//! Presets: the TOML description of a blade, its section, its operating point and the analysis
+//! settings. [`schema`] holds the tables and their defaults, [`keys`] the numeric keys with their
+//! ranges (they also serve `--set key=value` and the parameters that sweeps, flutter searches and
+//! the explorer vary), [`rules`] the rules across keys.
+//!
+//! A preset is checked once, when it is loaded or changed, into a [`ValidPreset`]; the physics
+//! and analysis layers take only that type, so they never re-check an input.
+//!
+//! Units at this edge: degrees for angles, rpm for rotor speed, SI otherwise. The physics layers
+//! receive SI through the accessors at the bottom of this file.
+
+pub mod keys;
+pub mod rules;
+pub mod schema;
+
+pub use keys::{key_spec, KeySpec, KEYS};
+pub use rules::MAX_SAMPLES;
+pub use schema::*;
+
+use crate::error::{Error, Result};
+use serde::Deserialize;
+use std::path::Path;
+
+/// Presets shipped in `presets/` and embedded so the binary runs from anywhere.
+pub static BUILTIN: &[(&str, &str)] = &[
+    ("liu2017", include_str!("../../presets/liu2017.toml")),
+    (
+        "liu2017-stall",
+        include_str!("../../presets/liu2017-stall.toml"),
+    ),
+    ("goland", include_str!("../../presets/goland.toml")),
+    ("demo-blade", include_str!("../../presets/demo-blade.toml")),
+];
+
+/// The preset the explorer opens with no arguments.
+pub const DEFAULT_PRESET: &str = "liu2017";
+
+/// Names of the built-in presets, in display order.
+pub fn builtin_names() -> Vec<&'static str> {
+    BUILTIN.iter().map(|(n, _)| *n).collect()
+}
+
+/// A preset that passed every key range and every rule across keys ([`Preset::validate`]). The
+/// only way to make one is to validate, so whatever takes a `&ValidPreset` can rely on it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ValidPreset(Preset);
+
+impl std::ops::Deref for ValidPreset {
+    type Target = Preset;
+    fn deref(&self) -> &Preset {
+        &self.0
+    }
+}
+
+impl ValidPreset {
+    /// The preset, to edit and validate again.
+    pub fn into_preset(self) -> Preset {
+        self.0
+    }
+
+    /// This preset with `key` set to `value`, validated again (cross-key rules included).
+    pub fn with(&self, key: &str, value: f64) -> Result<ValidPreset> {
+        self.with_all(&[(key, value)])
+    }
+
+    /// This preset with every `(key, value)` set, validated again.
+    pub fn with_all(&self, values: &[(&str, f64)]) -> Result<ValidPreset> {
+        let mut p = self.0.clone();
+        for (key, value) in values {
+            p.set(key, *value)?;
+        }
+        p.validate()
+    }
+
+    /// This preset changed by `edit` (for the keys that are not numbers), validated again.
+    pub fn edited(&self, edit: impl FnOnce(&mut Preset)) -> Result<ValidPreset> {
+        let mut p = self.0.clone();
+        edit(&mut p);
+        p.validate()
+    }
+}
+
+impl Preset {
+    /// Load a built-in preset by name, or a file by path (anything containing a path separator
+    /// or ending in `.toml`), then apply `--set` overrides and validate.
+    pub fn load(name_or_path: &str, overrides: &[String]) -> Result<ValidPreset> {
+        if let Some((name, text)) = BUILTIN.iter().find(|(n, _)| *n == name_or_path) {
+            return Preset::from_toml(text, &format!("built-in preset '{name}'"), overrides);
+        }
+        let path = Path::new(name_or_path);
+        let looks_like_path = name_or_path.ends_with(".toml")
+            || name_or_path.contains(std::path::MAIN_SEPARATOR)
+            || name_or_path.contains('/');
+        if looks_like_path || path.exists() {
+            let text = std::fs::read_to_string(path).map_err(|e| Error::Preset {
+                origin: name_or_path.to_string(),
+                message: format!("cannot read preset file: {e}"),
+            })?;
+            return Preset::from_toml(&text, name_or_path, overrides);
+        }
+        Err(Error::usage(format!(
+            "no preset named '{name_or_path}'; built-in presets: {} (or give a path to a .toml file)",
+            builtin_names().join(", ")
+        )))
+    }
+
+    /// Parse TOML text, apply overrides (`key=value`, value in TOML syntax or a bare word) and
+    /// validate. `origin` names the source in every error.
+    pub fn from_toml(text: &str, origin: &str, overrides: &[String]) -> Result<ValidPreset> {
+        let preset_err = |message: String| Error::Preset {
+            origin: origin.to_string(),
+            message,
+        };
+        let file_err = |e: toml::de::Error| preset_err(e.to_string().trim_end().to_string());
+        // The file alone, deserialized from its text so that every error in it (syntax, unknown
+        // field, wrong type) carries the line and a caret.
+        let mut preset: Preset = toml::from_str(text).map_err(file_err)?;
+        if !overrides.is_empty() {
+            // Overrides edit the parsed table; its errors have no spans and read "…\nin
+            // `table`", kept on one line and blamed on the --set.
+            let mut table: toml::Table = text.parse().map_err(file_err)?;
+            for ov in overrides {
+                apply_override(&mut table, ov)?;
+            }
+            preset = Preset::deserialize(table).map_err(|e| {
+                let msg = e.to_string().trim_end().replace('\n', " ");
+                preset_err(format!("{msg} (after --set {})", overrides.join(" --set ")))
+            })?;
+        }
+        preset.origin = origin.to_string();
+        preset.validate()
+    }
+
+    /// Range-check every numeric key, then the rules across keys ([`rules`]).
+    pub fn validate(self) -> Result<ValidPreset> {
+        for spec in KEYS {
+            spec.check(&self.origin, (spec.get)(&self))?;
+        }
+        rules::check(&self)?;
+        Ok(ValidPreset(self))
+    }
+
+    /// Value of a numeric key.
+    pub fn get(&self, key: &str) -> Result<f64> {
+        Ok((key_spec(key)?.get)(self))
+    }
+
+    /// Set a numeric key, checking its range (the rules across keys wait for
+    /// [`Preset::validate`]).
+    pub fn set(&mut self, key: &str, value: f64) -> Result<()> {
+        let spec = key_spec(key)?;
+        spec.check(&self.origin, value)?;
+        (spec.set)(self, value);
+        Ok(())
+    }
+
+    /// The preset as TOML text (round-trips through [`Preset::from_toml`]).
+    pub fn to_toml(&self) -> String {
+        toml::to_string(self).unwrap_or_default()
+    }
+
+    /// A display name: `meta.name`, else the origin.
+    pub fn display_name(&self) -> &str {
+        if self.meta.name.is_empty() {
+            &self.origin
+        } else {
+            &self.meta.name
+        }
+    }
+
+    // ---- SI accessors for the physics layers ----
+
+    /// Rotor speed Ω (rad/s).
+    pub fn omega(&self) -> f64 {
+        self.operating.rotor_speed * std::f64::consts::PI / 30.0
+    }
+    /// Pitch β (rad).
+    pub fn pitch_rad(&self) -> f64 {
+        self.operating.pitch.to_radians()
+    }
+}
+
+/// Apply one `key=value` override to the raw TOML table, creating intermediate tables. The value
+/// is parsed as TOML (numbers, booleans, quoted strings); a bare word becomes a string, so
+/// `--set aero.model=theodorsen` works without quotes.
+fn apply_override(table: &mut toml::Table, ov: &str) -> Result<()> {
+    let (key, raw) = ov.split_once('=').ok_or_else(|| {
+        Error::usage(format!(
+            "--set expects key=value (e.g. --set section.ply_angle=30), got '{ov}'"
+        ))
+    })?;
+    let key = key.trim();
+    let raw = raw.trim();
+    if key.is_empty() || key.split('.').any(|p| p.is_empty()) {
+        return Err(Error::usage(format!(
+            "--set: malformed key '{key}' in '{ov}'"
+        )));
+    }
+    let value: toml::Value = match format!("v = {raw}").parse::<toml::Table>() {
+        Ok(mut t) => t
+            .remove("v")
+            .unwrap_or(toml::Value::String(raw.to_string())),
+        Err(_) => toml::Value::String(raw.to_string()),
+    };
+    let parts: Vec<&str> = key.split('.').collect();
+    let mut cur = table;
+    for part in &parts[..parts.len() - 1] {
+        let entry = cur
+            .entry(part.to_string())
+            .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+        cur = entry.as_table_mut().ok_or_else(|| {
+            Error::usage(format!("--set {key}: '{part}' is a value, not a section"))
+        })?;
+    }
+    cur.insert(parts[parts.len() - 1].to_string(), value);
+    Ok(())
+}

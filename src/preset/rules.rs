@@ -1,0 +1,85 @@
+//! Rules across keys: values each allowed on their own that together describe nothing physical
+//! or nothing the program can hold. Checked with the key ranges by [`super::Preset::validate`], for
+//! every preset whatever its `section.source` (`flutterscope section` evaluates the layup of any
+//! preset).
+
+use super::{ContourShape, Preset};
+use crate::error::{Error, Result};
+
+/// Most samples one time response may hold (`simulation.duration × simulation.sample_rate`):
+/// 2e6 samples is 10⁴ s at 200/s; time, tip twist and flap take 48 MB.
+pub const MAX_SAMPLES: f64 = 2e6;
+
+/// Every rule, in the order a user would fix them; the first broken one is the error.
+pub fn check(p: &Preset) -> Result<()> {
+    let invalid = |message: String| Error::Invalid {
+        origin: p.origin.clone(),
+        message,
+    };
+    let o = &p.aero.onera;
+    if o.alpha2 <= o.alpha1 {
+        return Err(invalid(format!(
+            "aero.onera.alpha2 = {} must exceed aero.onera.alpha1 = {}",
+            o.alpha2, o.alpha1
+        )));
+    }
+    let sim = &p.simulation;
+    let samples = sim.duration * sim.sample_rate;
+    if !(1.0..=MAX_SAMPLES).contains(&samples) {
+        return Err(invalid(format!(
+            "simulation.duration × simulation.sample_rate = {} s × {} 1/s = {samples:.4e} \
+             samples; allowed: 1 … {MAX_SAMPLES:e} (the response is kept in memory)",
+            sim.duration, sim.sample_rate
+        )));
+    }
+    if p.section.ea_offset.abs() > p.section.chord {
+        return Err(invalid(format!(
+            "section.ea_offset = {} lies outside the chord (|e_a| must be ≤ section.chord = {})",
+            p.section.ea_offset, p.section.chord
+        )));
+    }
+    ply_is_physical(p).map_err(invalid)?;
+    walls_do_not_overlap(p).map_err(invalid)
+}
+
+/// A ply's compliance must be positive definite: with positive moduli (key ranges) that is
+/// `Δ = 1 − ν12²·E22/E11 > 0` (MODEL.md §2.1 item 1).
+fn ply_is_physical(p: &Preset) -> std::result::Result<(), String> {
+    let l = &p.section.layup;
+    let delta = 1.0 - l.nu12 * l.nu12 * l.e22 / l.e11;
+    if delta > 0.0 {
+        return Ok(());
+    }
+    Err(format!(
+        "section.layup.nu12 = {} gives Δ = 1 − ν12·ν21 = 1 − ν12²·E22/E11 = {delta:.4} with \
+         section.layup.e11 = {:e} Pa and section.layup.e22 = {:e} Pa; a physical ply needs \
+         Δ > 0, i.e. |ν12| < √(E11/E22) = {:.4}",
+        l.nu12,
+        l.e11,
+        l.e22,
+        (l.e11 / l.e22).sqrt()
+    ))
+}
+
+/// The wall (plies × ply thickness) must be thinner than the section it encloses, or the inner
+/// faces overlap and the thin-walled contour integrals mean nothing.
+fn walls_do_not_overlap(p: &Preset) -> std::result::Result<(), String> {
+    let c = &p.section.contour;
+    let t = p.section.layup.plies as f64 * p.section.layup.ply_thickness;
+    let (key, inner) = match c.shape {
+        ContourShape::Box if c.width < c.height => ("section.contour.width", c.width),
+        ContourShape::Box => ("section.contour.height", c.height),
+        ContourShape::Ellipse if c.a < c.b => ("section.contour.a", 2.0 * c.a),
+        ContourShape::Ellipse => ("section.contour.b", 2.0 * c.b),
+        // The Eq. (1) line is nearly a circle of diameter ≈ 1.7e = 0.43 chord.
+        ContourShape::Paper => ("section.chord", 1.7 * p.section.chord / 4.0),
+    };
+    if t < inner {
+        return Ok(());
+    }
+    Err(format!(
+        "wall thickness section.layup.plies × section.layup.ply_thickness = {t:e} m is not \
+         smaller than the section's inner dimension {inner:e} m (from {key}); the walls would \
+         overlap"
+    ))
+}

@@ -1,0 +1,496 @@
+//! The preset schema: one struct per TOML table, every field with its unit and its default (the
+//! paper's blade at its operating point), unknown fields rejected by serde.
+
+use serde::{Deserialize, Serialize};
+
+/// A complete description of one case, as read (check it with [`Preset::validate`] before use). Every section and field has a default (the
+/// paper's blade at its operating point), so a preset lists only what differs.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Preset {
+    pub meta: Meta,
+    pub blade: Blade,
+    pub section: Section,
+    pub operating: Operating,
+    pub structure: Structure,
+    pub aero: Aero,
+    pub simulation: Simulation,
+    pub view: View,
+    /// Where this preset came from (file path or `built-in NAME`), for error messages.
+    #[serde(skip)]
+    pub origin: String,
+}
+
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Meta {
+    pub name: String,
+    pub description: String,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Blade {
+    /// Span L (m).
+    pub length: f64,
+    /// Hub radius r_hub (m); r = r_hub + x.
+    pub hub_radius: f64,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SectionSource {
+    Direct,
+    Table,
+    Layup,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Section {
+    pub source: SectionSource,
+    /// CAS ply angle θ (deg): `[θ]` upper wall, `[−θ]` lower wall (table and layup sources).
+    pub ply_angle: f64,
+    /// m (kg/m). Ignored by the layup source, which computes it from the contour.
+    pub mass_per_length: f64,
+    /// I (kg·m), polar mass moment about the elastic axis per length.
+    pub polar_inertia: f64,
+    /// K_A² (m²).
+    pub ka2: f64,
+    /// K_m1² (m²), thickness direction.
+    pub km1_2: f64,
+    /// K_m2² (m²), chordwise.
+    pub km2_2: f64,
+    /// Chord c (m).
+    pub chord: f64,
+    /// e_a = x_EA − x_AC (m), positive when the elastic axis is aft of the aerodynamic centre.
+    pub ea_offset: f64,
+    /// d = x_cg − x_EA (m), positive aft.
+    pub cg_offset: f64,
+    /// Torsion stiffness C22 (N·m²), direct source.
+    pub c22: f64,
+    /// Bending–twist coupling C23 (N·m²), direct source.
+    pub c23: f64,
+    /// Flap bending stiffness C33 (N·m²), direct source.
+    pub c33: f64,
+    pub layup: Layup,
+    pub contour: Contour,
+}
+
+/// Ply material and lamination for `source = "layup"` (MODEL.md §2.1).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Layup {
+    /// E11 (Pa), fibre direction.
+    pub e11: f64,
+    /// E22 (Pa), transverse.
+    pub e22: f64,
+    /// ν12.
+    pub nu12: f64,
+    /// G12 (Pa).
+    pub g12: f64,
+    /// Ply density ρ (kg/m³).
+    pub density: f64,
+    /// Ply thickness (m).
+    pub ply_thickness: f64,
+    /// Plies per wall.
+    pub plies: usize,
+    /// Non-structural mass per length (kg/m), e.g. leading-edge ballast.
+    pub nonstructural_mass: f64,
+    /// Its chordwise position relative to the elastic axis (m, positive aft).
+    pub nonstructural_position: f64,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ContourShape {
+    /// Rectangle of mid-line `width × height`.
+    Box,
+    /// Ellipse of mid-line semi-axes `a` (chordwise) and `b` (thickness).
+    Ellipse,
+    /// The paper's "integration line" Eq. (1), scaled by e = chord/4.
+    Paper,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Contour {
+    pub shape: ContourShape,
+    /// Box mid-line width (m).
+    pub width: f64,
+    /// Box mid-line height (m).
+    pub height: f64,
+    /// Ellipse chordwise semi-axis (m).
+    pub a: f64,
+    /// Ellipse thickness semi-axis (m).
+    pub b: f64,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Inflow {
+    /// V0 and ψ evaluated at the tip for every station (the paper).
+    Tip,
+    /// Each station at its own radius.
+    Local,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Operating {
+    /// Wind speed U (m/s).
+    pub wind_speed: f64,
+    /// Rotor speed Ω (rpm).
+    pub rotor_speed: f64,
+    /// Collective pitch β (deg), toward feather.
+    pub pitch: f64,
+    /// In-plane "tunnel" speed V_t (m/s), for fixed-wing validation.
+    pub tunnel_speed: f64,
+    /// Air density ρ_a (kg/m³).
+    pub air_density: f64,
+    /// Axial induction a_ind.
+    pub induction: f64,
+    pub inflow: Inflow,
+    /// Pretwist at the root (deg), toward feather.
+    pub twist_root: f64,
+    /// Pretwist at the tip (deg), toward feather.
+    pub twist_tip: f64,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Form {
+    Weak,
+    Strong,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Structure {
+    /// N, Galerkin modes per field.
+    pub modes: usize,
+    pub form: Form,
+    /// η1, first-mode loss factor (C_s = (η1/ω1) K_e).
+    pub loss_factor: f64,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum AeroModel {
+    None,
+    QuasiSteady,
+    Theodorsen,
+    Onera,
+}
+
+impl AeroModel {
+    pub const ALL: [AeroModel; 4] = [
+        AeroModel::None,
+        AeroModel::QuasiSteady,
+        AeroModel::Theodorsen,
+        AeroModel::Onera,
+    ];
+    pub fn name(self) -> &'static str {
+        match self {
+            AeroModel::None => "none",
+            AeroModel::QuasiSteady => "quasi-steady",
+            AeroModel::Theodorsen => "theodorsen",
+            AeroModel::Onera => "onera",
+        }
+    }
+    /// The next model in [`AeroModel::ALL`] order (the previous one when `forward` is false),
+    /// wrapping around.
+    pub fn cycle(self, forward: bool) -> AeroModel {
+        let n = Self::ALL.len();
+        let i = Self::ALL.iter().position(|m| *m == self).unwrap_or(0);
+        Self::ALL[if forward {
+            (i + 1) % n
+        } else {
+            (i + n - 1) % n
+        }]
+    }
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Aero {
+    pub model: AeroModel,
+    /// Lift-curve slope a0 (1/rad) for quasi-steady and theodorsen.
+    pub lift_slope: f64,
+    /// Strip-theory stations (Gauss points along the span).
+    pub stations: usize,
+    /// Profile drag C_D0 for quasi-steady (the paper: 0).
+    pub drag_coefficient: f64,
+    pub onera: Onera,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum OneraForcing {
+    Coupled,
+    Rigid,
+}
+
+/// ONERA stall-model coefficients (MODEL.md §5.3).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Onera {
+    pub forcing: OneraForcing,
+    pub lambda_l: f64,
+    pub a0l: f64,
+    pub a_l: f64,
+    pub r_l: f64,
+    pub a_m: f64,
+    pub r_m: f64,
+    pub a_d: f64,
+    pub r_d: f64,
+    pub a_l1: f64,
+    pub a_l2: f64,
+    pub a_m1: f64,
+    pub a_m2: f64,
+    pub a_d1: f64,
+    pub a_d2: f64,
+    pub a_d3: f64,
+    pub cm0: f64,
+    pub cd0: f64,
+    /// Stall onset α1 (deg).
+    pub alpha1: f64,
+    /// Full-stall angle α2 (deg).
+    pub alpha2: f64,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Start {
+    Rest,
+    Equilibrium,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Simulation {
+    pub start: Start,
+    /// Tip twist kick Δφ_tip (deg) added to the start state.
+    pub kick_twist: f64,
+    /// Tip flap kick Δu_tip (m) added to the start state.
+    pub kick_flap: f64,
+    /// Duration (s).
+    pub duration: f64,
+    /// Output samples per second.
+    pub sample_rate: f64,
+}
+
+/// Explorer settings: slider ranges and steps (they do not change the physics).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct View {
+    /// Upper end of the rotor-speed slider and of the Campbell diagram (rpm).
+    pub rotor_speed_max: f64,
+    /// Upper end of the wind-speed slider (m/s).
+    pub wind_speed_max: f64,
+    /// Upper end of the tunnel-speed slider (m/s).
+    pub tunnel_speed_max: f64,
+    /// The parameter the explorer selects when it opens this preset, and so the one its first
+    /// boundary search runs along.
+    pub select: Selected,
+}
+
+/// An explorer parameter a preset can select at start (`view.select`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Selected {
+    PlyAngle,
+    WindSpeed,
+    TunnelSpeed,
+    RotorSpeed,
+    Pitch,
+}
+
+impl Selected {
+    /// The preset key the parameter varies.
+    pub fn key(self) -> &'static str {
+        match self {
+            Selected::PlyAngle => "section.ply_angle",
+            Selected::WindSpeed => "operating.wind_speed",
+            Selected::TunnelSpeed => "operating.tunnel_speed",
+            Selected::RotorSpeed => "operating.rotor_speed",
+            Selected::Pitch => "operating.pitch",
+        }
+    }
+}
+
+impl Default for Preset {
+    fn default() -> Self {
+        Preset {
+            meta: Meta::default(),
+            blade: Blade::default(),
+            section: Section::default(),
+            operating: Operating::default(),
+            structure: Structure::default(),
+            aero: Aero::default(),
+            simulation: Simulation::default(),
+            view: View::default(),
+            origin: "defaults".into(),
+        }
+    }
+}
+
+impl Default for Blade {
+    fn default() -> Self {
+        Blade {
+            length: 8.4455,
+            hub_radius: 0.0,
+        }
+    }
+}
+
+impl Default for Section {
+    fn default() -> Self {
+        Section {
+            source: SectionSource::Table,
+            ply_angle: 45.0,
+            mass_per_length: 0.06377,
+            polar_inertia: 2.3e-6,
+            ka2: 3.6e-5,
+            km1_2: 1.4e-6,
+            km2_2: 3.47e-5,
+            chord: 0.01833,
+            ea_offset: -0.01833 / 4.0,
+            cg_offset: 0.0,
+            // The paper's Table 1 at 45°, units corrected (MODEL.md §2).
+            c22: 0.90509,
+            c23: -0.15919,
+            c33: 0.45931,
+            layup: Layup::default(),
+            contour: Contour::default(),
+        }
+    }
+}
+
+impl Layup {
+    /// The paper's laminate (MODEL.md §2.1): its glass/epoxy ply and six 0.127 mm plies per wall.
+    pub const PAPER: Layup = Layup {
+        e11: 25.8e9,
+        e22: 8.7e9,
+        nu12: 0.34,
+        g12: 3.5e9,
+        density: 1672.0,
+        ply_thickness: 0.127e-3,
+        plies: 6,
+        nonstructural_mass: 0.0,
+        nonstructural_position: 0.0,
+    };
+}
+
+impl Default for Layup {
+    fn default() -> Self {
+        Layup::PAPER
+    }
+}
+
+impl Contour {
+    /// The flat box whose layup reproduces the paper's Table 1 (MODEL.md §2): mid-line
+    /// 18.33 × 2.470 mm.
+    pub const PAPER_BOX: Contour = Contour {
+        shape: ContourShape::Box,
+        width: 0.01833,
+        height: 0.00247,
+        a: 0.01833 / 2.0,
+        b: 0.00247 / 2.0,
+    };
+}
+
+impl Default for Contour {
+    fn default() -> Self {
+        Contour::PAPER_BOX
+    }
+}
+
+impl Default for Operating {
+    fn default() -> Self {
+        Operating {
+            wind_speed: 20.0,
+            rotor_speed: 60.0,
+            pitch: 10.0,
+            tunnel_speed: 0.0,
+            air_density: 1.225,
+            induction: 0.0,
+            inflow: Inflow::Tip,
+            twist_root: 0.0,
+            twist_tip: 0.0,
+        }
+    }
+}
+
+impl Default for Structure {
+    fn default() -> Self {
+        Structure {
+            modes: 5,
+            form: Form::Weak,
+            loss_factor: 0.02,
+        }
+    }
+}
+
+impl Default for Aero {
+    fn default() -> Self {
+        Aero {
+            model: AeroModel::QuasiSteady,
+            lift_slope: 2.0 * std::f64::consts::PI,
+            stations: 8,
+            drag_coefficient: 0.0,
+            onera: Onera::default(),
+        }
+    }
+}
+
+impl Default for Onera {
+    fn default() -> Self {
+        Onera {
+            forcing: OneraForcing::Coupled,
+            lambda_l: 0.17,
+            a0l: 2.0 * std::f64::consts::PI,
+            a_l: 0.30,
+            r_l: 0.0324,
+            a_m: 0.25,
+            r_m: 0.0484,
+            a_d: 0.25,
+            r_d: 0.0484,
+            a_l1: 4.4,
+            a_l2: 2.4,
+            a_m1: 0.15,
+            a_m2: 0.6,
+            a_d1: 0.0,
+            a_d2: 0.5,
+            a_d3: 2.0,
+            cm0: 0.0,
+            cd0: 0.014,
+            // The paper's Eq. 5 gives 0.1396 and 0.3142 rad: 8° and 18° to its four digits.
+            alpha1: 8.0,
+            alpha2: 18.0,
+        }
+    }
+}
+
+impl Default for Simulation {
+    fn default() -> Self {
+        Simulation {
+            start: Start::Rest,
+            kick_twist: 0.0,
+            kick_flap: 0.0,
+            duration: 20.0,
+            sample_rate: 200.0,
+        }
+    }
+}
+
+impl Default for View {
+    fn default() -> Self {
+        View {
+            rotor_speed_max: 200.0,
+            wind_speed_max: 40.0,
+            tunnel_speed_max: 200.0,
+            select: Selected::RotorSpeed,
+        }
+    }
+}
