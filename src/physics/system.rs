@@ -208,8 +208,9 @@ impl System {
     }
 
     /// The static equilibrium x* (q̇ = 0, aero states steady, `K q = Q(q)`), by Newton's method
-    /// on q with a backtracking line search (MODEL.md §6). For the affine models (quasi-steady
-    /// without drag, theodorsen, none) the first step is the exact linear solve.
+    /// on q with a backtracking line search (MODEL.md §6). For the affine models (theodorsen,
+    /// none) the first step is the exact linear solve; quasi-steady's `cos α_g` moment arm is
+    /// mildly nonlinear in φ and takes a few steps more.
     pub fn equilibrium(&self) -> Result<DVector<f64>> {
         let nq = self.nq();
         let mut q = DVector::zeros(nq);
