@@ -95,16 +95,14 @@ fn part_eigen_n5(b: divan::Bencher) {
 fn part_eigen_decomposition_20(b: divan::Bencher) {
     let p = preset("liu2017", &["structure.modes=5"]);
     let ls = flutterscope::analysis::eigen::linear_system(&p).unwrap();
-    b.bench(|| {
-        flutterscope::analysis::eigen::eigen_decomposition(divan::black_box(&ls.a)).unwrap()
-    });
+    b.bench(|| flutterscope::numeric::eigen_decomposition(divan::black_box(&ls.a)).unwrap());
 }
 
 /// Reference: the same decomposition of a well-scaled random 20 × 20 matrix.
 #[divan::bench]
 fn part_eigen_decomposition_random_20(b: divan::Bencher) {
     let a = nalgebra::DMatrix::<f64>::from_fn(20, 20, |i, j| ((i * 31 + j * 17) as f64).sin());
-    b.bench(|| flutterscope::analysis::eigen::eigen_decomposition(divan::black_box(&a)).unwrap());
+    b.bench(|| flutterscope::numeric::eigen_decomposition(divan::black_box(&a)).unwrap());
 }
 
 /// Breakdown: eigen-analysis with vectors of the 52-state theodorsen system (16 stations).

@@ -1,7 +1,9 @@
 //! flutterscope: aeroelastic stability of rotating composite wind-turbine blades.
 //!
 //! Data flows one way: `physics` (section → structure → aero → system) → `analysis`
-//! (eigen, tracking, flutter, sweep, simulate) → `explorer` (worker → state → ui).
+//! (eigen, tracking, flutter, sweep, simulate) → `explorer` (worker → state → ui). `numeric`
+//! (eigendecomposition, balancing, assignment) holds the linear algebra both physics and
+//! analysis use, with no physics in it.
 //! The physics reference is MODEL.md (in `../shared/`); each module cites the section it implements.
 
 pub mod analysis;
@@ -9,6 +11,7 @@ pub mod cli;
 pub mod commands;
 pub mod error;
 pub mod explorer;
+pub mod numeric;
 pub mod physics;
 pub mod plot;
 pub mod preset;

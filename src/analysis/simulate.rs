@@ -36,6 +36,7 @@
 //! non-finite) ends the run with status `diverging` at that time, never with a NaN sample.
 
 use crate::error::{Error, Result};
+use crate::numeric::balance::{balanced, balancing_scale};
 use crate::physics::system::{check_finite, LinearSystem, RemainderScratch, Splitting, System};
 use crate::preset::ValidPreset;
 use nalgebra::{DMatrix, DVector, Dyn, LU};
@@ -100,8 +101,8 @@ pub fn propagators(a: &DMatrix<f64>, h: f64, levels: usize) -> Result<Vec<Propag
         return Err(Error::numerical(format!("time step {h} must be positive")));
     }
     let n = a.nrows();
-    let d = balancing(a);
-    let balanced = DMatrix::from_fn(n, n, |i, j| a[(i, j)] * d[j] / d[i]);
+    let d = balancing_scale(a);
+    let balanced = balanced(a, &d);
     // ‖hA/2^s‖₁ ≤ ¼ makes the degree-11 Taylor remainder of φ2 below 1e-17.
     let norm = norm1(&balanced) * h;
     let mut s = levels;
@@ -162,47 +163,6 @@ fn norm1(m: &DMatrix<f64>) -> f64 {
     m.column_iter()
         .map(|c| c.iter().map(|v| v.abs()).sum::<f64>())
         .fold(0.0, f64::max)
-}
-
-/// Diagonal scaling `D` (powers of two) such that `D⁻¹ A D` has comparable row and column norms
-/// (Parlett–Reinsch, as LAPACK's `gebal` without permutations).
-fn balancing(a: &DMatrix<f64>) -> Vec<f64> {
-    let n = a.nrows();
-    let mut d = vec![1.0; n];
-    let mut m = a.clone();
-    for _ in 0..100 {
-        let mut changed = false;
-        for i in 0..n {
-            let (mut c, mut r) = (0.0, 0.0);
-            for j in (0..n).filter(|&j| j != i) {
-                c += m[(j, i)].abs();
-                r += m[(i, j)].abs();
-            }
-            if c == 0.0 || r == 0.0 {
-                continue;
-            }
-            let before = c + r;
-            let mut f = 1.0;
-            while c < r / 2.0 {
-                (c, r, f) = (c * 2.0, r / 2.0, f * 2.0);
-            }
-            while c >= r * 2.0 {
-                (c, r, f) = (c / 2.0, r * 2.0, f / 2.0);
-            }
-            if c + r < 0.95 * before {
-                changed = true;
-                d[i] *= f;
-                for j in 0..n {
-                    m[(j, i)] *= f;
-                    m[(i, j)] /= f;
-                }
-            }
-        }
-        if !changed {
-            break;
-        }
-    }
-    d
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -7,6 +7,7 @@
 //! span, once per N: a blade's matrices are those integrals scaled by its length and section.
 
 use crate::error::{Error, Result};
+use crate::numeric::faer_evd::real_evd;
 use crate::physics::basis::{torsion_wavenumber, Basis, BendingMode};
 use crate::physics::section::{section_properties, SectionProps};
 use crate::preset::{Form, ValidPreset};
@@ -417,10 +418,6 @@ fn mass_inverse_times(mass: &DMatrix<f64>, k: &DMatrix<f64>) -> Result<DMatrix<f
     Ok(chol.solve(k))
 }
 
-fn faer_matrix(a: &DMatrix<f64>) -> faer::Mat<f64> {
-    faer::Mat::from_fn(a.nrows(), a.ncols(), |i, j| a[(i, j)])
-}
-
 impl StructuralModel {
     /// K_e + K_c.
     pub fn stiffness(&self) -> DMatrix<f64> {
@@ -475,43 +472,19 @@ impl StructuralModel {
     }
 
     /// (ω², q) pairs, ascending, of the non-symmetric (strong-form) problem: faer's real
-    /// eigendecomposition (Hessenberg, Francis QR with an iteration cap, back-substitution),
-    /// called sequentially — a 2N ≤ 80 matrix gains nothing from threads, and a thread pool's
-    /// start-up would dominate. Real eigenvalues have real eigenvectors (a column of the real
-    /// form); a complex pair, which a nearly symmetric positive K does not produce, keeps the
-    /// real part of its first column.
+    /// eigendecomposition ([`real_evd`]: Hessenberg, Francis QR with an iteration cap,
+    /// back-substitution). Real eigenvalues have real eigenvectors (a column of the real form); a
+    /// complex pair, which a nearly symmetric positive K does not produce, keeps the real part of
+    /// its first column.
     fn general_pairs(&self, k: &DMatrix<f64>) -> Result<Vec<(f64, DVector<f64>)>> {
-        use faer::dyn_stack::{MemBuffer, MemStack};
-        use faer::linalg::evd::{self, ComputeEigenvectors};
         let a = mass_inverse_times(&self.mass, k)?;
         let dim = a.nrows();
-        let mut vectors = faer::Mat::<f64>::zeros(dim, dim);
-        let mut re = faer::diag::Diag::<f64>::zeros(dim);
-        let mut im = faer::diag::Diag::<f64>::zeros(dim);
-        let par = faer::Par::Seq;
-        let scratch = evd::evd_scratch::<f64>(
-            dim,
-            ComputeEigenvectors::No,
-            ComputeEigenvectors::Yes,
-            par,
-            Default::default(),
-        );
-        evd::evd_real(
-            faer_matrix(&a).as_ref(),
-            re.as_mut(),
-            im.as_mut(),
-            None,
-            Some(vectors.as_mut()),
-            par,
-            MemStack::new(&mut MemBuffer::new(scratch)),
-            Default::default(),
-        )
-        .map_err(|e| Error::numerical(format!("general eigensolver failed: {e:?}")))?;
-        let re = re.column_vector();
+        let evd = real_evd(&a, false)
+            .map_err(|e| Error::numerical(format!("general eigensolver failed: {e:?}")))?;
         let mut pairs: Vec<(f64, DVector<f64>)> = (0..dim)
             .map(|c| {
-                let q = DVector::from_fn(dim, |r, _| vectors[(r, c)]);
-                (re[c], normalise(q))
+                let q = DVector::from_fn(dim, |r, _| evd.right[(r, c)]);
+                (evd.re[c], normalise(q))
             })
             .collect();
         check_pairs(&mut pairs)?;

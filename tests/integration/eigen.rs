@@ -93,7 +93,8 @@ fn many_identical_stations_still_give_eigenvectors() {
     // tolerance and the solve failed ("non-finite eigenvectors"). Every right and left vector
     // must now satisfy its eigen-equation, and the structural roots must not depend on the
     // station count beyond the quadrature's own convergence.
-    use flutterscope::analysis::eigen::{eigen_decomposition, linear_system};
+    use flutterscope::analysis::eigen::linear_system;
+    use flutterscope::numeric::eigen_decomposition;
     let p = preset("liu2017", &["aero.model=onera", "aero.stations=32"]);
     let ls = linear_system(&p).unwrap();
     let a = ls.a.map(|v| nalgebra::Complex::new(v, 0.0));

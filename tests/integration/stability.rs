@@ -2,11 +2,12 @@
 //! tracking, the linear simulator, and the JSON of `eigen`, `flutter`, `simulate`.
 
 use assert_cmd::Command;
-use flutterscope::analysis::eigen::{analyse, analyse_system, eigen_decomposition, linear_system};
+use flutterscope::analysis::eigen::{analyse, analyse_system, linear_system};
 use flutterscope::analysis::flutter::{flutter_boundary, BoundaryKind};
 use flutterscope::analysis::simulate::{simulate, RunStatus, Simulator};
 use flutterscope::analysis::sweep::track;
 use flutterscope::error::Error;
+use flutterscope::numeric::eigen_decomposition;
 use flutterscope::physics::structure::assemble;
 use flutterscope::physics::system::System;
 use flutterscope::preset::{Preset, ValidPreset};

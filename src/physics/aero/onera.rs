@@ -405,6 +405,23 @@ fn stall_forces(coef: &Coefficients, strip: &Strip, stall: &[f64]) -> (f64, f64,
     )
 }
 
+/// Loads per unit of the stall moment state `C2M` and of the stall drag state `C2D` (both forms
+/// share them): the moment acts against feather with arm `c`, the drag downwind by `sin ψ` and
+/// about the elastic axis with the arm `e_a sin α_g`.
+fn stall_moment_and_drag_loads(strip: &Strip, sin_g: f64, sin_psi: f64) -> (Loads, Loads) {
+    let qc = strip.dynamic_pressure() * strip.chord;
+    (
+        Loads {
+            flap: 0.0,
+            twist: -qc * strip.chord,
+        },
+        Loads {
+            flap: qc * sin_psi,
+            twist: -strip.ea_offset * qc * sin_g,
+        },
+    )
+}
+
 // ---------------------------------------------------------------------------------------------
 // The rigid form: the paper's reduced model
 // ---------------------------------------------------------------------------------------------
@@ -482,14 +499,7 @@ pub mod rigid {
         let mut states = [Loads::default(); STATES];
         states[C1L] = lift_load;
         states[STALL] = lift_load;
-        states[STALL + 2] = Loads {
-            flap: 0.0,
-            twist: -qc * strip.chord,
-        };
-        states[STALL + 4] = Loads {
-            flap: qc * sin_psi,
-            twist: -e * qc * sin_g,
-        };
+        (states[STALL + 2], states[STALL + 4]) = stall_moment_and_drag_loads(strip, sin_g, sin_psi);
         LoadPartials {
             // dα_g/dφ = −1: d(cos α_g)/dφ = sin α_g, d(sin α_g)/dφ = −cos α_g.
             twist: Loads {
@@ -698,14 +708,7 @@ pub mod coupled {
         states[LAG] = lift_unit.scaled(gz[0]);
         states[LAG + 1] = lift_unit.scaled(gz[1]);
         states[STALL] = lift_unit.scaled(qc);
-        states[STALL + 2] = Loads {
-            flap: 0.0,
-            twist: -qc * strip.chord,
-        };
-        states[STALL + 4] = Loads {
-            flap: qc * sin_psi,
-            twist: -e * qc * sin_g,
-        };
+        (states[STALL + 2], states[STALL + 4]) = stall_moment_and_drag_loads(strip, sin_g, sin_psi);
         LoadPartials {
             // dα_g/dφ = −1 in the drag's arm: d(sin α_g)/dφ = −cos α_g.
             twist: Loads {
