@@ -7,13 +7,34 @@
 ///
 /// Exact (comparisons only, no tolerance) and finite without an iteration cap: each pass of a
 /// row's search marks one more column as used, and with finite costs a free column is reached
-/// before every column is, so a row takes at most n + 1 passes. A NaN or infinite cost could
-/// leave no column to pick; that panics instead of looping.
+/// before every column is, so a row takes at most n + 1 passes. A NaN or infinite cost (which a
+/// caller should never produce) is replaced by a finite cost above any complete assignment of
+/// the finite ones, so such a pairing is taken only when nothing else is possible.
 pub fn hungarian(cost: &[Vec<f64>]) -> Vec<usize> {
     let n = cost.len();
     if n == 0 {
         return Vec::new();
     }
+    let largest = cost
+        .iter()
+        .flatten()
+        .filter(|c| c.is_finite())
+        .fold(0.0_f64, |m, c| m.max(c.abs()));
+    let worst = (1.0 + 2.0 * n as f64 * largest).min(f64::MAX / 4.0);
+    let sane: Vec<Vec<f64>>;
+    let cost = if cost.iter().flatten().all(|c| c.is_finite()) {
+        cost
+    } else {
+        sane = cost
+            .iter()
+            .map(|row| {
+                row.iter()
+                    .map(|&c| if c.is_finite() { c } else { worst })
+                    .collect()
+            })
+            .collect();
+        &sane
+    };
     // 1-based arrays as in the classic formulation; column 0 is the virtual start.
     let mut u = vec![0.0; n + 1];
     let mut v = vec![0.0; n + 1];
@@ -43,10 +64,6 @@ pub fn hungarian(cost: &[Vec<f64>]) -> Vec<usize> {
                     j1 = j;
                 }
             }
-            assert!(
-                j1 != 0,
-                "assignment cost matrix has NaN or infinite entries"
-            );
             for j in 0..=n {
                 if used[j] {
                     u[owner[j]] += delta;
@@ -88,5 +105,24 @@ mod tests {
         // total 11. The optimum is 2 + 2 = 4.
         let cost = vec![vec![1.0, 2.0], vec![2.0, 10.0]];
         assert_eq!(hungarian(&cost), vec![1, 0]);
+    }
+
+    #[test]
+    fn non_finite_costs_end_in_a_permutation_that_avoids_them() {
+        let cost = vec![
+            vec![f64::NAN, 1.0, 5.0],
+            vec![2.0, f64::INFINITY, 1.0],
+            vec![1.0, 3.0, f64::NAN],
+        ];
+        let a = hungarian(&cost);
+        let mut seen = a.clone();
+        seen.sort();
+        assert_eq!(seen, vec![0, 1, 2]);
+        assert_eq!(a, vec![1, 2, 0]);
+        // All non-finite: still a permutation, no hang, no panic.
+        let a = hungarian(&vec![vec![f64::NAN; 3]; 3]);
+        let mut seen = a.clone();
+        seen.sort();
+        assert_eq!(seen, vec![0, 1, 2]);
     }
 }
