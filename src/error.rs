@@ -24,6 +24,16 @@ pub enum Error {
     #[error("{origin}: {message}")]
     Invalid { origin: String, message: String },
 
+    /// A blade or aerodynamic definition file (BeamDyn, HAWC2, AeroDyn, ElastoDyn, polar) that
+    /// could not be read or does not say what it must: the file, the line (1-based; 0 when the
+    /// problem is the file as a whole) and what was expected there.
+    #[error("{}", format_location(path, *line, message))]
+    Format {
+        path: String,
+        line: usize,
+        message: String,
+    },
+
     /// A command-line argument that is malformed (e.g. `--set` without `=`, a bad range).
     #[error("{0}")]
     Usage(String),
@@ -37,12 +47,28 @@ pub enum Error {
     Io(String),
 }
 
+fn format_location(path: &str, line: usize, message: &str) -> String {
+    if line == 0 {
+        format!("{path}: {message}")
+    } else {
+        format!("{path}:{line}: {message}")
+    }
+}
+
 impl Error {
     pub fn numerical(msg: impl Into<String>) -> Self {
         Error::Numerical(msg.into())
     }
     pub fn usage(msg: impl Into<String>) -> Self {
         Error::Usage(msg.into())
+    }
+    /// A [`Error::Format`] at `line` of `path`.
+    pub fn format(path: impl Into<String>, line: usize, message: impl Into<String>) -> Self {
+        Error::Format {
+            path: path.into(),
+            line,
+            message: message.into(),
+        }
     }
 }
 

@@ -6,11 +6,12 @@
 use crate::analysis::eigen::{analyse_system, Stability};
 use crate::analysis::simulate::Simulator;
 use crate::error::Result;
-use crate::physics::section::SectionProps;
 use crate::physics::system::{LinearSystem, System};
 use crate::preset::{Start, ValidPreset};
 use nalgebra::DVector;
 use std::sync::Arc;
+
+pub use crate::physics::section::SectionProps;
 
 /// The coupled system of one preset and its linearisation.
 pub struct Solution {

@@ -7,7 +7,7 @@ use crate::analysis::flutter::{Boundary, SearchRange};
 use crate::analysis::simulate::{RunStatus, Simulator, TipSample};
 use crate::analysis::sweep::TrackedSweep;
 use crate::error::Result;
-use crate::physics::section::SectionProps;
+use crate::analysis::solve::SectionProps;
 use crate::preset::ValidPreset;
 
 /// One operating point, solved: the live section stiffnesses and the eigen-analysis.
