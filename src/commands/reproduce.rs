@@ -17,7 +17,7 @@ use serde::Serialize;
 use std::path::Path;
 
 /// Figures 2–5 (terminal plots, JSON series, `--plot`).
-pub mod figures;
+pub mod paper_figures;
 
 /// The paper's Table 2 "Present" rows (Hz): `[mode][angle]`, angles as [`TABLE1_ANGLES`].
 pub const TABLE2_PRESENT: [[f64; 7]; 5] = [
@@ -71,10 +71,14 @@ pub fn run(what: Reproduction, json: bool, plot: Option<&Path>) -> Result<()> {
                 super::print_text(&render_table2(&t))
             }
         }
-        Reproduction::Fig2 => figures::run_fig2(json, plot),
-        Reproduction::Fig3 => figures::run_tip(figures::TipQuantity::TipTwist, json, plot),
-        Reproduction::Fig4 => figures::run_tip(figures::TipQuantity::TipFlap, json, plot),
-        Reproduction::Fig5 => figures::run_fig5(json, plot),
+        Reproduction::Fig2 => paper_figures::run_fig2(json, plot),
+        Reproduction::Fig3 => {
+            paper_figures::run_tip(paper_figures::TipQuantity::TipTwist, json, plot)
+        }
+        Reproduction::Fig4 => {
+            paper_figures::run_tip(paper_figures::TipQuantity::TipFlap, json, plot)
+        }
+        Reproduction::Fig5 => paper_figures::run_fig5(json, plot),
     }
 }
 

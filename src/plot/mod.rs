@@ -13,7 +13,7 @@
 //! [`Error::Io`](crate::error::Error::Io) naming it and never leaves a half-written file from a
 //! drawing failure.
 //!
-//! [`figures`] turns the engine's results (sweeps, flutter searches, time responses, section
+//! [`from_results`] turns the engine's results (sweeps, flutter searches, time responses, section
 //! grids) into figures; the commands call it for `--plot FILE`.
 //!
 //! SVG structure (the tests rely on it): every maximal run of finite, in-range points of a line
@@ -27,7 +27,7 @@
 
 mod draw;
 mod figure;
-pub mod figures;
+pub mod from_results;
 mod layout;
 mod output;
 pub mod text;

@@ -1,6 +1,6 @@
-//! Figures for the commands' `--plot FILE`: each function lays out one result type. They only
-//! arrange numbers the engine computed (the one derived quantity, the n-per-revolution lines
-//! `f = nΩ/60` on a Campbell diagram, is a unit conversion).
+//! Figures of the engine's results, for the commands' `--plot FILE`: each function lays out one
+//! result type. They only arrange numbers the engine computed (the one derived quantity, the
+//! n-per-revolution lines `f = nΩ/60` on a Campbell diagram, is a unit conversion).
 
 use super::{Figure, Guide, Mark, Marker, Panel, Series, PALETTE};
 use crate::analysis::flutter::{BoundaryKind, Search};
