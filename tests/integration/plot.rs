@@ -499,7 +499,7 @@ mod from_results {
         assert_eq!(names(freq), ["flap 1", "flap 2"]);
         assert_eq!(names(damp), ["flap 1", "flap 2", "torsion 1"]);
         assert!(
-            freq.notes[0].starts_with("1 higher mode(s)"),
+            freq.notes[0].starts_with("1 more mode(s) off scale"),
             "{:?}",
             freq.notes
         );
@@ -515,6 +515,32 @@ mod from_results {
         let fig = from_results::sweep("test", &other);
         assert!(fig.panels[0].guides.is_empty());
         assert_eq!(fig.panels[0].x_label, "operating.wind_speed (m/s)");
+    }
+
+    #[test]
+    fn frequency_panel_draws_the_campbell_selection_and_damping_every_mode() {
+        let mut sweep = rotor_sweep();
+        let n = sweep.values.len();
+        sweep.modes = (1..=10)
+            .map(|k| {
+                mode(
+                    &format!("flap {k}"),
+                    vec![0.9 + 0.1 * k as f64; n],
+                    vec![0.01; n],
+                )
+            })
+            .collect();
+        // A pair split into real roots: 0 Hz throughout, never oscillating.
+        sweep.modes.push(mode("split", vec![0.0; n], vec![1.0; n]));
+        // The selection the explorer's Campbell view draws: the eight lowest that oscillate.
+        assert_eq!(sweep.campbell_modes().shown, (0..8).collect::<Vec<_>>());
+        let fig = from_results::sweep("test", &sweep);
+        let (freq, damp) = (&fig.panels[0], &fig.panels[1]);
+        let names: Vec<&str> = freq.series.iter().map(|s| s.name.as_str()).collect();
+        let lowest: Vec<String> = (1..=8).map(|k| format!("flap {k}")).collect();
+        assert_eq!(names, lowest);
+        assert_eq!(damp.series.len(), 11);
+        assert_eq!(freq.notes, ["3 more mode(s) off scale (see --json / CSV)"]);
     }
 
     #[test]
