@@ -20,14 +20,14 @@ pub fn oscillates(f_hz: f64) -> bool {
     f_hz.is_finite() && f_hz > 0.0
 }
 
+/// A mode's frequencies where it oscillates.
+fn oscillating(m: &TrackedMode) -> impl Iterator<Item = f64> + '_ {
+    m.frequency_hz.iter().copied().filter(|f| oscillates(*f))
+}
+
 /// A mode's typical frequency: the median of its oscillating points (`None` if it never does).
 fn typical(m: &TrackedMode) -> Option<f64> {
-    let mut f: Vec<f64> = m
-        .frequency_hz
-        .iter()
-        .copied()
-        .filter(|f| oscillates(*f))
-        .collect();
+    let mut f: Vec<f64> = oscillating(m).collect();
     if f.is_empty() {
         return None;
     }
@@ -65,12 +65,7 @@ impl TrackedSweep {
                 left_off: total,
             };
         };
-        let top = self.modes[lowest]
-            .frequency_hz
-            .iter()
-            .copied()
-            .filter(|f| oscillates(*f))
-            .fold(0.0, f64::max);
+        let top = oscillating(&self.modes[lowest]).fold(0.0, f64::max);
         let three_p = if self.parameter == ROTOR_SPEED_KEY {
             3.0 * self.values.iter().copied().fold(0.0, f64::max) / 60.0
         } else {
