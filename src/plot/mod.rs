@@ -1,9 +1,9 @@
 //! Publication-quality plots: a small declarative figure model and one writer.
 //!
 //! The commands build a [`Figure`] from their results (this module computes no physics, it only
-//! draws the numbers it is given) and call [`write`], which picks SVG or PNG from the file's
-//! extension. A figure is a grid of [`Panel`]s (one column by default: stacked panels, e.g. a
-//! Campbell diagram with frequency above damping); each panel has axes with units, data
+//! draws the numbers it is given) and call [`write()`], which picks SVG or PNG from the
+//! file's extension. A figure is a grid of [`Panel`]s (one column by default: stacked panels,
+//! e.g. a Campbell diagram with frequency above damping); each panel has axes with units, data
 //! [`Series`], reference [`Guide`] lines (1P/3P, a flutter boundary, zero damping), labelled
 //! [`Marker`]s and free-text notes.
 //!
