@@ -94,11 +94,11 @@ fn braille_panel(b: divan::Bencher) {
 /// written (target: under 1 s).
 #[divan::bench(sample_count = 20)]
 fn reproduce_fig5(b: divan::Bencher) {
-    use flutterscope::commands::reproduce::figures;
+    use flutterscope::commands::reproduce::paper_figures;
     let path = target("fig5.svg");
     b.bench(|| {
-        let f = figures::fig5().unwrap();
-        plot::write(&figures::fig5_figure(&f), &path).unwrap();
+        let f = paper_figures::fig5().unwrap();
+        plot::write(&paper_figures::fig5_figure(&f), &path).unwrap();
     });
     std::fs::remove_file(&path).ok();
 }
@@ -106,11 +106,13 @@ fn reproduce_fig5(b: divan::Bencher) {
 /// The paper figures' plots alone (data computed once): each under 200 ms.
 #[divan::bench(args = ["fig2", "fig3", "fig5"], sample_count = 20)]
 fn write_paper_figure(b: divan::Bencher, which: &str) {
-    use flutterscope::commands::reproduce::figures;
+    use flutterscope::commands::reproduce::paper_figures;
     let fig = match which {
-        "fig2" => figures::fig2_figure(&figures::fig2().unwrap()),
-        "fig3" => figures::tip_figure(&figures::tip_runs(figures::TipQuantity::TipTwist).unwrap()),
-        _ => figures::fig5_figure(&figures::fig5().unwrap()),
+        "fig2" => paper_figures::fig2_figure(&paper_figures::fig2().unwrap()),
+        "fig3" => paper_figures::tip_figure(
+            &paper_figures::tip_runs(paper_figures::TipQuantity::TipTwist).unwrap(),
+        ),
+        _ => paper_figures::fig5_figure(&paper_figures::fig5().unwrap()),
     };
     let path = target(&format!("{which}.png"));
     b.bench(|| plot::write(divan::black_box(&fig), &path).unwrap());

@@ -1,6 +1,7 @@
 //! Analyses on top of the physics: eigen-analysis with labelled modes, mode tracking (MAC),
 //! flutter-boundary search, parameter sweeps and time simulation (MODEL.md §6–§7).
 
+pub mod campbell;
 pub mod eigen;
 pub mod flutter;
 pub mod simulate;

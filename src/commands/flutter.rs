@@ -30,7 +30,7 @@ pub fn run(
             .map(|i| from + (to - from) * i as f64 / (points - 1) as f64)
             .collect();
         let tracked = track(p, key, &grid)?;
-        let fig = crate::plot::figures::flutter(p.display_name(), &tracked, &search);
+        let fig = crate::plot::from_results::flutter(p.display_name(), &tracked, &search);
         crate::plot::write(&fig, path)?;
         eprintln!("plot written to {}", path.display());
     }

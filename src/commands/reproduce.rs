@@ -17,7 +17,7 @@ use serde::Serialize;
 use std::path::Path;
 
 /// Figures 2–5 (terminal plots, JSON series, `--plot`).
-pub mod figures;
+pub mod paper_figures;
 
 /// The paper's Table 2 "Present" rows (Hz): `[mode][angle]`, angles as [`TABLE1_ANGLES`].
 pub const TABLE2_PRESENT: [[f64; 7]; 5] = [
@@ -45,37 +45,55 @@ pub const WEAK_MODES: usize = 10;
 pub const STRONG_MODES: usize = 5;
 
 pub fn run(what: Reproduction, json: bool, plot: Option<&Path>) -> Result<()> {
-    let table_plot = || {
-        plot.map_or(Ok(()), |_| {
-            Err(Error::usage(
-                "reproduce: --plot applies to figures, not tables",
-            ))
-        })
-    };
     match what {
-        Reproduction::Table1 => {
-            table_plot()?;
-            let t = table1()?;
-            if json {
-                super::print_json(&t)
-            } else {
-                super::print_text(&render_table1(&t))
-            }
+        Reproduction::Table1 => print_table(table1, render_table1, json, plot),
+        Reproduction::Table2 => print_table(table2, render_table2, json, plot),
+        Reproduction::Fig2 => paper_figures::run_fig2(json, plot),
+        Reproduction::Fig3 => {
+            paper_figures::run_tip(paper_figures::TipQuantity::TipTwist, json, plot)
         }
-        Reproduction::Table2 => {
-            table_plot()?;
-            let t = table2()?;
-            if json {
-                super::print_json(&t)
-            } else {
-                super::print_text(&render_table2(&t))
-            }
+        Reproduction::Fig4 => {
+            paper_figures::run_tip(paper_figures::TipQuantity::TipFlap, json, plot)
         }
-        Reproduction::Fig2 => figures::run_fig2(json, plot),
-        Reproduction::Fig3 => figures::run_tip(figures::TipQuantity::TipTwist, json, plot),
-        Reproduction::Fig4 => figures::run_tip(figures::TipQuantity::TipFlap, json, plot),
-        Reproduction::Fig5 => figures::run_fig5(json, plot),
+        Reproduction::Fig5 => paper_figures::run_fig5(json, plot),
     }
+}
+
+/// Compute a table and print it as text or JSON. A table has no figure: `--plot` is refused
+/// before anything is computed.
+fn print_table<T: Serialize>(
+    compute: fn() -> Result<T>,
+    render: fn(&T) -> String,
+    json: bool,
+    plot: Option<&Path>,
+) -> Result<()> {
+    if plot.is_some() {
+        return Err(Error::usage(
+            "reproduce: --plot applies to figures, not tables",
+        ));
+    }
+    let t = compute()?;
+    if json {
+        super::print_json(&t)
+    } else {
+        super::print_text(&render(&t))
+    }
+}
+
+/// One line of a text table: `label` left-aligned in `widths.0` columns, then one cell per row
+/// right-aligned in `widths.1` columns.
+fn table_line<R>(
+    label: &str,
+    widths: (usize, usize),
+    rows: &[R],
+    cell: impl Fn(&R) -> String,
+) -> String {
+    let (label_w, cell_w) = widths;
+    let mut s = format!("{label:<label_w$}");
+    for row in rows {
+        s += &format!("{:>cell_w$}", cell(row));
+    }
+    s + "\n"
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -219,18 +237,10 @@ fn render_table1(t: &Table1) -> String {
         out += &format!("layup source unavailable: {e}\n");
     }
     for (r, name) in names.iter().enumerate() {
-        out += &format!("\n{name:<16}");
-        for row in &t.rows {
-            out += &format!("{:>12}", format!("{}°", row.ply_angle_deg));
-        }
+        let line =
+            |label: &str, f: &dyn Fn(&Table1Row) -> String| table_line(label, (16, 12), &t.rows, f);
         out += "\n";
-        let line = |label: &str, f: &dyn Fn(&Table1Row) -> String| {
-            let mut s = format!("{label:<16}");
-            for row in &t.rows {
-                s += &format!("{:>12}", f(row));
-            }
-            s + "\n"
-        };
+        out += &line(name, &|row| format!("{}°", row.ply_angle_deg));
         out += &line("paper printed", &|row| {
             format!("{:.4e}", row.paper_printed.get(r))
         });
@@ -371,18 +381,13 @@ fn render_table2(t: &Table2) -> String {
     );
     for mode in 1..=5 {
         let row: Vec<&Table2Entry> = t.entries.iter().filter(|e| e.mode == mode).collect();
-        out += &format!("\nmode {mode:<17}");
-        for e in &row {
-            out += &format!("{:>10}", format!("{}°", e.ply_angle_deg));
-        }
-        out += "\n";
         let line = |label: &str, f: &dyn Fn(&Table2Entry) -> String| {
-            let mut s = format!("{label:<22}");
-            for e in &row {
-                s += &format!("{:>10}", f(e));
-            }
-            s + "\n"
+            table_line(label, (22, 10), &row, |e| f(e))
         };
+        out += "\n";
+        out += &line(&format!("mode {mode}"), &|e| {
+            format!("{}°", e.ply_angle_deg)
+        });
         out += &line("paper Present", &|e| format!("{:.4}", e.paper_present));
         out += &line(&format!("ours strong N={}", t.strong_modes), &|e| {
             format!("{:.4}", e.ours_strong)

@@ -76,8 +76,12 @@ pub fn run(p: &ValidPreset, vary: Option<&str>, json: bool, plot: Option<&Path>)
             let (key, values) = parse_vary(spec)?;
             let sections = vary_sections(p, &key, &values)?;
             if let Some(path) = plot {
-                let fig =
-                    crate::plot::figures::section_grid(p.display_name(), &key, &values, &sections);
+                let fig = crate::plot::from_results::section_grid(
+                    p.display_name(),
+                    &key,
+                    &values,
+                    &sections,
+                );
                 crate::plot::write(&fig, path)?;
                 eprintln!("plot written to {}", path.display());
             }

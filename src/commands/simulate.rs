@@ -19,7 +19,8 @@ pub fn run(p: &ValidPreset, json: bool, csv: bool, plot: Option<&Path>) -> Resul
         print!("{}", summary(p, &r));
     }
     if let Some(path) = plot {
-        let fig = crate::plot::figures::tip_response(p.display_name(), p.aero.model.name(), &r);
+        let fig =
+            crate::plot::from_results::tip_response(p.display_name(), p.aero.model.name(), &r);
         crate::plot::write(&fig, path)?;
         eprintln!("plot written to {}", path.display());
     }

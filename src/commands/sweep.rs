@@ -70,8 +70,8 @@ pub fn run(
         );
     }
     if let Some(path) = plot {
-        let tracked = crate::plot::figures::tracked_from_rows(&grid.keys[0], &plotted);
-        let fig = crate::plot::figures::sweep(p.display_name(), &tracked);
+        let tracked = crate::plot::from_results::tracked_from_rows(&grid.keys[0], &plotted);
+        let fig = crate::plot::from_results::sweep(p.display_name(), &tracked);
         crate::plot::write(&fig, path)?;
         eprintln!("plot written to {}", path.display());
     }

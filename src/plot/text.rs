@@ -2,8 +2,11 @@
 //! into an off-screen `Buffer` (no terminal needed), printed line by line. Used by the commands
 //! that show a figure in the terminal (`reproduce fig2..fig5`).
 
-use super::{format_tick, panel_ranges, tick_decimals, visible_runs, Corner, Mark, Occupancy};
-use super::{Panel, Rgb, GUIDE_GREY, PALETTE};
+use super::figure::{Mark, Panel, Rgb, GUIDE_GREY, PALETTE};
+use super::layout::{
+    clip_segment, format_tick, guide_ends, inside, panel_ranges, series_colors, tick_decimals,
+    tick_step, visible_runs, Corner, Occupancy,
+};
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Rect};
 use ratatui::style::{Color, Style};
@@ -19,7 +22,7 @@ type Layer = (Vec<(f64, f64)>, Color, GraphType, Option<String>);
 
 /// `(lo, hi)` rounded outward to multiples of a 1-2-5 step giving about four intervals.
 fn nice_bounds((lo, hi): (f64, f64)) -> (f64, f64) {
-    let step = super::tick_step(lo, hi, 5);
+    let step = tick_step(lo, hi, 5);
     let (a, b) = ((lo / step).floor() * step, (hi / step).ceil() * step);
     if a.is_finite() && b.is_finite() && a < b {
         (a, b)
@@ -94,15 +97,10 @@ pub fn render(panel: &Panel, width: u16, height: u16, color: bool) -> String {
     let (xd, yd) = (label_decimals(xr), label_decimals(yr));
 
     // Own the visible runs: ratatui datasets borrow their points.
-    let mut palette = PALETTE.iter().cycle();
     let mut owned: Vec<Layer> = Vec::new();
     for g in &panel.guides {
-        let (a, b) = match g.kind {
-            super::GuideKind::Vertical(x) => ((x, yr.0), (x, yr.1)),
-            super::GuideKind::Horizontal(y) => ((xr.0, y), (xr.1, y)),
-            super::GuideKind::Segment { from, to } => (from, to),
-        };
-        if let Some((a, b)) = super::clip_segment(a, b, xr, yr) {
+        let (a, b) = guide_ends(g.kind, xr, yr);
+        if let Some((a, b)) = clip_segment(a, b, xr, yr) {
             let c = ansi(g.color.unwrap_or(GUIDE_GREY));
             let c = if c == Color::Rgb(90, 90, 90) {
                 Color::DarkGray
@@ -113,11 +111,7 @@ pub fn render(panel: &Panel, width: u16, height: u16, color: bool) -> String {
             owned.push((vec![a, b], c, GraphType::Line, name));
         }
     }
-    for s in &panel.series {
-        let rgb = s
-            .style
-            .color
-            .unwrap_or_else(|| *palette.next().unwrap_or(&PALETTE[0]));
+    for (s, rgb) in panel.series.iter().zip(series_colors(panel)) {
         let c = ansi(rgb);
         let mut name = (panel.legend && !s.name.is_empty()).then(|| s.name.clone());
         if matches!(s.style.mark, Mark::Line | Mark::LinePoints) {
@@ -130,7 +124,7 @@ pub fn render(panel: &Panel, width: u16, height: u16, color: bool) -> String {
                 .points
                 .iter()
                 .copied()
-                .filter(|&(x, y)| x >= xr.0 && x <= xr.1 && y >= yr.0 && y <= yr.1)
+                .filter(|&p| inside(p, xr, yr))
                 .collect();
             owned.push((pts, c, GraphType::Scatter, name.take()));
         }

@@ -4,9 +4,9 @@
 mod cli_basic;
 mod eigen;
 mod explorer;
-mod figures;
 mod laminate;
 mod onera;
+mod paper_figures;
 mod plot;
 mod presets;
 mod readme;

@@ -433,14 +433,14 @@ fn malformed_figures_are_usage_errors_not_panics() {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Figures built from the engine's result types (`plot::figures`), on hand-made results.
+// Figures built from the engine's result types (`plot::from_results`), on hand-made results.
 // ---------------------------------------------------------------------------------------------
 
-mod figures {
+mod from_results {
     use flutterscope::analysis::flutter::{Boundary, BoundaryKind, Search};
     use flutterscope::analysis::simulate::{Response, RunStatus};
     use flutterscope::analysis::sweep::{SweepRow, TrackedMode, TrackedSweep};
-    use flutterscope::plot::figures;
+    use flutterscope::plot::from_results;
     use flutterscope::plot::GuideKind;
 
     fn mode(label: &str, f: Vec<f64>, z: Vec<f64>) -> TrackedMode {
@@ -478,7 +478,7 @@ mod figures {
 
     #[test]
     fn campbell_has_1p_3p_lines_and_leaves_far_modes_off_the_frequency_scale() {
-        let fig = figures::sweep("test", &rotor_sweep());
+        let fig = from_results::sweep("test", &rotor_sweep());
         assert_eq!(fig.panels.len(), 2);
         assert!(fig.title.starts_with("Campbell diagram"));
         let (freq, damp) = (&fig.panels[0], &fig.panels[1]);
@@ -499,7 +499,7 @@ mod figures {
         assert_eq!(names(freq), ["flap 1", "flap 2"]);
         assert_eq!(names(damp), ["flap 1", "flap 2", "torsion 1"]);
         assert!(
-            freq.notes[0].starts_with("1 higher mode(s)"),
+            freq.notes[0].starts_with("1 more mode(s) off scale"),
             "{:?}",
             freq.notes
         );
@@ -512,9 +512,35 @@ mod figures {
         // A non-rotor key: no excitation lines.
         let mut other = rotor_sweep();
         other.parameter = "operating.wind_speed".into();
-        let fig = figures::sweep("test", &other);
+        let fig = from_results::sweep("test", &other);
         assert!(fig.panels[0].guides.is_empty());
         assert_eq!(fig.panels[0].x_label, "operating.wind_speed (m/s)");
+    }
+
+    #[test]
+    fn frequency_panel_draws_the_campbell_selection_and_damping_every_mode() {
+        let mut sweep = rotor_sweep();
+        let n = sweep.values.len();
+        sweep.modes = (1..=10)
+            .map(|k| {
+                mode(
+                    &format!("flap {k}"),
+                    vec![0.9 + 0.1 * k as f64; n],
+                    vec![0.01; n],
+                )
+            })
+            .collect();
+        // A pair split into real roots: 0 Hz throughout, never oscillating.
+        sweep.modes.push(mode("split", vec![0.0; n], vec![1.0; n]));
+        // The selection the explorer's Campbell view draws: the eight lowest that oscillate.
+        assert_eq!(sweep.campbell_modes().shown, (0..8).collect::<Vec<_>>());
+        let fig = from_results::sweep("test", &sweep);
+        let (freq, damp) = (&fig.panels[0], &fig.panels[1]);
+        let names: Vec<&str> = freq.series.iter().map(|s| s.name.as_str()).collect();
+        let lowest: Vec<String> = (1..=8).map(|k| format!("flap {k}")).collect();
+        assert_eq!(names, lowest);
+        assert_eq!(damp.series.len(), 11);
+        assert_eq!(freq.notes, ["3 more mode(s) off scale (see --json / CSV)"]);
     }
 
     #[test]
@@ -533,7 +559,7 @@ mod figures {
             row(10.0, "flap 1", 2.0),
             row(10.0, "torsion 1", 9.5),
         ];
-        let t = figures::tracked_from_rows("operating.wind_speed", &rows);
+        let t = from_results::tracked_from_rows("operating.wind_speed", &rows);
         assert_eq!(t.values, [0.0, 5.0, 10.0]);
         assert_eq!(t.modes.len(), 2);
         assert_eq!(t.modes[0].label, "flap 1");
@@ -557,7 +583,7 @@ mod figures {
             },
             message: "flutter at 33.25 m/s".into(),
         };
-        let fig = figures::flutter("test", &tracked, &search);
+        let fig = from_results::flutter("test", &tracked, &search);
         let damp = &fig.panels[0];
         assert_eq!(damp.y_label, "damping ratio ζ (–)");
         assert_eq!(damp.markers.len(), 1);
@@ -586,7 +612,7 @@ mod figures {
             },
             message: "stable throughout".into(),
         };
-        let fig = figures::flutter("test", &tracked, &none);
+        let fig = from_results::flutter("test", &tracked, &none);
         assert!(fig.panels[0].markers.is_empty());
         assert_eq!(fig.panels[0].notes, ["stable throughout"]);
         assert!(flutterscope::plot::render_svg(&fig).is_ok());
@@ -602,7 +628,7 @@ mod figures {
             diverged_at: Some(0.99),
             t,
         };
-        let fig = figures::tip_response("test", "quasi-steady", &r);
+        let fig = from_results::tip_response("test", "quasi-steady", &r);
         assert_eq!(fig.panels.len(), 2);
         assert_eq!(fig.panels[0].series[0].points.len(), 100);
         assert_eq!(fig.panels[1].series[0].points[50], (0.5, 0.1 * 0.5));
@@ -616,7 +642,7 @@ mod figures {
             diverged_at: None,
             ..r
         };
-        let fig = figures::tip_response("test", "quasi-steady", &ok);
+        let fig = from_results::tip_response("test", "quasi-steady", &ok);
         assert!(fig
             .panels
             .iter()

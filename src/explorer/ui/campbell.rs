@@ -2,72 +2,14 @@
 //! the 1P and 3P excitation lines and the current rotor speed.
 
 use super::{marker, pane, sig, Theme};
-use crate::analysis::sweep::{TrackedMode, TrackedSweep};
+use crate::analysis::campbell::oscillates;
+use crate::analysis::sweep::TrackedMode;
 use crate::explorer::state::AppState;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::{Color, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Axis, Chart, Dataset, GraphType, Paragraph, Wrap};
 use ratatui::Frame;
-
-/// At most this many modes are drawn (the lowest); more would be an unreadable tangle.
-const MAX_SHOWN: usize = 8;
-/// Modes starting above this multiple of the lowest mode's top frequency (or of 3P at the top
-/// rotor speed, if higher) are left off the frequency scale so the low modes stay readable.
-const SCALE_FACTOR: f64 = 5.0;
-
-/// Where a tracked mode oscillates: a finite, positive frequency (tracked modes are NaN where
-/// they have no partner and 0 Hz where the pair split into real roots).
-fn oscillates(f: f64) -> bool {
-    f.is_finite() && f > 0.0
-}
-
-/// A mode's typical frequency: the median of its oscillating points (`None` if it never does).
-fn typical(m: &TrackedMode) -> Option<f64> {
-    let mut f: Vec<f64> = m
-        .frequency_hz
-        .iter()
-        .copied()
-        .filter(|f| oscillates(*f))
-        .collect();
-    if f.is_empty() {
-        return None;
-    }
-    f.sort_by(f64::total_cmp);
-    Some(f[f.len() / 2])
-}
-
-/// The modes worth drawing, lowest first, and how many were left off.
-pub fn shown_modes(sweep: &TrackedSweep) -> (Vec<(usize, &TrackedMode)>, usize) {
-    let mut order: Vec<(usize, &TrackedMode, f64)> = sweep
-        .modes
-        .iter()
-        .enumerate()
-        .filter_map(|(i, m)| typical(m).map(|t| (i, m, t)))
-        .collect();
-    order.sort_by(|a, b| a.2.total_cmp(&b.2));
-    let total = sweep.modes.len();
-    let Some(first) = order.first() else {
-        return (Vec::new(), total);
-    };
-    let top = |m: &TrackedMode| {
-        m.frequency_hz
-            .iter()
-            .copied()
-            .filter(|f| oscillates(*f))
-            .fold(0.0, f64::max)
-    };
-    let rpm_max = sweep.values.iter().copied().fold(0.0, f64::max);
-    let limit = (SCALE_FACTOR * top(first.1)).max(3.0 * rpm_max / 60.0);
-    let shown: Vec<(usize, &TrackedMode)> = order
-        .into_iter()
-        .filter(|(_, _, t)| *t <= limit)
-        .take(MAX_SHOWN)
-        .map(|(i, m, _)| (i, m))
-        .collect();
-    let left = total - shown.len();
-    (shown, left)
-}
 
 /// The pieces of a curve where the mode oscillates, as separate polylines (no line is drawn
 /// across a gap).
@@ -114,7 +56,14 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
             return;
         }
     };
-    let (shown, left_off) = shown_modes(sweep);
+    // Which modes to draw is decided with the sweep, as for `--plot`: lowest first.
+    let selection = sweep.campbell_modes();
+    let left_off = selection.left_off;
+    let shown: Vec<(usize, &TrackedMode)> = selection
+        .shown
+        .iter()
+        .map(|&i| (i, &sweep.modes[i]))
+        .collect();
     let rpm = &sweep.values;
     let rpm_max = rpm.iter().copied().fold(0.0, f64::max).max(1e-9);
     let now = state.preset.operating.rotor_speed;
@@ -230,37 +179,11 @@ fn mid_label(range: [f64; 2]) -> String {
 mod tests {
     use super::*;
 
-    fn mode(label: &str, f: [f64; 3]) -> TrackedMode {
-        TrackedMode {
-            label: label.into(),
-            frequency_hz: f.to_vec(),
-            damping_ratio: vec![0.01; 3],
-            re: vec![-0.1; 3],
-        }
-    }
-
     #[test]
     fn gaps_split_curves() {
         let x = [0.0, 1.0, 2.0, 3.0, 4.0];
         let f = [1.0, f64::NAN, 2.0, 3.0, 0.0];
         let segs = segments(&x, &f, &f);
         assert_eq!(segs, vec![vec![(0.0, 1.0)], vec![(2.0, 2.0), (3.0, 3.0)]]);
-    }
-
-    #[test]
-    fn far_modes_are_left_off_the_scale() {
-        let sweep = TrackedSweep {
-            parameter: "operating.rotor_speed".into(),
-            values: vec![0.0, 60.0, 120.0],
-            modes: vec![
-                mode("torsion 1", [400.0, 401.0, 402.0]),
-                mode("flap 1", [0.1, 1.0, 2.0]),
-                mode("flap 2", [0.6, 2.5, 4.9]),
-            ],
-        };
-        let (shown, left) = shown_modes(&sweep);
-        let labels: Vec<&str> = shown.iter().map(|(_, m)| m.label.as_str()).collect();
-        assert_eq!(labels, ["flap 1", "flap 2"]);
-        assert_eq!(left, 1);
     }
 }

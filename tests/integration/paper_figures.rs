@@ -1,7 +1,7 @@
 //! `reproduce fig2..fig5` (issue 6): each figure's series have the expected count and lengths
 //! and only finite values; the findings name ply angles from the paper's set; the figures draw.
 
-use flutterscope::commands::reproduce::figures::{self, TipQuantity, MODELS, PLY_ANGLES};
+use flutterscope::commands::reproduce::paper_figures::{self, TipQuantity, MODELS, PLY_ANGLES};
 use flutterscope::plot::{self, Mark};
 
 fn all_finite(v: &[f64]) -> bool {
@@ -10,7 +10,7 @@ fn all_finite(v: &[f64]) -> bool {
 
 #[test]
 fn fig5_has_four_real_parts_per_model_and_angle() {
-    let f = figures::fig5().unwrap();
+    let f = paper_figures::fig5().unwrap();
     assert_eq!(f.rows.len(), MODELS.len() * PLY_ANGLES.len());
     for r in &f.rows {
         assert_eq!(r.roots.len(), 4, "{} {}°", r.model, r.ply_angle);
@@ -28,7 +28,7 @@ fn fig5_has_four_real_parts_per_model_and_angle() {
             assert!(at(fd.most_stable_ply_angle) <= re && re <= at(fd.least_stable_ply_angle));
         }
     }
-    let fig = figures::fig5_figure(&f);
+    let fig = paper_figures::fig5_figure(&f);
     assert_eq!(fig.panels.len(), 2);
     for p in &fig.panels {
         assert_eq!(p.series.len(), 4);
@@ -45,7 +45,7 @@ fn fig5_has_four_real_parts_per_model_and_angle() {
 #[test]
 fn fig3_and_fig4_have_five_runs_per_model_side_by_side() {
     for q in [TipQuantity::TipTwist, TipQuantity::TipFlap] {
-        let f = figures::tip_runs(q).unwrap();
+        let f = paper_figures::tip_runs(q).unwrap();
         assert_eq!(f.runs.len(), 10);
         for r in &f.runs {
             assert!(
@@ -59,7 +59,7 @@ fn fig3_and_fig4_have_five_runs_per_model_side_by_side() {
             assert!(all_finite(&r.t) && all_finite(&r.values));
             assert_eq!(r.t[0], 0.0);
         }
-        let fig = figures::tip_figure(&f);
+        let fig = paper_figures::tip_figure(&f);
         assert_eq!(fig.columns, 2);
         assert_eq!(fig.panels.len(), 2);
         for (p, &(model, _)) in fig.panels.iter().zip(&MODELS) {
@@ -76,7 +76,7 @@ fn fig3_and_fig4_have_five_runs_per_model_side_by_side() {
 
 #[test]
 fn fig2_has_every_state_and_ten_eigenvalues() {
-    let f = figures::fig2().unwrap();
+    let f = paper_figures::fig2().unwrap();
     assert_eq!(f.eigenvalues.len(), 10);
     assert!(f.eigenvalues.windows(2).all(|w| w[0].re >= w[1].re));
     let count = |g: &str| f.states.iter().filter(|s| s.group == g).count();
@@ -89,7 +89,7 @@ fn fig2_has_every_state_and_ten_eigenvalues() {
         assert_eq!(s.values.len(), f.t.len(), "{}", s.name);
         assert!(all_finite(&s.values), "{}", s.name);
     }
-    let fig = figures::fig2_figure(&f);
+    let fig = paper_figures::fig2_figure(&f);
     assert_eq!(fig.panels.len(), 4);
     let drawn: usize = fig.panels[..3].iter().map(|p| p.series.len()).sum();
     assert_eq!(drawn, f.states.len());

@@ -1,8 +1,9 @@
-//! Figures for the commands' `--plot FILE`: each function lays out one result type. They only
-//! arrange numbers the engine computed (the one derived quantity, the n-per-revolution lines
-//! `f = nΩ/60` on a Campbell diagram, is a unit conversion).
+//! Figures of the engine's results, for the commands' `--plot FILE`: each function lays out one
+//! result type. They only arrange numbers the engine computed (the one derived quantity, the
+//! n-per-revolution lines `f = nΩ/60` on a Campbell diagram, is a unit conversion).
 
 use super::{Figure, Guide, Mark, Marker, Panel, Series, PALETTE};
+use crate::analysis::campbell::ROTOR_SPEED_KEY;
 use crate::analysis::flutter::{BoundaryKind, Search};
 use crate::analysis::simulate::{Response, RunStatus};
 use crate::analysis::sweep::{SweepRow, TrackedMode, TrackedSweep};
@@ -16,63 +17,17 @@ pub fn key_label(key: &str) -> String {
     }
 }
 
-/// The rotor-speed key: a sweep along it is drawn as a Campbell diagram.
-pub const ROTOR_SPEED_KEY: &str = "operating.rotor_speed";
-
 fn finite_extent(values: &[f64]) -> Option<(f64, f64)> {
     let mut it = values.iter().copied().filter(|v| v.is_finite());
     let first = it.next()?;
     Some(it.fold((first, first), |(lo, hi), v| (lo.min(v), hi.max(v))))
 }
 
-/// Modes whose typical frequency exceeds this multiple of the low-frequency scale are left off
-/// the frequency panel (on the paper's blade torsion sits ~100× above flap and would flatten it).
-const FREQUENCY_SCALE_FACTOR: f64 = 5.0;
-
-/// A mode's typical frequency: the median of its finite, positive values.
-fn typical_frequency(f: &[f64]) -> Option<f64> {
-    let mut v: Vec<f64> = f
-        .iter()
-        .copied()
-        .filter(|f| f.is_finite() && *f > 0.0)
-        .collect();
-    if v.is_empty() {
-        return None;
-    }
-    v.sort_by(f64::total_cmp);
-    Some(v[v.len() / 2])
-}
-
-/// Which modes the frequency panel shows, and the cut-off (when some are left off): modes up to
-/// `FREQUENCY_SCALE_FACTOR` × the lowest mode's top frequency (or `floor_hz`, if higher).
-fn frequency_subset(modes: &[TrackedMode], floor_hz: f64) -> (Vec<bool>, Option<f64>) {
-    let typical: Vec<Option<f64>> = modes
-        .iter()
-        .map(|m| typical_frequency(&m.frequency_hz))
-        .collect();
-    let lowest = typical
-        .iter()
-        .enumerate()
-        .filter_map(|(i, t)| t.map(|t| (i, t)))
-        .min_by(|a, b| a.1.total_cmp(&b.1));
-    let Some((low, _)) = lowest else {
-        return (vec![true; modes.len()], None);
-    };
-    let top = modes[low]
-        .frequency_hz
-        .iter()
-        .copied()
-        .filter(|f| f.is_finite())
-        .fold(floor_hz, f64::max);
-    let cut = FREQUENCY_SCALE_FACTOR * top;
-    let shown: Vec<bool> = typical.iter().map(|t| t.is_none_or(|t| t <= cut)).collect();
-    let any_left_off = shown.iter().any(|s| !s);
-    (shown, any_left_off.then_some(cut))
-}
-
 /// Frequency and damping-ratio panels for tracked modes, one colour per mode in both. Returns
-/// (frequency panel, damping panel); the legend is on the damping panel, which shows every mode.
-fn mode_panels(s: &TrackedSweep, x_label: &str, floor_hz: f64) -> (Panel, Panel) {
+/// (frequency panel, damping panel). The frequency panel draws the sweep's Campbell selection
+/// (the modes the explorer's Campbell view draws); the damping panel, which carries the legend,
+/// draws every mode: ζ has no scale problem, and a flutter boundary may be in any mode.
+fn mode_panels(s: &TrackedSweep, x_label: &str) -> (Panel, Panel) {
     let mut freq = Panel::new(x_label, "frequency (Hz)");
     let mut damp =
         Panel::new(x_label, "damping ratio ζ (–)").with_guide(Guide::horizontal(0.0, "ζ = 0"));
@@ -82,10 +37,10 @@ fn mode_panels(s: &TrackedSweep, x_label: &str, floor_hz: f64) -> (Panel, Panel)
     } else {
         Mark::Line
     };
-    let (shown, cut) = frequency_subset(&s.modes, floor_hz);
+    let on_scale = s.campbell_modes();
     for (i, m) in s.modes.iter().enumerate() {
         let color = PALETTE[i % PALETTE.len()];
-        if shown[i] {
+        if on_scale.shown.contains(&i) {
             freq.series.push(
                 Series::from_xy(&m.label, &s.values, &m.frequency_hz, mark).with_color(color),
             );
@@ -93,10 +48,10 @@ fn mode_panels(s: &TrackedSweep, x_label: &str, floor_hz: f64) -> (Panel, Panel)
         damp.series
             .push(Series::from_xy(&m.label, &s.values, &m.damping_ratio, mark).with_color(color));
     }
-    if let Some(cut) = cut {
-        let off = shown.iter().filter(|s| !**s).count();
+    if on_scale.left_off > 0 {
         freq.notes.push(format!(
-            "{off} higher mode(s) above {cut:.3} Hz not drawn here (see --json / CSV)"
+            "{} more mode(s) off scale (see --json / CSV)",
+            on_scale.left_off
         ));
     }
     (freq, damp)
@@ -112,16 +67,10 @@ pub fn sweep(preset: &str, s: &TrackedSweep) -> Figure {
     } else {
         format!("Tracked modes over {} — {preset}", s.parameter)
     };
-    let extent = finite_extent(&s.values);
-    // On a Campbell diagram the frequency scale reaches at least 3P at the top speed.
-    let floor_hz = match (campbell, extent) {
-        (true, Some((_, hi))) => 3.0 * hi / 60.0,
-        _ => 0.0,
-    };
-    let (mut freq, mut damp) = mode_panels(s, &x_label, floor_hz);
+    let (mut freq, mut damp) = mode_panels(s, &x_label);
     freq.title = "(a) frequency".into();
     damp.title = "(b) damping ratio ζ = −σ/|λ|".into();
-    if let (true, Some((lo, hi))) = (campbell, extent) {
+    if let (true, Some((lo, hi))) = (campbell, finite_extent(&s.values)) {
         for n in [1.0, 3.0] {
             freq.guides.push(Guide::segment(
                 (lo, n * lo / 60.0),
@@ -213,7 +162,7 @@ pub fn flutter(preset: &str, tracked: &TrackedSweep, search: &Search) -> Figure 
     let unit = crate::preset::key_spec(key)
         .map(|k| k.unit)
         .unwrap_or_default();
-    let (mut freq, mut damp) = mode_panels(tracked, &x_label, 0.0);
+    let (mut freq, mut damp) = mode_panels(tracked, &x_label);
     damp.title = "(a) damping ratio ζ = −σ/|λ| of the tracked modes".into();
     freq.title = "(b) frequency".into();
     let b = &search.boundary;

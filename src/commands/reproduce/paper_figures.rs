@@ -38,6 +38,34 @@ fn paper_preset(name: &str, angle: f64) -> Result<ValidPreset> {
     Preset::load(name, &[format!("section.ply_angle={angle}")])
 }
 
+/// `run(model, preset, ply angle)` for every model at every one of the paper's ply angles, on all
+/// cores; the results in model order, then angle order.
+fn each_case<T: Send>(
+    run: impl Fn(&'static str, &'static str, f64) -> Result<T> + Sync,
+) -> Result<Vec<T>> {
+    let cases: Vec<(usize, f64)> = (0..MODELS.len())
+        .flat_map(|m| PLY_ANGLES.iter().map(move |&a| (m, a)))
+        .collect();
+    cases
+        .par_iter()
+        .map(|&(m, angle)| {
+            let (model, preset) = MODELS[m];
+            run(model, preset, angle)
+        })
+        .collect()
+}
+
+/// A panel per model, side by side: "(a) model — preset", "(b) …".
+fn model_panel(i: usize, x_label: &str, y_label: &str) -> Panel {
+    let (model, preset) = MODELS[i];
+    Panel::new(x_label, y_label).titled(format!("({}) {model} — {preset}", ['a', 'b'][i]))
+}
+
+/// Largest |value|.
+fn peak(values: &[f64]) -> f64 {
+    values.iter().fold(0.0f64, |m, v| m.max(v.abs()))
+}
+
 /// One eigenvalue λ = σ + iω (one per conjugate pair).
 #[derive(Debug, Clone, Serialize)]
 pub struct Root {
@@ -99,22 +127,15 @@ pub struct Fig5 {
 }
 
 pub fn fig5() -> Result<Fig5> {
-    let cases: Vec<(usize, f64)> = (0..MODELS.len())
-        .flat_map(|m| PLY_ANGLES.iter().map(move |&a| (m, a)))
-        .collect();
-    let rows: Vec<EigenRow> = cases
-        .par_iter()
-        .map(|&(m, angle)| {
-            let (model, preset) = MODELS[m];
-            let s = analyse(&paper_preset(preset, angle)?)?;
-            Ok(EigenRow {
-                model: model.into(),
-                preset: preset.into(),
-                ply_angle: angle,
-                roots: rightmost(&s, 4),
-            })
+    let rows: Vec<EigenRow> = each_case(|model, preset, angle| {
+        let s = analyse(&paper_preset(preset, angle)?)?;
+        Ok(EigenRow {
+            model: model.into(),
+            preset: preset.into(),
+            ply_angle: angle,
+            roots: rightmost(&s, 4),
         })
-        .collect::<Result<_>>()?;
+    })?;
     let findings = MODELS
         .iter()
         .zip([PAPER_CLASSICAL, PAPER_STALL])
@@ -160,10 +181,9 @@ pub fn fig5_figure(f: &Fig5) -> Figure {
         "Fig. 5 — four rightmost eigenvalues (real parts) against ply angle, liu2017 presets",
     )
     .with_columns(2);
-    for (i, &(model, preset)) in MODELS.iter().enumerate() {
+    for (i, &(model, _)) in MODELS.iter().enumerate() {
         let rows: Vec<&EigenRow> = f.rows.iter().filter(|r| r.model == model).collect();
-        let mut panel = Panel::new("ply angle θ (deg)", "real part σ (1/s)")
-            .titled(format!("({}) {model} — {preset}", ['a', 'b'][i]));
+        let mut panel = model_panel(i, "ply angle θ (deg)", "real part σ (1/s)");
         for k in 0..4 {
             let pts = rows
                 .iter()
@@ -246,7 +266,7 @@ pub struct TipRun {
 
 impl TipRun {
     fn peak(&self) -> f64 {
-        self.values.iter().fold(0.0f64, |m, v| m.max(v.abs()))
+        peak(&self.values)
     }
     /// Largest |value − final value| over the second half: what is left of the oscillation.
     fn late_swing(&self) -> f64 {
@@ -267,29 +287,22 @@ pub struct TipFigure {
 }
 
 pub fn tip_runs(quantity: TipQuantity) -> Result<TipFigure> {
-    let cases: Vec<(usize, f64)> = (0..MODELS.len())
-        .flat_map(|m| PLY_ANGLES.iter().map(move |&a| (m, a)))
-        .collect();
-    let runs = cases
-        .par_iter()
-        .map(|&(m, angle)| {
-            let (model, preset) = MODELS[m];
-            let r = simulate(&paper_preset(preset, angle)?)?;
-            let values = match quantity {
-                TipQuantity::TipTwist => r.tip_twist,
-                TipQuantity::TipFlap => r.tip_flap,
-            };
-            Ok(TipRun {
-                model: model.into(),
-                preset: preset.into(),
-                ply_angle: angle,
-                status: r.status,
-                diverged_at: r.diverged_at,
-                t: r.t,
-                values,
-            })
+    let runs = each_case(|model, preset, angle| {
+        let r = simulate(&paper_preset(preset, angle)?)?;
+        let values = match quantity {
+            TipQuantity::TipTwist => r.tip_twist,
+            TipQuantity::TipFlap => r.tip_flap,
+        };
+        Ok(TipRun {
+            model: model.into(),
+            preset: preset.into(),
+            ply_angle: angle,
+            status: r.status,
+            diverged_at: r.diverged_at,
+            t: r.t,
+            values,
         })
-        .collect::<Result<_>>()?;
+    })?;
     let (figure, unit, paper) = match quantity {
         TipQuantity::TipTwist => (
             "fig3",
@@ -321,9 +334,8 @@ pub fn tip_figure(f: &TipFigure) -> Figure {
         "Fig. {num} — {what} responses against ply angle, liu2017 presets"
     ))
     .with_columns(2);
-    for (i, &(model, preset)) in MODELS.iter().enumerate() {
-        let mut panel =
-            Panel::new("time t (s)", y).titled(format!("({}) {model} — {preset}", ['a', 'b'][i]));
+    for (i, &(model, _)) in MODELS.iter().enumerate() {
+        let mut panel = model_panel(i, "time t (s)", y);
         for r in f.runs.iter().filter(|r| r.model == model) {
             let pts = r.t.iter().copied().zip(r.values.iter().copied()).collect();
             panel
@@ -510,7 +522,7 @@ fn fig2_table(f: &Fig2) -> String {
             "{:<8} {:<13} {:>13.5e} {:>13.5e}\n",
             s.name,
             s.group,
-            s.values.iter().fold(0.0f64, |m, v| m.max(v.abs())),
+            peak(&s.values),
             s.values.last().copied().unwrap_or(f64::NAN)
         );
     }

@@ -1,0 +1,151 @@
+//! Which tracked modes a Campbell diagram draws. A property of the sweep's result, decided here
+//! once, so the explorer's Campbell view and `--plot` show the same modes for the same sweep.
+
+use crate::analysis::sweep::{TrackedMode, TrackedSweep};
+
+/// The rotor-speed key: a sweep along it is a Campbell diagram.
+pub const ROTOR_SPEED_KEY: &str = "operating.rotor_speed";
+
+/// At most this many modes are drawn (the lowest); more would be an unreadable tangle.
+pub const MAX_CAMPBELL_MODES: usize = 8;
+
+/// Modes typically above this multiple of the lowest mode's top frequency (or above 3P at the top
+/// rotor speed, if higher) are left off the frequency scale so the low modes stay readable (on
+/// the paper's blade torsion sits ~100× above flap and would flatten it).
+const SCALE_FACTOR: f64 = 5.0;
+
+/// Where a tracked mode oscillates: a finite, positive frequency (tracked modes are NaN where
+/// they have no partner and 0 Hz where the pair split into real roots).
+pub fn oscillates(f_hz: f64) -> bool {
+    f_hz.is_finite() && f_hz > 0.0
+}
+
+/// A mode's frequencies where it oscillates.
+fn oscillating(m: &TrackedMode) -> impl Iterator<Item = f64> + '_ {
+    m.frequency_hz.iter().copied().filter(|f| oscillates(*f))
+}
+
+/// A mode's typical frequency: the median of its oscillating points (`None` if it never does).
+fn typical(m: &TrackedMode) -> Option<f64> {
+    let mut f: Vec<f64> = oscillating(m).collect();
+    if f.is_empty() {
+        return None;
+    }
+    f.sort_by(f64::total_cmp);
+    Some(f[f.len() / 2])
+}
+
+/// The modes drawn on one frequency scale.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CampbellSelection {
+    /// Indices into the sweep's modes, lowest typical frequency first.
+    pub shown: Vec<usize>,
+    /// Modes not drawn: far above the lowest, beyond the [`MAX_CAMPBELL_MODES`] lowest, or never
+    /// oscillating.
+    pub left_off: usize,
+}
+
+impl TrackedSweep {
+    /// The modes a Campbell diagram (or, along another key, its frequency panel) draws: those
+    /// that oscillate somewhere and typically stay within 5 × the lowest mode's top frequency
+    /// (along rotor speed, at least up to 3P at the top speed), at most the
+    /// [`MAX_CAMPBELL_MODES`] lowest.
+    pub fn campbell_modes(&self) -> CampbellSelection {
+        let mut order: Vec<(usize, f64)> = self
+            .modes
+            .iter()
+            .enumerate()
+            .filter_map(|(i, m)| typical(m).map(|t| (i, t)))
+            .collect();
+        order.sort_by(|a, b| a.1.total_cmp(&b.1));
+        let total = self.modes.len();
+        let Some(&(lowest, _)) = order.first() else {
+            return CampbellSelection {
+                shown: Vec::new(),
+                left_off: total,
+            };
+        };
+        let top = oscillating(&self.modes[lowest]).fold(0.0, f64::max);
+        let three_p = if self.parameter == ROTOR_SPEED_KEY {
+            3.0 * self.values.iter().copied().fold(0.0, f64::max) / 60.0
+        } else {
+            0.0
+        };
+        let limit = (SCALE_FACTOR * top).max(three_p);
+        let shown: Vec<usize> = order
+            .into_iter()
+            .filter(|(_, t)| *t <= limit)
+            .take(MAX_CAMPBELL_MODES)
+            .map(|(i, _)| i)
+            .collect();
+        CampbellSelection {
+            left_off: total - shown.len(),
+            shown,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn mode(label: &str, f: Vec<f64>) -> TrackedMode {
+        TrackedMode {
+            label: label.into(),
+            damping_ratio: vec![0.01; f.len()],
+            re: vec![-0.1; f.len()],
+            frequency_hz: f,
+        }
+    }
+
+    fn sweep(parameter: &str, modes: Vec<TrackedMode>) -> TrackedSweep {
+        TrackedSweep {
+            parameter: parameter.into(),
+            values: vec![0.0, 60.0, 120.0],
+            modes,
+        }
+    }
+
+    #[test]
+    fn far_modes_are_left_off_the_scale() {
+        let s = sweep(
+            ROTOR_SPEED_KEY,
+            vec![
+                mode("torsion 1", vec![400.0, 401.0, 402.0]),
+                mode("flap 1", vec![0.1, 1.0, 2.0]),
+                mode("flap 2", vec![0.6, 2.5, 4.9]),
+            ],
+        );
+        let sel = s.campbell_modes();
+        // Lowest first, up to 5 × flap 1's top (2 Hz), above 3P at 120 rpm (6 Hz).
+        assert_eq!(sel.shown, [1, 2]);
+        assert_eq!(sel.left_off, 1);
+    }
+
+    #[test]
+    fn along_rotor_speed_the_scale_reaches_3p() {
+        let modes = vec![
+            mode("flap 1", vec![0.1, 0.2, 0.3]),
+            mode("flap 2", vec![5.0, 5.0, 5.0]),
+        ];
+        // 3P at 120 rpm is 6 Hz, above 5 × 0.3 Hz: flap 2 stays.
+        let sel = sweep(ROTOR_SPEED_KEY, modes.clone()).campbell_modes();
+        assert_eq!(sel.shown, [0, 1]);
+        // Along another key there is no 3P line: up to 5 × 0.3 Hz.
+        let sel = sweep("operating.wind_speed", modes).campbell_modes();
+        assert_eq!((sel.shown, sel.left_off), (vec![0], 1));
+    }
+
+    #[test]
+    fn silent_modes_and_modes_beyond_the_lowest_few_are_left_off() {
+        let mut modes: Vec<TrackedMode> = (0..10)
+            .map(|k| mode(&format!("flap {}", k + 1), vec![1.0 + 0.1 * k as f64; 3]))
+            .collect();
+        modes.push(mode("split", vec![0.0, f64::NAN, 0.0]));
+        let sel = sweep("operating.wind_speed", modes).campbell_modes();
+        assert_eq!(sel.shown, (0..MAX_CAMPBELL_MODES).collect::<Vec<_>>());
+        assert_eq!(sel.left_off, 11 - MAX_CAMPBELL_MODES);
+        let none = sweep(ROTOR_SPEED_KEY, vec![mode("split", vec![0.0; 3])]).campbell_modes();
+        assert_eq!((none.shown.len(), none.left_off), (0, 1));
+    }
+}
