@@ -5,9 +5,9 @@
 use crate::analysis::eigen::Stability;
 use crate::analysis::flutter::{Boundary, SearchRange};
 use crate::analysis::simulate::{RunStatus, Simulator, TipSample};
+use crate::analysis::solve::SectionProps;
 use crate::analysis::sweep::TrackedSweep;
 use crate::error::Result;
-use crate::analysis::solve::SectionProps;
 use crate::preset::ValidPreset;
 
 /// One operating point, solved: the live section stiffnesses and the eigen-analysis.
@@ -83,6 +83,6 @@ impl Engine for Physics {
     }
 
     fn campbell(&self, p: &ValidPreset, grid: &[f64]) -> Result<TrackedSweep> {
-        crate::analysis::sweep::track(p, "operating.rotor_speed", grid)
+        crate::analysis::sweep::track(p, crate::analysis::campbell::ROTOR_SPEED_KEY, grid)
     }
 }
