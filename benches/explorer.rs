@@ -10,7 +10,7 @@ use flutterscope::explorer::headless::settled_state;
 use flutterscope::explorer::keys::Action;
 use flutterscope::explorer::runner;
 use flutterscope::explorer::state::{update, Effect, Msg, PARAMS};
-use flutterscope::explorer::{ui, Physics};
+use flutterscope::explorer::{ui, Engine, Physics};
 use flutterscope::preset::{Preset, ValidPreset, DEFAULT_PRESET};
 use ratatui::backend::TestBackend;
 use ratatui::Terminal;
@@ -74,5 +74,16 @@ fn key_to_solved_frame_160x48(bencher: divan::Bencher, model: &str) {
         }
         assert!(!state.solving());
         terminal.draw(|f| ui::render(&state, f)).unwrap();
+    });
+}
+
+/// The worker's work for one key without the frame: one build, its eigen-analysis and the start
+/// of the tip simulation from the same linearisation.
+#[divan::bench(args = ["quasi-steady", "theodorsen", "onera"])]
+fn solve_and_start_stream(bencher: divan::Bencher, model: &str) {
+    let p = preset(model);
+    bencher.bench_local(|| {
+        let s = Physics.solve(divan::black_box(&p));
+        (s.solved.is_ok(), s.stream.is_ok())
     });
 }

@@ -4,7 +4,7 @@
 //! (eigen, tracking, flutter, sweep, simulate) → `explorer` (worker → state → ui). `numeric`
 //! (eigendecomposition, balancing, assignment) holds the linear algebra both physics and
 //! analysis use, with no physics in it.
-//! The physics reference is MODEL.md (in `../shared/`); each module cites the section it implements.
+//! The physics reference is `docs/model.md`; each module cites the section it implements.
 
 pub mod analysis;
 pub mod cli;

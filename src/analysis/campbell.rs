@@ -1,5 +1,6 @@
 //! Which tracked modes a Campbell diagram draws. A property of the sweep's result, decided here
-//! once, so the explorer's Campbell view and `--plot` show the same modes for the same sweep.
+//! once, so the explorer's Campbell view and `--plot` show the same modes for the same sweep
+//! (docs/model.md §6.4).
 
 use crate::analysis::sweep::{TrackedMode, TrackedSweep};
 

@@ -1,4 +1,4 @@
-//! Eigen-analysis of the linearised aeroelastic system (MODEL.md §6).
+//! Eigen-analysis of the linearised aeroelastic system (docs/model.md §6).
 //!
 //! Input: the state matrix `A` at equilibrium ([`LinearSystem`]). Output: every root
 //! `λ = σ ± iω` (one entry per conjugate pair) with frequency `ω/2π`, damping ratio `ζ = −σ/|λ|`,
@@ -12,7 +12,7 @@
 //! the roots their aeroelastic meaning.
 
 use crate::error::Result;
-use crate::numeric::{decompose, hungarian};
+use crate::numeric::{decompose, hungarian, shares};
 use crate::physics::structure::StructuralModel;
 use crate::physics::system::{LinearSystem, System};
 use crate::preset::ValidPreset;
@@ -160,7 +160,7 @@ pub fn analyse_system(ls: &LinearSystem) -> Result<Stability> {
 pub const SECOND_ROOT_SUFFIX: &str = "'";
 
 /// Labels structural roots by the in-vacuo natural modes of (M, K_e + K_c) at the same rotor
-/// speed (MODEL.md §6): each root's q-part is expanded on the mass-normalised natural modes,
+/// speed (docs/model.md §6): each root's q-part is expanded on the mass-normalised natural modes,
 /// η = Φᵀ M q, and roots are assigned to modes one-to-one maximising the summed energy share
 /// |η_k|² / Σ|η|² (Kuhn–Munkres), so no label repeats and none names a mode that does not
 /// exist. Reading the label off the natural modes rather than off the root's own torsion
@@ -201,12 +201,7 @@ fn label_structural_roots(roots: &mut [Mode], structure: &StructuralModel) -> Re
                         .norm_sqr()
                 })
                 .collect();
-            let total: f64 = energy.iter().sum();
-            if total > 0.0 {
-                energy.iter().map(|e| e / total).collect()
-            } else {
-                energy
-            }
+            shares(energy)
         })
         .collect();
     let size = roots.len().max(natural.len());

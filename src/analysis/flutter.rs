@@ -1,4 +1,4 @@
-//! Flutter-boundary search along one numeric preset key (MODEL.md §6).
+//! Flutter-boundary search along one numeric preset key (docs/model.md §6).
 //!
 //! Input: a preset, a key, a range and a grid size. The stability margin along the key is the
 //! largest real part `σ_max` over every root. The grid (evaluated on all cores) brackets the first
@@ -47,7 +47,7 @@ pub struct Search {
     pub message: String,
 }
 
-/// Relative accuracy of the critical value (MODEL.md §6).
+/// Relative accuracy of the critical value (docs/model.md §6).
 pub const RELATIVE_TOLERANCE: f64 = 1e-4;
 
 /// Stability with `key` set to `value`.

@@ -1,5 +1,5 @@
 //! Analyses on top of the physics: eigen-analysis with labelled modes, mode tracking (MAC),
-//! flutter-boundary search, parameter sweeps and time simulation (MODEL.md §6–§7).
+//! flutter-boundary search, parameter sweeps and time simulation (docs/model.md §6–§7).
 
 pub mod campbell;
 pub mod eigen;

@@ -1,4 +1,4 @@
-//! Time response of the blade tip (MODEL.md §7), every aerodynamic model.
+//! Time response of the blade tip (docs/model.md §7), every aerodynamic model.
 //!
 //! Input: a preset (its `simulation.*` settings: start, kicks, duration, sample rate).
 //! Output: [`TipSample`]s, tip twist φ(L,t) and tip flap u(L,t), streamed by [`Simulator::advance`].
@@ -6,7 +6,7 @@
 //! **Model.** The right-hand side is split about a reference state `x_r` (the static
 //! equilibrium; for a nonlinear model without one, the start state):
 //! `ẋ = r0 + A y + B ũ(C y)`, `y = x − x_r` ([`Splitting`]). For the affine models (`none`,
-//! `theodorsen`) and `quasi-steady` (whose only nonlinearity, the `cos α_g` arm, MODEL.md §7 keeps
+//! `theodorsen`) and `quasi-steady` (whose only nonlinearity, the `cos α_g` arm, docs/model.md §7 keeps
 //! linearised) `ũ` is empty and the run is the linear system `ẏ = A y`. For `onera` (§5.3) `ũ`
 //! holds the stall deviations and the trigonometric load arms: a few scalars per station, read
 //! from a few station inputs (`C`) and written into a few rates and loads (`B`).

@@ -1,4 +1,4 @@
-//! One operating point, built once (MODEL.md §6–§7): section, structure, stations, aerodynamic
+//! One operating point, built once (docs/model.md §6–§7): section, structure, stations, aerodynamic
 //! model, static equilibrium and the linearisation about it. The eigen-analysis and the time
 //! response both start from this build, so a re-solve (an explorer key press, `reproduce fig2`)
 //! never assembles or linearises anything twice.
@@ -39,12 +39,12 @@ impl Solution {
         self.linear.as_ref().map_err(Clone::clone)
     }
 
-    /// Eigenvalues, labels and verdict (MODEL.md §6).
+    /// Eigenvalues, labels and verdict (docs/model.md §6).
     pub fn stability(&self) -> Result<Stability> {
         analyse_system(self.linear()?)
     }
 
-    /// The tip response of `simulation.*` (MODEL.md §7), stepping the linearisation of this
+    /// The tip response of `simulation.*` (docs/model.md §7), stepping the linearisation of this
     /// build: exactly for the affine models, split about it for the nonlinear ones. A run from
     /// rest of a nonlinear model without an equilibrium is split about the rest state instead.
     pub fn simulator(self, p: &ValidPreset) -> Result<Simulator> {

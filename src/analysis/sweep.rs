@@ -1,4 +1,5 @@
-//! Parameter sweeps with tracked modes (a Campbell diagram when the key is rotor speed).
+//! Parameter sweeps with tracked modes (a Campbell diagram when the key is rotor speed;
+//! docs/model.md §6.4).
 //!
 //! One-dimensional: [`track`] solves every grid point on all cores, then tracks the structural
 //! modes of the first point through the grid by MAC (sequential, cheap).

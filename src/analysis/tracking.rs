@@ -1,4 +1,4 @@
-//! Mode tracking along a swept parameter by eigenvector correlation (MAC).
+//! Mode tracking along a swept parameter by eigenvector correlation (MAC; docs/model.md §6.2).
 //!
 //! Input: the structural modes at consecutive parameter values (each with its Galerkin shape).
 //! Output: tracks — for each mode of the first point, the index of the same physical mode at

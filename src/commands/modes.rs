@@ -1,4 +1,4 @@
-//! `flutterscope modes`: coupled natural frequencies of the blade structure (MODEL.md §3–§4), no
+//! `flutterscope modes`: coupled natural frequencies of the blade structure (docs/model.md §3–§4), no
 //! aerodynamics, at the preset's rotor speed.
 
 use crate::error::Result;

@@ -1,6 +1,6 @@
-//! `flutterscope reproduce`: the source paper's tables beside our numbers (MODEL.md §2, §8).
+//! `flutterscope reproduce`: the source paper's tables beside our numbers (docs/model.md §2, §8).
 //!
-//! Table 1 (section stiffness vs ply angle): the paper's printed values, the same in SI (MODEL.md
+//! Table 1 (section stiffness vs ply angle): the paper's printed values, the same in SI (docs/model.md
 //! §2 unit correction), our table source (the spline through those values, exact at the nodes) and
 //! our layup source on the paper's box contour (§2.1). Table 2 (first five natural frequencies vs
 //! ply angle, Ω = 0, a_s = 0): the paper's "Present" and "AC" rows, our Eq. 13 AC, our strong
@@ -130,7 +130,7 @@ pub struct Table1Row {
     pub ply_angle_deg: f64,
     /// As printed in the paper (mixed units).
     pub paper_printed: Stiffness,
-    /// Printed × the MODEL.md §2 unit factors (SI).
+    /// Printed × the docs/model.md §2 unit factors (SI).
     pub paper_si: Stiffness,
     /// Our table source at this angle.
     pub ours_table: Stiffness,
@@ -157,7 +157,7 @@ fn paper_blade(sets: &[String]) -> Result<ValidPreset> {
     Preset::load("liu2017", sets)
 }
 
-/// Box contour of MODEL.md §2 evidence (b): 18.33 × 2.470 mm mid-line, six 0.127 mm plies.
+/// Box contour of docs/model.md §2 evidence (b): 18.33 × 2.470 mm mid-line, six 0.127 mm plies.
 const LAYUP_SETS: [&str; 6] = [
     "section.source=layup",
     "section.contour.shape=box",
@@ -229,7 +229,7 @@ fn render_table1(t: &Table1) -> String {
     let names = ["C22", "C23", "C33"];
     let mut out = String::from(
         "Table 1: cross-section stiffness (N·m²) vs ply angle\n\
-         paper as printed, its units corrected (C22 ×1e-6, C23 ×1e-3, C33 ×1; MODEL.md §2),\n\
+         paper as printed, its units corrected (C22 ×1e-6, C23 ×1e-3, C33 ×1; docs/model.md §2),\n\
          our table source (spline through the corrected values) and our layup source\n",
     );
     out += &format!("layup contour: {}\n", t.layup_contour);

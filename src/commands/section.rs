@@ -1,4 +1,4 @@
-//! `flutterscope section`: the layup section (MODEL.md §2.1) of a preset, whatever its
+//! `flutterscope section`: the layup section (docs/model.md §2.1) of a preset, whatever its
 //! `section.source` says — laminate A matrices, reduced wall stiffnesses, C22/C23/C33 and the mass
 //! properties; with `--vary KEY=A:B:STEP`, C22/C23/C33 over a grid like the paper's Table 1.
 
@@ -153,7 +153,7 @@ pub fn section_text(p: &ValidPreset, s: &LayupSection) -> String {
     let m = &s.material;
     let sp = &s.props;
     o.push_str(&format!(
-        "section of {} — layup (CLT + thin-walled closed contour, MODEL.md §2.1)\n  {}\n\n",
+        "section of {} — layup (CLT + thin-walled closed contour, docs/model.md §2.1)\n  {}\n\n",
         p.display_name(),
         source_note(p)
     ));
@@ -234,7 +234,7 @@ pub fn section_text(p: &ValidPreset, s: &LayupSection) -> String {
 /// The Table-1-like grid: one column per value, rows C22, C23, C33.
 pub fn vary_text(p: &ValidPreset, key: &str, values: &[f64], sections: &[LayupSection]) -> String {
     let mut o = format!(
-        "section of {} over {key} — layup (MODEL.md §2.1)\n  {}\n\n",
+        "section of {} over {key} — layup (docs/model.md §2.1)\n  {}\n\n",
         p.display_name(),
         source_note(p)
     );

@@ -1,8 +1,9 @@
-//! Dense eigendecomposition of a real non-symmetric matrix: every eigenvalue with its right and,
-//! when asked, left eigenvector, one entry per real root or conjugate pair. This is the solver
-//! behind the stability analysis; nalgebra alone would not do (it has no non-symmetric
-//! eigenvectors, and its eigenvalue-only Schur solver can spin on NaN input). The fast path
-//! (balancing, Hessenberg QR, inverse iteration) falls back on faer's full decomposition.
+//! Dense eigendecomposition of a real non-symmetric matrix (docs/model.md §6.1, §10): every
+//! eigenvalue with its right and, when asked, left eigenvector, one entry per real root or
+//! conjugate pair. This is the solver behind the stability analysis; nalgebra alone would not do
+//! (it has no non-symmetric eigenvectors, and its eigenvalue-only Schur solver can spin on NaN
+//! input). The fast path (balancing, Hessenberg QR, inverse iteration) falls back on faer's full
+//! decomposition.
 
 use super::balance::{balanced, balancing_scale};
 use super::faer_evd::real_evd;
@@ -35,12 +36,18 @@ impl Roots {
             .zip(self.left.column(k).iter())
             .map(|(r, l)| r.norm() * l.norm())
             .collect();
-        let total: f64 = raw.iter().sum();
-        if total > 0.0 {
-            raw.iter().map(|p| p / total).collect()
-        } else {
-            raw
-        }
+        shares(raw)
+    }
+}
+
+/// Non-negative `parts` divided by their sum, so they add up to 1 (left as they are when they sum
+/// to zero).
+pub fn shares(parts: Vec<f64>) -> Vec<f64> {
+    let total: f64 = parts.iter().sum();
+    if total > 0.0 {
+        parts.iter().map(|p| p / total).collect()
+    } else {
+        parts
     }
 }
 

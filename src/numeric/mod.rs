@@ -14,4 +14,4 @@ mod hessenberg;
 mod inverse_iteration;
 
 pub use assignment::hungarian;
-pub use eigen::{decompose, eigen_decomposition, Roots};
+pub use eigen::{decompose, eigen_decomposition, shares, Roots};

@@ -1,4 +1,4 @@
-//! Galerkin trial functions and quadrature (MODEL.md §4).
+//! Galerkin trial functions and quadrature (docs/model.md §4).
 //!
 //! Torsion: `Φ_j = sin((2j−1)πx/2L)`. Flap: the clamped–free beam functions
 //! `U_j = cosh βx − cos βx − σ(sinh βx − sin βx)` with `cos βL cosh βL = −1`. Written as printed,
@@ -31,7 +31,7 @@ pub fn gauss_rule(n: usize) -> Arc<GaussRule> {
     }
 }
 
-/// Gauss–Legendre rule with `n` points on `[-1, 1]`: (nodes ascending, weights) (MODEL.md §4).
+/// Gauss–Legendre rule with `n` points on `[-1, 1]`: (nodes ascending, weights) (docs/model.md §4).
 /// Exact for polynomials of degree ≤ 2n−1. Newton on `P_n` from Tricomi's initial guesses, which
 /// converge in a few steps for any n; symmetric nodes are mirrored so the rule is exactly symmetric.
 pub fn gauss_legendre(n: usize) -> (Vec<f64>, Vec<f64>) {
@@ -84,7 +84,7 @@ fn legendre_with_derivative(n: usize, x: f64) -> (f64, f64) {
     (p1, nf * (x * p1 - p0) / (x * x - 1.0))
 }
 
-/// `β_j L`, the j-th root (j ≥ 1) of `cos βL cosh βL = −1` (MODEL.md §4).
+/// `β_j L`, the j-th root (j ≥ 1) of `cos βL cosh βL = −1` (docs/model.md §4).
 ///
 /// Newton on the equivalent `cos z + sech z = 0`, which stays O(1) for any j (cosh overflows
 /// near j ≈ 230, sech just underflows to 0 and the root becomes `(2j−1)π/2` exactly, as it should).
@@ -136,7 +136,7 @@ pub(crate) struct BendingMode {
 }
 
 impl BendingMode {
-    /// Constants of `U_j` for a blade of length `length` (MODEL.md §4). With `D = 1 + e^{−2b} +
+    /// Constants of `U_j` for a blade of length `length` (docs/model.md §4). With `D = 1 + e^{−2b} +
     /// 2 cos b e^{−b}` (`b = β_jL`): `σ = (1 − e^{−2b} − 2 sin b e^{−b})/D` and
     /// `½(1−σ)e^{b} = (e^{−b} + cos b + sin b)/D`, neither of which cancels.
     pub(crate) fn new(j: usize, length: f64) -> BendingMode {
@@ -198,7 +198,7 @@ impl Basis {
         Basis { n, length }
     }
 
-    /// `Φ_j^(deriv)(x)` for j = 1..N, deriv 0..=2 (MODEL.md §4).
+    /// `Φ_j^(deriv)(x)` for j = 1..N, deriv 0..=2 (docs/model.md §4).
     pub fn torsion(&self, x: f64, deriv: usize) -> DVector<f64> {
         DVector::from_iterator(
             self.n,
@@ -215,7 +215,7 @@ impl Basis {
         )
     }
 
-    /// `U_j^(deriv)(x)` for j = 1..N, deriv 0..=3 (MODEL.md §4), stable for any j.
+    /// `U_j^(deriv)(x)` for j = 1..N, deriv 0..=3 (docs/model.md §4), stable for any j.
     pub fn bending(&self, x: f64, deriv: usize) -> DVector<f64> {
         DVector::from_iterator(
             self.n,

@@ -1,4 +1,4 @@
-//! Strip-theory stations and the rigid inflow at each of them (MODEL.md §1).
+//! Strip-theory stations and the rigid inflow at each of them (docs/model.md §1).
 //!
 //! Inputs: blade length and hub radius, the operating point (wind `U`, induction `a_ind`, rotor
 //! speed `Ω`, tunnel speed `V_t`, pitch `β`, pretwist, inflow mode), the station count.
@@ -63,7 +63,7 @@ impl OperatingPoint {
         }
     }
 
-    /// Relative speed V0 and inflow angle ψ at radius `r` (MODEL.md §1).
+    /// Relative speed V0 and inflow angle ψ at radius `r` (docs/model.md §1).
     pub fn velocity_triangle(&self, r: f64) -> (f64, f64) {
         let axial = self.wind * (1.0 - self.induction);
         let in_plane = self.omega * r + self.tunnel;

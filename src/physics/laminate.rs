@@ -1,5 +1,5 @@
 //! Layup → section: classical lamination theory on a single-cell thin-walled closed contour
-//! (MODEL.md §2.1), and the mass properties of the same contour (MODEL.md §2).
+//! (docs/model.md §2.1), and the mass properties of the same contour (docs/model.md §2).
 //!
 //! The chain is `ply_stiffness` (Q) → `rotated_ply_stiffness` (Q̄(θ)) → `membrane_stiffness` (A)
 //! → `reduced_wall_stiffness` (K11, K12, K22, hoop resultant free) → `cas_stiffness` (C22, C23,
@@ -10,18 +10,18 @@
 //! Conventions:
 //! - Wall axes: 1 = beam axis x, 2 = contour direction s; ply angle θ from the beam axis toward s.
 //!   The contour is traversed counterclockwise in (y chordwise, z thickness), so `A_e > 0`.
-//! - CAS (MODEL.md §2.1): `[θ]ₙ` where the mid-line lies at `z ≥ 0`, `[−θ]ₙ` where `z < 0`,
+//! - CAS (docs/model.md §2.1): `[θ]ₙ` where the mid-line lies at `z ≥ 0`, `[−θ]ₙ` where `z < 0`,
 //!   `z` measured from the contour centroid. **Side walls** (a box's vertical walls, any segment
 //!   that straddles `z = 0`) are split at `z = 0`: each half takes the angle of its side. This is
 //!   the literal reading of the §2.1 rule and it reproduces Table 1 (see `tests/integration/laminate.rs`).
-//! - Sign of C23: the paper's (MODEL.md §2): `C23 < 0` for `0 < θ < 70°` with `[θ]` on the upper
+//! - Sign of C23: the paper's (docs/model.md §2): `C23 < 0` for `0 < θ < 70°` with `[θ]` on the upper
 //!   wall. With the orientation above the thin-walled integral `2A_e∮(K12 z/K22)ds/∮ds/K22` is
 //!   positive there, so we report its negative; the convention is fixed here, once, for every
 //!   caller (the table source carries the paper's sign too).
 //! - Elastic axis: at the contour's shear centre, taken equal to its centroid. That is exact for
 //!   the box and the ellipse (doubly symmetric) and an approximation for the paper's contour,
 //!   whose Eq. (1) mid-line has a slight camber (symmetric about a curved line, not a straight one).
-//! - Thin walls: every area integral `∬ f dA` is `t∮ f ds` (MODEL.md §2.1 item 4); the walls' own
+//! - Thin walls: every area integral `∬ f dA` is `t∮ f ds` (docs/model.md §2.1 item 4); the walls' own
 //!   through-thickness terms (order t²) are neglected, consistently with the stiffness formulas,
 //!   which carry no wall bending (D) stiffness.
 
@@ -42,7 +42,7 @@ pub const SMOOTH_SEGMENTS: usize = 512;
 /// Relative tolerance the contour integrals are converged to (tested in `tests/integration/laminate.rs`).
 pub const CONTOUR_TOLERANCE: f64 = 1e-6;
 
-/// Ply material in the wall's principal axes (MODEL.md §2.1).
+/// Ply material in the wall's principal axes (docs/model.md §2.1).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct PlyMaterial {
     /// E11 (Pa), fibre direction.
@@ -67,7 +67,7 @@ pub struct PlyStiffness {
 /// A 3×3 in-plane stiffness in Voigt order (1, 2, 6) = (x, s, xs).
 pub type Stiffness3 = [[f64; 3]; 3];
 
-/// Reduced wall stiffness with the hoop resultant N_ss free (N/m), MODEL.md §2.1 item 2.
+/// Reduced wall stiffness with the hoop resultant N_ss free (N/m), docs/model.md §2.1 item 2.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct WallStiffness {
     pub k11: f64,
@@ -175,11 +175,11 @@ pub struct LayupSection {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Classical lamination theory (MODEL.md §2.1 items 1–2)
+// Classical lamination theory (docs/model.md §2.1 items 1–2)
 // ---------------------------------------------------------------------------------------------
 
 /// Plane-stress ply stiffness: `ν21 = ν12 E22/E11`, `Δ = 1 − ν12ν21`,
-/// `Q11 = E11/Δ, Q22 = E22/Δ, Q12 = ν12E22/Δ, Q66 = G12` (MODEL.md §2.1 item 1).
+/// `Q11 = E11/Δ, Q22 = E22/Δ, Q12 = ν12E22/Δ, Q66 = G12` (docs/model.md §2.1 item 1).
 /// The material must have passed [`check_material`] (Δ > 0).
 pub fn ply_stiffness(m: &PlyMaterial) -> PlyStiffness {
     let delta = poisson_determinant(m);
@@ -224,7 +224,7 @@ pub fn membrane_stiffness(
     qb.map(|row| row.map(|v| v * t))
 }
 
-/// Reduced wall stiffness with the hoop resultant free (MODEL.md §2.1 item 2):
+/// Reduced wall stiffness with the hoop resultant free (docs/model.md §2.1 item 2):
 /// `K11 = A11 − A12²/A22`, `K12 = A16 − A12A26/A22`, `K22 = A66 − A26²/A22`.
 pub fn reduced_wall_stiffness(a: &Stiffness3) -> WallStiffness {
     let (a11, a12, a16) = (a[0][0], a[0][1], a[0][2]);
@@ -252,11 +252,11 @@ pub fn wall_laminate(
 }
 
 // ---------------------------------------------------------------------------------------------
-// Closed-contour stiffness (MODEL.md §2.1 item 3)
+// Closed-contour stiffness (docs/model.md §2.1 item 3)
 // ---------------------------------------------------------------------------------------------
 
 /// C22, C23, C33 of a closed CAS section with wall stiffness `upper` on `z ≥ 0` and `lower` on
-/// `z < 0` (MODEL.md §2.1 item 3). Because K is constant on each part, the contour integrals
+/// `z < 0` (docs/model.md §2.1 item 3). Because K is constant on each part, the contour integrals
 /// reduce to the parts' moments:
 /// `∮ds/K22 = Σ L/K22`, `∮K12 z/K22 ds = Σ (K12/K22) ∫z ds`, `∮(K11 − K12²/K22)z² ds = Σ K̃11 ∫z² ds`.
 /// C23 carries the paper's sign (see the module doc).
@@ -292,7 +292,7 @@ pub fn cas_stiffness(
 }
 
 // ---------------------------------------------------------------------------------------------
-// Contours (MODEL.md §2.1 "Contours")
+// Contours (docs/model.md §2.1 "Contours")
 // ---------------------------------------------------------------------------------------------
 
 /// The preset's contour as a closed polyline, counterclockwise, `segments` points for the smooth
@@ -324,7 +324,7 @@ pub fn contour_polyline(p: &ValidPreset, segments: usize) -> Vec<[f64; 2]> {
     pts
 }
 
-/// The paper's Eq. (1) "integration line" as read in MODEL.md §2.1:
+/// The paper's Eq. (1) "integration line" as read in docs/model.md §2.1:
 /// `y = e[exp(0.1(1−cosθ)) + exp(−0.1(1−cosθ)) cosθ]`, `z = e[exp(0.1(1−cosθ)) − exp(−0.1(1−cosθ)) sinθ]`.
 pub fn paper_midline(e: f64, theta: f64) -> [f64; 2] {
     let (s, c) = theta.sin_cos();
@@ -459,7 +459,7 @@ pub fn ply_material(p: &ValidPreset) -> PlyMaterial {
 // The section
 // ---------------------------------------------------------------------------------------------
 
-/// Everything about the preset's layup section (MODEL.md §2, §2.1), whatever `section.source`
+/// Everything about the preset's layup section (docs/model.md §2, §2.1), whatever `section.source`
 /// says: laminate, walls, contour, stiffnesses, mass properties.
 ///
 /// Mass (thin walls, elastic axis at the centroid): `m = ρt∮ds + m_ns`,

@@ -1,4 +1,4 @@
-//! Pure physics: functions of parameters, no threads, no terminal (MODEL.md §2–§5).
+//! Pure physics: functions of parameters, no threads, no terminal (docs/model.md §2–§5).
 //! Flow: `section` → `structure` (on `basis`) → `inflow` → `aero` → `system`.
 
 pub mod aero;

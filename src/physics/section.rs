@@ -1,4 +1,4 @@
-//! Cross-section properties from the three stiffness sources (MODEL.md §2).
+//! Cross-section properties from the three stiffness sources (docs/model.md §2).
 
 use crate::error::{Error, Result};
 use crate::preset::{SectionSource, ValidPreset};
@@ -30,7 +30,7 @@ pub struct SectionProps {
     pub c33: f64,
 }
 
-/// Section properties of a preset from its `section.source` (MODEL.md §2): `direct` takes
+/// Section properties of a preset from its `section.source` (docs/model.md §2): `direct` takes
 /// `c22, c23, c33` from the preset, `table` interpolates the paper's Table 1 at
 /// `section.ply_angle`, `layup` computes everything from the laminate and contour (§2.1). Mass
 /// properties come from the preset for `direct` and `table`.
@@ -92,7 +92,7 @@ fn check_finite(s: &SectionProps) -> Result<()> {
 /// Ply angles (deg) of the paper's Table 1.
 pub const TABLE1_ANGLES: [f64; 7] = [0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 90.0];
 
-/// The paper's Table 1 as printed (its mixed units; MODEL.md §2): rows C22, C23, C33.
+/// The paper's Table 1 as printed (its mixed units; docs/model.md §2): rows C22, C23, C33.
 pub const TABLE1_PRINTED: [[f64; 7]; 3] = [
     [
         5.2588e5, 6.6934e5, 9.0369e5, 9.0509e5, 7.3084e5, 5.7973e5, 5.2588e5,
@@ -105,7 +105,7 @@ pub const TABLE1_PRINTED: [[f64; 7]; 3] = [
     ],
 ];
 
-/// SI factors that correct Table 1's units (MODEL.md §2): C22 ×1e-6, C23 ×1e-3, C33 ×1.
+/// SI factors that correct Table 1's units (docs/model.md §2): C22 ×1e-6, C23 ×1e-3, C33 ×1.
 pub const TABLE1_UNIT_FACTORS: [f64; 3] = [1e-6, 1e-3, 1.0];
 
 /// Table 1 in SI at its own ply angles: rows C22, C23, C33 (N·m²).
@@ -118,7 +118,7 @@ pub fn table1_si() -> [[f64; 7]; 3] {
 }
 
 /// `[C22, C23, C33]` (N·m²) at ply angle `theta_deg` ∈ [0°, 90°] (the range of
-/// `section.ply_angle`) from Table 1 (MODEL.md §2), by a
+/// `section.ply_angle`) from Table 1 (docs/model.md §2), by a
 /// cubic spline whose end conditions come from the symmetry of a CAS section rather than being
 /// invented: flipping every ply angle mirrors the section, so C22 and C33 are even in θ and C23 is
 /// odd; fibre directions repeat every 180°, so θ = 90° is a symmetry point too. Hence C22 and C33

@@ -1,4 +1,4 @@
-//! The blade structure in Galerkin coordinates `q = [q_φ (N); q_u (N)]` (MODEL.md §3–§4): mass,
+//! The blade structure in Galerkin coordinates `q = [q_φ (N); q_u (N)]` (docs/model.md §3–§4): mass,
 //! elastic and centrifugal stiffness, stiffness-proportional damping, natural modes.
 //!
 //! The section is uniform along the span, so every integral is a section constant times a pure
@@ -14,7 +14,7 @@ use crate::preset::{Form, ValidPreset};
 use nalgebra::{Complex, DMatrix, DVector};
 use std::sync::{Arc, OnceLock};
 
-/// Structural matrices of one blade at one rotor speed (MODEL.md §3–§4).
+/// Structural matrices of one blade at one rotor speed (docs/model.md §3–§4).
 #[derive(Debug, Clone)]
 pub struct StructuralModel {
     pub n: usize,
@@ -27,7 +27,7 @@ pub struct StructuralModel {
     pub elastic: DMatrix<f64>,
     /// K_c, symmetric.
     pub centrifugal: DMatrix<f64>,
-    /// C_s = a_s K_e with a_s = η1/ω1 (MODEL.md §4, paper Eq. 9).
+    /// C_s = a_s K_e with a_s = η1/ω1 (docs/model.md §4, paper Eq. 9).
     pub damping: DMatrix<f64>,
     /// ω1 (rad/s), lowest natural frequency of (M, K_e + K_c).
     pub omega1: f64,
@@ -48,7 +48,7 @@ pub struct NaturalMode {
 
 /// Assemble the structure of a preset: section from its source, N from `structure.modes`, form
 /// from `structure.form`, rotor speed from `operating.rotor_speed`, damping from
-/// `structure.loss_factor` (MODEL.md §3–§4).
+/// `structure.loss_factor` (docs/model.md §3–§4).
 pub fn assemble(p: &ValidPreset) -> Result<StructuralModel> {
     let section = section_properties(p)?;
     let spec = BladeSpec {
@@ -151,7 +151,7 @@ fn reference_integrals(n: usize) -> Arc<ReferenceIntegrals> {
     }
 }
 
-/// Gauss quadrature of every basis product on the unit span (MODEL.md §4).
+/// Gauss quadrature of every basis product on the unit span (docs/model.md §4).
 fn compute_reference_integrals(n: usize) -> ReferenceIntegrals {
     let unit = Basis::new(n, 1.0);
     let modes: Vec<BendingMode> = (1..=n).map(|j| BendingMode::new(j, 1.0)).collect();
@@ -213,7 +213,7 @@ fn compute_reference_integrals(n: usize) -> ReferenceIntegrals {
 
 /// The integrals over `[0, L]` from the unit-span ones (`x = Ls`, `dx = L ds`, each derivative
 /// brings `1/L`): e.g. `∫U''U''ᵀdx = L⁻³∫Ũ''Ũ''ᵀds`, and the tension integrals
-/// `∫F_cU'U'ᵀ/(mΩ²) dx = L·T₁ + r_hub·T₂` (MODEL.md §3–§4).
+/// `∫F_cU'U'ᵀ/(mΩ²) dx = L·T₁ + r_hub·T₂` (docs/model.md §3–§4).
 fn basis_integrals(basis: &Basis, hub_radius: f64) -> BasisIntegrals {
     let r = reference_integrals(basis.n);
     let l = basis.length;
@@ -268,7 +268,7 @@ fn blocks(
     a
 }
 
-/// The strong form's extra flap–twist term `C23 U_i(L) Φ_j''(L)` (MODEL.md §4): what remains of
+/// The strong form's extra flap–twist term `C23 U_i(L) Φ_j''(L)` (docs/model.md §4): what remains of
 /// `∫U_i C23 Φ_j'''` after two integrations by parts, because the sines do not satisfy the coupled
 /// tip shear condition. `Φ_j''(L) = −k_j² sin(k_j L) = −k_j² (−1)^{j−1}`.
 fn strong_tip_term(basis: &Basis, c23: f64) -> DMatrix<f64> {
@@ -281,7 +281,7 @@ fn strong_tip_term(basis: &Basis, c23: f64) -> DMatrix<f64> {
     })
 }
 
-/// Mass, elastic and centrifugal matrices, ω1 and damping for a uniform section (MODEL.md §3–§4).
+/// Mass, elastic and centrifugal matrices, ω1 and damping for a uniform section (docs/model.md §3–§4).
 fn assemble_section(section: SectionProps, spec: &BladeSpec) -> Result<StructuralModel> {
     let s = &section;
     let basis = Basis::new(spec.n, spec.length);
@@ -425,7 +425,7 @@ impl StructuralModel {
     }
 
     /// Undamped natural modes of (M, K_e + K_c), sorted by frequency, labelled by their kinetic
-    /// energy share (MODEL.md §4, §6).
+    /// energy share (docs/model.md §4, §6).
     pub fn natural_modes(&self) -> Result<Vec<NaturalMode>> {
         let k = self.stiffness();
         let pairs = match is_symmetric(&k) {
@@ -574,7 +574,7 @@ pub fn mode_labels(torsion_shares_in_frequency_order: &[f64]) -> Vec<String> {
         .collect()
 }
 
-/// The paper's "approximate calculation" (AC, Eq. 13) for the n-th row of Table 2 (Hz), as MODEL.md
+/// The paper's "approximate calculation" (AC, Eq. 13) for the n-th row of Table 2 (Hz), as docs/model.md
 /// §8 and §9.7 read it: λ = i k₁ with `k₁ = (2n−1)π/2L`, the lower root. With `λ² = −k²` Eq. 13
 /// becomes `ω² = [S ∓ √(S² − 4mIΔk⁶)]/(2mI)`, `S = C22 m k² + C33 I k⁴`, `Δ = C22C33 − C23²`; the
 /// lower root is evaluated as `2Δk⁶/(S + √(S² − 4mIΔk⁶))`, which does not cancel when I is small

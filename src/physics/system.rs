@@ -1,5 +1,5 @@
 //! The coupled aeroelastic system: structure + strip aerodynamics as one first-order ODE
-//! (MODEL.md §6), its static equilibrium and its linearisation.
+//! (docs/model.md §6), its static equilibrium and its linearisation.
 //!
 //! State `x = [q, q̇, z]`: Galerkin coordinates `q = [q_φ; q_u]` (2N), their rates (2N) and the
 //! aerodynamic states `z` (station-major: `z[s·n_s + i]` is state `i` of station `s`).
@@ -208,7 +208,7 @@ impl System {
     }
 
     /// The static equilibrium x* (q̇ = 0, aero states steady, `K q = Q(q)`), by Newton's method
-    /// on q with a backtracking line search (MODEL.md §6). For the affine models (theodorsen,
+    /// on q with a backtracking line search (docs/model.md §6). For the affine models (theodorsen,
     /// none) the first step is the exact linear solve; quasi-steady's `cos α_g` moment arm is
     /// mildly nonlinear in φ and takes a few steps more.
     pub fn equilibrium(&self) -> Result<DVector<f64>> {
@@ -452,9 +452,9 @@ impl System {
     }
 }
 
-// ---- the split about a reference state, for the time stepper (MODEL.md §7) ----
+// ---- the split about a reference state, for the time stepper (docs/model.md §7) ----
 
-/// The right-hand side split about a reference state `x_r` for the time stepper (MODEL.md §7):
+/// The right-hand side split about a reference state `x_r` for the time stepper (docs/model.md §7):
 ///
 /// `ẋ = r0 + A (x − x_r) + B ũ(C (x − x_r))`
 ///

@@ -43,7 +43,7 @@ pub fn check(p: &Preset) -> Result<()> {
 }
 
 /// A ply's compliance must be positive definite: with positive moduli (key ranges) that is
-/// `Δ = 1 − ν12²·E22/E11 > 0` (MODEL.md §2.1 item 1).
+/// `Δ = 1 − ν12²·E22/E11 > 0` (docs/model.md §2.1 item 1).
 fn ply_is_physical(p: &Preset) -> std::result::Result<(), String> {
     let l = &p.section.layup;
     let delta = 1.0 - l.nu12 * l.nu12 * l.e22 / l.e11;

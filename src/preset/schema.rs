@@ -77,7 +77,7 @@ pub struct Section {
     pub contour: Contour,
 }
 
-/// Ply material and lamination for `source = "layup"` (MODEL.md §2.1).
+/// Ply material and lamination for `source = "layup"` (docs/model.md §2.1).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Layup {
@@ -231,7 +231,7 @@ pub enum OneraForcing {
     Rigid,
 }
 
-/// ONERA stall-model coefficients (MODEL.md §5.3).
+/// ONERA stall-model coefficients (docs/model.md §5.3).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Onera {
@@ -357,7 +357,7 @@ impl Default for Section {
             chord: 0.01833,
             ea_offset: -0.01833 / 4.0,
             cg_offset: 0.0,
-            // The paper's Table 1 at 45°, units corrected (MODEL.md §2).
+            // The paper's Table 1 at 45°, units corrected (docs/model.md §2).
             c22: 0.90509,
             c23: -0.15919,
             c33: 0.45931,
@@ -368,7 +368,7 @@ impl Default for Section {
 }
 
 impl Layup {
-    /// The paper's laminate (MODEL.md §2.1): its glass/epoxy ply and six 0.127 mm plies per wall.
+    /// The paper's laminate (docs/model.md §2.1): its glass/epoxy ply and six 0.127 mm plies per wall.
     pub const PAPER: Layup = Layup {
         e11: 25.8e9,
         e22: 8.7e9,
@@ -389,7 +389,7 @@ impl Default for Layup {
 }
 
 impl Contour {
-    /// The flat box whose layup reproduces the paper's Table 1 (MODEL.md §2): mid-line
+    /// The flat box whose layup reproduces the paper's Table 1 (docs/model.md §2): mid-line
     /// 18.33 × 2.470 mm.
     pub const PAPER_BOX: Contour = Contour {
         shape: ContourShape::Box,

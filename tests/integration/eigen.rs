@@ -1,4 +1,4 @@
-//! Mode labels from the in-vacuo natural modes (MODEL.md §6).
+//! Mode labels from the in-vacuo natural modes (docs/model.md §6).
 
 use flutterscope::analysis::eigen::{analyse, SECOND_ROOT_SUFFIX};
 use flutterscope::physics::structure::assemble;

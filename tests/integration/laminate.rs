@@ -1,4 +1,4 @@
-//! Layup → section (MODEL.md §2.1): CLT hand values, closed-section checks against Bredt and thin
+//! Layup → section (docs/model.md §2.1): CLT hand values, closed-section checks against Bredt and thin
 //! tube bending, CAS symmetry, contour convergence, the paper's Table 1, validation, and the
 //! `flutterscope section` command.
 
@@ -253,7 +253,7 @@ fn paper_table1_from_layup_matches_the_paper() {
     let mut ratios = Vec::new();
     for ((deg, s), (pdeg, c22, c23, c33)) in ours.iter().zip(PAPER_TABLE1) {
         assert_eq!(*deg, pdeg);
-        // Units corrected (MODEL.md §2).
+        // Units corrected (docs/model.md §2).
         let (c22, c23) = (c22 * 1e-6, c23 * 1e-3);
         assert!(rel(s.c22, c22) < 1e-3, "{deg}°: C22 {} vs {c22}", s.c22);
         assert!(rel(s.c33, c33) < 0.05, "{deg}°: C33 {} vs {c33}", s.c33);
@@ -269,7 +269,7 @@ fn paper_table1_from_layup_matches_the_paper() {
     assert!(ours[5].1.c23 > 0.0);
     // 0° and 90°: no coupling (the paper's entries are round-off: −1.2e-5 and 3.9e-18 N·m²).
     assert!(ours[0].1.c23.abs() < 1e-12 && ours[6].1.c23.abs() < 1e-12);
-    // The difference in C23 is one constant factor (the paper's side-wall treatment, MODEL.md §2).
+    // The difference in C23 is one constant factor (the paper's side-wall treatment, docs/model.md §2).
     let (lo, hi) = ratios
         .iter()
         .fold((f64::MAX, f64::MIN), |(l, h), r| (l.min(*r), h.max(*r)));

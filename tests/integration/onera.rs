@@ -1,4 +1,4 @@
-//! ONERA stall aerodynamics of one strip (MODEL.md §5.3): the static curves, the steady states,
+//! ONERA stall aerodynamics of one strip (docs/model.md §5.3): the static curves, the steady states,
 //! both forms' state derivatives and loads, and every analytic partial derivative against central
 //! differences.
 
@@ -7,7 +7,7 @@ use flutterscope::physics::aero::onera::{
 };
 use flutterscope::preset::{Onera, OneraForcing};
 
-/// MODEL.md §5.3 defaults, through the preset so the conversion is covered too.
+/// docs/model.md §5.3 defaults, through the preset so the conversion is covered too.
 fn defaults() -> Coefficients {
     Coefficients::from(&Onera::default())
 }
@@ -384,7 +384,7 @@ fn rigid_load_partials_match_central_differences() {
     assert_eq!(p.flap_accel, onera::Loads::default());
 }
 
-/// Theodorsen's loads (MODEL.md §5.2) transcribed in its own variables `h = −u cos ψ`, `α_T = −φ`,
+/// Theodorsen's loads (docs/model.md §5.2) transcribed in its own variables `h = −u cos ψ`, `α_T = −φ`,
 /// independently of the library's rearrangement.
 fn theodorsen_by_hand(strip: &Strip, m: &Motion, z: [f64; 2], a0: f64) -> (f64, f64) {
     let pi = std::f64::consts::PI;
@@ -723,7 +723,7 @@ fn steady_moment_of_both_forms_follows_the_static_curves() {
         let strip = paper_strip(alpha);
         let qc = strip.dynamic_pressure() * strip.chord;
         let e = strip.ea_offset;
-        // Written out from MODEL.md §5.3: C_L, C_M = C_M0 − ΔC_M, C_D = C_D0 − ΔC_D on the
+        // Written out from docs/model.md §5.3: C_L, C_M = C_M0 − ΔC_M, C_D = C_D0 − ΔC_D on the
         // static curves; the lift acts at the aerodynamic centre, so its arm is e_a.
         let dev = |a: f64| {
             let m = a.abs();

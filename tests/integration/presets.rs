@@ -191,7 +191,7 @@ fn direct_source_takes_the_preset_stiffness() {
 
 #[test]
 fn layup_source_is_close_to_table_on_the_papers_box() {
-    // MODEL.md §2 evidence (b): the §2.1 formulas on the 18.33 × 2.470 mm box reproduce C22 to
+    // docs/model.md §2 evidence (b): the §2.1 formulas on the 18.33 × 2.470 mm box reproduce C22 to
     // 4 digits, C33 within 4 % and |C23| within 12 %.
     for &angle in &[15.0, 45.0, 60.0] {
         let sets = |src: &str| {

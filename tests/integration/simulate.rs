@@ -1,4 +1,4 @@
-//! Stall flutter and time responses (issue 7; MODEL.md §5.3, §6, §7): the ONERA model in the
+//! Stall flutter and time responses (issue 7; docs/model.md §5.3, §6, §7): the ONERA model in the
 //! system (equilibrium, Jacobian, eigenvalues, agreement with Theodorsen below stall), the
 //! exponential stepper against exact and independent solutions, the rigid form's one-way
 //! coupling, divergence handling, streaming, and the `simulate` command's JSON.
@@ -29,7 +29,7 @@ fn max_rel_diff(a: &DMatrix<f64>, b: &DMatrix<f64>) -> f64 {
 }
 
 // ---------------------------------------------------------------------------------------------
-// The ONERA model in the system (MODEL.md §5.3, §6)
+// The ONERA model in the system (docs/model.md §5.3, §6)
 // ---------------------------------------------------------------------------------------------
 
 #[test]
@@ -118,7 +118,7 @@ fn state_jacobian_matches_central_differences() {
 #[test]
 fn coupled_form_below_stall_has_theodorsens_eigenvalues() {
     // No drag, so the stall states carry nothing at an attached equilibrium: the structural
-    // roots must be Theodorsen's exactly (MODEL.md §5.3).
+    // roots must be Theodorsen's exactly (docs/model.md §5.3).
     let no_drag = [
         "aero.onera.cd0=0",
         "aero.onera.a_d1=0",
@@ -153,7 +153,7 @@ fn coupled_form_below_stall_has_theodorsens_eigenvalues() {
 }
 
 // ---------------------------------------------------------------------------------------------
-// The stepper (MODEL.md §7)
+// The stepper (docs/model.md §7)
 // ---------------------------------------------------------------------------------------------
 
 #[test]

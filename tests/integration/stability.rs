@@ -1,4 +1,4 @@
-//! Aeroelastic stability: validation against MODEL.md §8 and closed forms, error paths, mode
+//! Aeroelastic stability: validation against docs/model.md §8 and closed forms, error paths, mode
 //! tracking, the linear simulator, and the JSON of `eigen`, `flutter`, `simulate`.
 
 use assert_cmd::Command;
@@ -33,7 +33,7 @@ fn within<T: Send + 'static>(secs: u64, f: impl FnOnce() -> T + Send + 'static) 
 
 #[test]
 fn goland_flutter_speed_and_frequency() {
-    // MODEL.md §8: 137 m/s ± 2 %, 70 rad/s ± 3 % (exact 137.2 m/s, 70.7 rad/s).
+    // docs/model.md §8: 137 m/s ± 2 %, 70 rad/s ± 3 % (exact 137.2 m/s, 70.7 rad/s).
     let p = preset("goland", &[]);
     let b = flutter_boundary(&p, "operating.tunnel_speed", 110.0, 160.0, 6).unwrap();
     assert_eq!(b.kind, Some(BoundaryKind::Flutter));

@@ -1,4 +1,4 @@
-//! Galerkin basis and structural-matrix unit checks (MODEL.md §4).
+//! Galerkin basis and structural-matrix unit checks (docs/model.md §4).
 
 use flutterscope::physics::basis::{bending_root, gauss_legendre, Basis};
 use flutterscope::physics::structure::{assemble, mode_labels};

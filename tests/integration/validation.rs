@@ -1,4 +1,4 @@
-//! MODEL.md §8 validation targets, rows 1–5: the paper's Table 2 (AC and Present), the
+//! docs/model.md §8 validation targets, rows 1–5: the paper's Table 2 (AC and Present), the
 //! effective-stiffness cantilever, uncoupled torsion and the rotating uniform cantilever.
 
 use flutterscope::commands::reproduce::{TABLE2_AC, TABLE2_PRESENT};

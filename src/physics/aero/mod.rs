@@ -1,4 +1,4 @@
-//! Strip aerodynamics (MODEL.md §5): one interface, one model per file.
+//! Strip aerodynamics (docs/model.md §5): one interface, one model per file.
 //!
 //! Every model is a [`StripModel`]: given one strip's rigid flow ([`Station`]), its local
 //! kinematics (twist `φ`, flap `u` and their rates) and its own aerodynamic states `z`, it returns
@@ -24,7 +24,7 @@ use crate::error::Result;
 use crate::physics::inflow::Station;
 use crate::preset::{AeroModel, ValidPreset};
 
-/// Local kinematics of one strip, in the blade's sign conventions (MODEL.md §1).
+/// Local kinematics of one strip, in the blade's sign conventions (docs/model.md §1).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Kinematics {
     /// Elastic twist φ (rad, toward feather).
@@ -129,7 +129,7 @@ impl SteadyStates {
     }
 }
 
-/// Where a strip model is not affine, for the time stepper (MODEL.md §7): the local inputs its
+/// Where a strip model is not affine, for the time stepper (docs/model.md §7): the local inputs its
 /// nonlinear part reads and the local outputs it writes.
 ///
 /// Local inputs are indexed `[φ, u, φ̇, u̇, z_0, z_1, …]`, local outputs `[m_φ, f_u, ż_0, ż_1, …]`
@@ -137,7 +137,7 @@ impl SteadyStates {
 /// with constant coefficients, and every listed output is affine with constant coefficients in
 /// the inputs not listed. The stepper then treats the listed part implicitly on a few scalars per
 /// station and the rest exactly. Empty (the default) means the model is simulated linearised
-/// about its equilibrium, as MODEL.md §7 prescribes for quasi-steady and Theodorsen.
+/// about its equilibrium, as docs/model.md §7 prescribes for quasi-steady and Theodorsen.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
 pub struct NonlinearSupport {
     pub inputs: Vec<usize>,
@@ -168,7 +168,7 @@ impl NonlinearSupport {
     }
 }
 
-/// A strip-theory aerodynamic model (MODEL.md §5).
+/// A strip-theory aerodynamic model (docs/model.md §5).
 pub trait StripModel: Send + Sync + std::fmt::Debug {
     /// The preset name of the model (`aero.model`).
     fn name(&self) -> &'static str;

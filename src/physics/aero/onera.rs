@@ -1,20 +1,20 @@
-//! ONERA stall aerodynamics of one strip (MODEL.md §5.3; paper Eqs. 4–6).
+//! ONERA stall aerodynamics of one strip (docs/model.md §5.3; paper Eqs. 4–6).
 //!
 //! Everything here is a pure function of one strip: the piecewise stall deviations `ΔC_X(α)`
 //! with their slopes, the state derivatives of both forms with their partial derivatives (for the
-//! analytic Jacobian of MODEL.md §6), the steady states, and the strip loads `f_u`, `m_φ` with
+//! analytic Jacobian of docs/model.md §6), the steady states, and the strip loads `f_u`, `m_φ` with
 //! their partial derivatives. Spanwise sums and basis functions belong to the caller; the one
 //! helper that touches them, [`add_generalized_force`], only weights a strip load by its
 //! quadrature weight and the basis values at the station. [`OneraModel`] wraps these functions
 //! as the system's [`StripModel`], including where the model is nonlinear
 //! ([`NonlinearSupport`], for the time stepper of §7).
 //!
-//! State layout per station (MODEL.md §5.3):
+//! State layout per station (docs/model.md §5.3):
 //! - `rigid` (7): `[C1L, C2L, Ċ2L, C2M, Ċ2M, C2D, Ċ2D]`, driven by the rigid angle `α_r`;
 //! - `coupled` (8): `[z1, z2, C2L, Ċ2L, C2M, Ċ2M, C2D, Ċ2D]`, the two R.T. Jones lags of §5.2 on
 //!   the three-quarter-chord downwash `w`, and the stall states driven by `α = w/V0`.
 //!
-//! The pitching moment coefficient `C_M0` enters both forms (MODEL.md writes it only in the rigid
+//! The pitching moment coefficient `C_M0` enters both forms (docs/model.md writes it only in the rigid
 //! form; with its default 0 the coupled form still differs from `theodorsen` only by drag, and a
 //! preset that sets `aero.onera.cm0` sees it in the default form too).
 
@@ -49,7 +49,7 @@ impl Channel {
     }
 }
 
-/// Which piece of the lift/moment deviation law an angle of attack lies on (MODEL.md §5.3).
+/// Which piece of the lift/moment deviation law an angle of attack lies on (docs/model.md §5.3).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Regime {
     /// `|α| ≤ α1`: no lift or moment deviation.
@@ -60,7 +60,7 @@ pub enum Regime {
     Stalled,
 }
 
-/// The ONERA coefficients in SI (angles in rad), MODEL.md §5.3.
+/// The ONERA coefficients in SI (angles in rad), docs/model.md §5.3.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Coefficients {
     /// `λ_L`, rate of the rigid form's first-order lift state.
@@ -161,7 +161,7 @@ impl Coefficients {
         (value, slope)
     }
 
-    /// `ΔC_L, ΔC_M, ΔC_D` at `α` with their slopes (MODEL.md §5.3).
+    /// `ΔC_L, ΔC_M, ΔC_D` at `α` with their slopes (docs/model.md §5.3).
     pub fn deviation(&self, alpha: f64) -> Deviation {
         let (l, dl) = self.piecewise_deviation(self.lift_slopes, alpha);
         let (m, dm) = self.piecewise_deviation(self.moment_slopes, alpha);
@@ -303,7 +303,7 @@ impl<const S: usize> Default for LoadPartials<S> {
     }
 }
 
-/// Aerodynamic states per station of a form: 7 (`rigid`) or 8 (`coupled`), MODEL.md §5.3.
+/// Aerodynamic states per station of a form: 7 (`rigid`) or 8 (`coupled`), docs/model.md §5.3.
 pub fn states_per_station(forcing: OneraForcing) -> usize {
     match forcing {
         OneraForcing::Rigid => rigid::STATES,
@@ -311,7 +311,7 @@ pub fn states_per_station(forcing: OneraForcing) -> usize {
     }
 }
 
-/// Add one strip's contribution to the generalised forces (MODEL.md §5): `Q_φ += w m_φ Φ(x_s)`,
+/// Add one strip's contribution to the generalised forces (docs/model.md §5): `Q_φ += w m_φ Φ(x_s)`,
 /// `Q_u += w f_u U(x_s)`, with `w` the station's quadrature weight.
 pub fn add_generalized_force(
     loads: Loads,
@@ -334,7 +334,7 @@ pub fn add_generalized_force(
 // ---------------------------------------------------------------------------------------------
 
 /// Derivatives of the stall block `[C2L, Ċ2L, C2M, Ċ2M, C2D, Ċ2D]` driven by `α`:
-/// `C̈2X = −a_X ω_r Ċ2X − r_X ω_r² (C2X + ΔC_X(α))` (MODEL.md §5.3).
+/// `C̈2X = −a_X ω_r Ċ2X − r_X ω_r² (C2X + ΔC_X(α))` (docs/model.md §5.3).
 fn stall_rates(coef: &Coefficients, omega_r: f64, alpha: f64, stall: &[f64]) -> [f64; 6] {
     let dev = coef.deviation(alpha);
     let mut rates = [0.0; STALL_STATES];
@@ -426,7 +426,7 @@ fn stall_moment_and_drag_loads(strip: &Strip, sin_g: f64, sin_psi: f64) -> (Load
 // The rigid form: the paper's reduced model
 // ---------------------------------------------------------------------------------------------
 
-/// The paper's reduced ONERA model ("suitable for constant pitch motion", MODEL.md §5.3): every
+/// The paper's reduced ONERA model ("suitable for constant pitch motion", docs/model.md §5.3): every
 /// state is driven by the rigid angle `α_r`, so the structure never feeds back into them; it
 /// only enters the loads through `α_g = α_r − φ` in the moment arm.
 pub mod rigid {
@@ -516,7 +516,7 @@ pub mod rigid {
 // The coupled form: §5.2 attached flow plus stall states on the downwash angle
 // ---------------------------------------------------------------------------------------------
 
-/// Stall flutter proper (MODEL.md §5.3, `forcing = "coupled"`): the attached flow of §5.2
+/// Stall flutter proper (docs/model.md §5.3, `forcing = "coupled"`): the attached flow of §5.2
 /// exactly (two Jones lags on the three-quarter-chord downwash, apparent mass, pitch-rate terms)
 /// plus the second-order stall states driven by `α = w/V0`.
 pub mod coupled {
@@ -530,7 +530,7 @@ pub mod coupled {
     /// Index of the first stall state (`C2L`).
     pub const STALL: usize = 2;
 
-    /// Three-quarter-chord downwash `w = V0(α_r − φ) − u̇ cos ψ − b(½ − a) φ̇` (MODEL.md §5.2).
+    /// Three-quarter-chord downwash `w = V0(α_r − φ) − u̇ cos ψ − b(½ − a) φ̇` (docs/model.md §5.2).
     pub fn downwash(strip: &Strip, motion: &Motion) -> f64 {
         let g = downwash_partials(strip);
         strip.v0 * strip.alpha_r
@@ -598,7 +598,7 @@ pub mod coupled {
         s
     }
 
-    /// `d(steady state)/dw`, for the equilibrium Newton's reduced Jacobian (MODEL.md §6).
+    /// `d(steady state)/dw`, for the equilibrium Newton's reduced Jacobian (docs/model.md §6).
     pub fn steady_downwash_partial(coef: &Coefficients, strip: &Strip, w: f64) -> [f64; STATES] {
         let mut d = [0.0; STATES];
         let lag = lag_steady_per_downwash(strip);
@@ -637,7 +637,7 @@ pub mod coupled {
         )
     }
 
-    /// Non-circulatory lift and moment coefficients on `(φ̇, φ̈, ü)` (MODEL.md §5.2, with
+    /// Non-circulatory lift and moment coefficients on `(φ̇, φ̈, ü)` (docs/model.md §5.2, with
     /// `h = −u cos ψ`, `α_T = −φ`): `L_nc = πρb²(−ü cos ψ − V0 φ̇ + b a φ̈)` and the apparent-mass
     /// part of `M_T = πρb²(−b a ü cos ψ + V0 b(½ − a) φ̇ + b²(⅛ + a²) φ̈)`. Returned as
     /// `[(∂L_nc, ∂M_nc)/∂φ̇, /∂φ̈, /∂ü]`.
@@ -653,7 +653,7 @@ pub mod coupled {
         ]
     }
 
-    /// Strip loads (MODEL.md §5.3 coupled): `f_u = (L_c + L_nc + L2) cos ψ + D sin ψ`,
+    /// Strip loads (docs/model.md §5.3 coupled): `f_u = (L_c + L_nc + L2) cos ψ + D sin ψ`,
     /// `m_φ = −[M_T + e_a L2 + M2 + e_a D sin α_g]` with `M_T = M_nc + e_a L_c`
     /// (`b(a + ½) = e_a`).
     pub fn loads(coef: &Coefficients, strip: &Strip, motion: &Motion, s: &[f64; STATES]) -> Loads {
@@ -731,7 +731,7 @@ pub mod coupled {
 // The strip model the system assembles (`aero.model = "onera"`)
 // ---------------------------------------------------------------------------------------------
 
-/// `aero.model = "onera"` as a [`StripModel`]: either form of MODEL.md §5.3 on every station.
+/// `aero.model = "onera"` as a [`StripModel`]: either form of docs/model.md §5.3 on every station.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct OneraModel {
     pub section: StripSection,

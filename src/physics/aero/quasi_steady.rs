@@ -1,4 +1,4 @@
-//! Quasi-steady strip aerodynamics: the paper's classical-flutter model (MODEL.md §5.1, Eq. 2).
+//! Quasi-steady strip aerodynamics: the paper's classical-flutter model (docs/model.md §5.1, Eq. 2).
 //!
 //! Inputs: the strip's rigid flow (`V0`, `ψ`, `α_r`), its twist `φ` and flap rate `u̇`.
 //! Parameters: chord `c`, offset `e_a`, air density, lift slope `a0`, profile drag `C_D0`.

@@ -1,5 +1,5 @@
 //! Unsteady attached-flow strip aerodynamics: Theodorsen's theory with R. T. Jones's two-lag
-//! approximation of the lift-deficiency function (MODEL.md §5.2).
+//! approximation of the lift-deficiency function (docs/model.md §5.2).
 //!
 //! Inputs: the strip's rigid flow (`V = V0`, `ψ`, `α_r`) and kinematics `φ, φ̇, u̇`; two states
 //! `z1, z2` per strip. Parameters: chord, `e_a`, air density, lift slope `a0`.
