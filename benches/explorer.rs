@@ -5,6 +5,7 @@
 //! linearisation (issue 12). The boundary search and the streamed samples that follow run in the
 //! background and are not part of the latency.
 
+use flutterscope::analysis::cancel::Cancel;
 use flutterscope::explorer::display::{MarkerKind, ViewKind};
 use flutterscope::explorer::headless::settled_state;
 use flutterscope::explorer::keys::Action;
@@ -67,7 +68,7 @@ fn key_to_solved_frame_160x48(bencher: divan::Bencher, model: &str) {
         up = !up;
         for effect in update(&mut state, Msg::Action(action)) {
             if let Effect::Solve { gen, preset } = effect {
-                let (solved, stream) = runner::solve(&Physics, gen, &preset);
+                let (solved, stream) = runner::solve(&Physics, gen, &preset, &Cancel::never());
                 update(&mut state, solved);
                 divan::black_box(stream.is_ok());
             }
@@ -83,7 +84,7 @@ fn key_to_solved_frame_160x48(bencher: divan::Bencher, model: &str) {
 fn solve_and_start_stream(bencher: divan::Bencher, model: &str) {
     let p = preset(model);
     bencher.bench_local(|| {
-        let s = Physics.solve(divan::black_box(&p));
+        let s = Physics.solve(divan::black_box(&p), &Cancel::never());
         (s.solved.is_ok(), s.stream.is_ok())
     });
 }

@@ -42,6 +42,10 @@ pub enum Error {
     #[error("numerical: {0}")]
     Numerical(String),
 
+    /// A computation stopped because a newer request replaced it (the explorer's worker).
+    #[error("cancelled: a newer request replaced this one")]
+    Cancelled,
+
     /// File-system and output errors.
     #[error("{0}")]
     Io(String),

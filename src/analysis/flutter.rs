@@ -10,6 +10,7 @@
 //! the critical root just past the crossing; its mode label is the one it had at the start of the
 //! range, tracked by MAC along the grid.
 
+use crate::analysis::cancel::Cancel;
 use crate::analysis::eigen::{analyse, Mode, Stability, NEUTRAL_TOLERANCE};
 use crate::analysis::tracking::track_modes;
 use crate::error::{Error, Result};
@@ -90,6 +91,18 @@ pub fn flutter_search(
     to: f64,
     points: usize,
 ) -> Result<Search> {
+    let range = SearchRange {
+        key: key.to_string(),
+        from,
+        to,
+        points,
+    };
+    search(p, &range, &Cancel::never())
+}
+
+/// The boundary search over `range`, polling `cancel` before every solve.
+pub fn search(p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<Search> {
+    let (key, from, to, points) = (range.key.as_str(), range.from, range.to, range.points);
     let spec = key_spec(key)?;
     if spec.integer {
         return Err(Error::usage(format!(
@@ -113,7 +126,7 @@ pub fn flutter_search(
         .collect();
     let results: Vec<Stability> = grid
         .par_iter()
-        .map(|&v| stability_at(p, key, v))
+        .map(|&v| cancel.check().and_then(|_| stability_at(p, key, v)))
         .collect::<Result<_>>()?;
     let unit = if spec.unit.is_empty() {
         String::new()
@@ -153,6 +166,7 @@ pub fn flutter_search(
     let scale = (to - from).abs();
     while (hi - lo).abs() > RELATIVE_TOLERANCE * lo.abs().max(hi.abs()).max(1e-3 * scale) {
         let mid = 0.5 * (lo + hi);
+        cancel.check()?;
         let s = stability_at(p, key, mid)?;
         if unstable(&s) {
             hi = mid;

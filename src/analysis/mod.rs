@@ -2,6 +2,7 @@
 //! flutter-boundary search, parameter sweeps and time simulation (docs/model.md §6–§7).
 
 pub mod campbell;
+pub mod cancel;
 pub mod eigen;
 pub mod flutter;
 pub mod simulate;

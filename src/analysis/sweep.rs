@@ -11,6 +11,7 @@
 //! those points) so its tracked labels are exactly those of the whole run. Hence concatenating the
 //! shards' rows in order reproduces the unsharded output exactly.
 
+use crate::analysis::cancel::Cancel;
 use crate::analysis::eigen::{analyse, Mode, Stability};
 use crate::analysis::tracking::track_modes;
 use crate::error::{Error, Result};
@@ -41,9 +42,22 @@ pub struct TrackedSweep {
 /// (e.g. a pair that split into real roots) or where the point could not be solved (a numerical
 /// failure such as no static equilibrium) are NaN (null in JSON); input errors still fail.
 pub fn track(p: &ValidPreset, key: &str, grid: &[f64]) -> Result<TrackedSweep> {
+    track_cancellable(p, key, grid, &Cancel::never())
+}
+
+/// [`track`], polling `cancel` before every point.
+pub fn track_cancellable(
+    p: &ValidPreset,
+    key: &str,
+    grid: &[f64],
+    cancel: &Cancel,
+) -> Result<TrackedSweep> {
     let points: Vec<Option<Stability>> = grid
         .par_iter()
-        .map(|&v| solved_or_gap(p.with(key, v).and_then(|q| analyse(&q))))
+        .map(|&v| {
+            cancel.check()?;
+            solved_or_gap(p.with(key, v).and_then(|q| analyse(&q)))
+        })
         .collect::<Result<_>>()?;
     Ok(tracked_with_gaps(key, grid, &points))
 }

@@ -2,6 +2,8 @@
 //! (state, worker, rendering) can be driven and tested with any engine. [`Physics`] is the real
 //! one; it only forwards to `analysis` (`solve`, `flutter`, `sweep`, `simulate`).
 
+use crate::analysis::campbell::ROTOR_SPEED_KEY;
+use crate::analysis::cancel::Cancel;
 use crate::analysis::eigen::Stability;
 use crate::analysis::flutter::{Boundary, SearchRange};
 use crate::analysis::simulate::{RunStatus, Simulator, TipSample};
@@ -35,12 +37,12 @@ pub trait Stream: Send {
 
 /// Everything the explorer asks of the analysis layer.
 pub trait Engine: Send + Sync {
-    /// Solve `p` and start its tip simulation (`simulation.*`).
-    fn solve(&self, p: &ValidPreset) -> Solve;
+    /// Solve `p` and start its tip simulation (`simulation.*`); stop early once `cancel` is raised.
+    fn solve(&self, p: &ValidPreset, cancel: &Cancel) -> Solve;
     /// First stability crossing in `range`.
-    fn boundary(&self, p: &ValidPreset, range: &SearchRange) -> Result<Boundary>;
+    fn boundary(&self, p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<Boundary>;
     /// Tracked modes over rotor speeds `grid` (rpm).
-    fn campbell(&self, p: &ValidPreset, grid: &[f64]) -> Result<TrackedSweep>;
+    fn campbell(&self, p: &ValidPreset, grid: &[f64], cancel: &Cancel) -> Result<TrackedSweep>;
 }
 
 /// The real engine: the analysis layer, unchanged.
@@ -60,17 +62,23 @@ impl Stream for Simulator {
 }
 
 impl Engine for Physics {
-    fn solve(&self, p: &ValidPreset) -> Solve {
-        match crate::analysis::solve::solve(p) {
-            Ok(solution) => Solve {
-                solved: solution.stability().map(|stability| Solved {
-                    section: *solution.section(),
-                    stability,
-                }),
-                stream: solution
-                    .simulator(p)
-                    .map(|s| Box::new(s) as Box<dyn Stream>),
-            },
+    fn solve(&self, p: &ValidPreset, cancel: &Cancel) -> Solve {
+        let solution = cancel
+            .check()
+            .and_then(|_| crate::analysis::solve::solve(p));
+        match solution {
+            Ok(solution) => {
+                let solved = cancel.check().and_then(|_| {
+                    Ok(Solved {
+                        section: *solution.section(),
+                        stability: solution.stability()?,
+                    })
+                });
+                let stream = cancel
+                    .check()
+                    .and_then(|_| Ok(Box::new(solution.simulator(p)?) as Box<dyn Stream>));
+                Solve { solved, stream }
+            }
             Err(e) => Solve {
                 solved: Err(e.clone()),
                 stream: Err(e),
@@ -78,11 +86,11 @@ impl Engine for Physics {
         }
     }
 
-    fn boundary(&self, p: &ValidPreset, r: &SearchRange) -> Result<Boundary> {
-        crate::analysis::flutter::flutter_boundary(p, &r.key, r.from, r.to, r.points)
+    fn boundary(&self, p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<Boundary> {
+        Ok(crate::analysis::flutter::search(p, range, cancel)?.boundary)
     }
 
-    fn campbell(&self, p: &ValidPreset, grid: &[f64]) -> Result<TrackedSweep> {
-        crate::analysis::sweep::track(p, crate::analysis::campbell::ROTOR_SPEED_KEY, grid)
+    fn campbell(&self, p: &ValidPreset, grid: &[f64], cancel: &Cancel) -> Result<TrackedSweep> {
+        crate::analysis::sweep::track_cancellable(p, ROTOR_SPEED_KEY, grid, cancel)
     }
 }

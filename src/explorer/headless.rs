@@ -2,6 +2,7 @@
 //! so a frame is a pure function of the preset and the keys pressed (snapshots, tests,
 //! benchmarks). The tip simulation runs for a fixed number of samples instead of real time.
 
+use crate::analysis::cancel::Cancel;
 use crate::error::{Error, Result};
 use crate::explorer::display::{ColorMode, MarkerKind, ViewKind};
 use crate::explorer::engine::Engine;
@@ -29,7 +30,7 @@ pub fn settle(state: &mut AppState, engine: &dyn Engine, effects: Vec<Effect>) {
     while let Some(effect) = queue.pop_front() {
         let msgs: Vec<Msg> = match &effect {
             Effect::Solve { gen, preset } => {
-                let (solved, stream) = runner::solve(engine, *gen, preset);
+                let (solved, stream) = runner::solve(engine, *gen, preset, &Cancel::never());
                 let samples = match stream {
                     Ok(mut stream) => runner::advance(&mut *stream, *gen, fixed_samples(preset)),
                     Err(failed) => failed,
@@ -38,7 +39,9 @@ pub fn settle(state: &mut AppState, engine: &dyn Engine, effects: Vec<Effect>) {
             }
             // No running simulation to kick or pause between headless frames.
             Effect::Kick { .. } | Effect::Pause(_) | Effect::Quit => Vec::new(),
-            job => runner::job(engine, job).into_iter().collect(),
+            job => runner::job(engine, job, &Cancel::never())
+                .into_iter()
+                .collect(),
         };
         for m in msgs {
             queue.extend(update(state, m));

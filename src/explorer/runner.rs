@@ -5,6 +5,7 @@
 //! Every engine call runs under `catch_unwind`: an error or a panic becomes an `Err` that the
 //! status line shows, and the caller keeps serving.
 
+use crate::analysis::cancel::Cancel;
 use crate::explorer::engine::{Engine, Stream};
 use crate::explorer::state::{Effect, Msg};
 use crate::preset::ValidPreset;
@@ -36,8 +37,9 @@ pub fn solve(
     engine: &dyn Engine,
     gen: u64,
     preset: &ValidPreset,
+    cancel: &Cancel,
 ) -> (Msg, Result<Box<dyn Stream>, Msg>) {
-    match catch_unwind(AssertUnwindSafe(|| engine.solve(preset))) {
+    match catch_unwind(AssertUnwindSafe(|| engine.solve(preset, cancel))) {
         Ok(s) => (
             Msg::Solved {
                 gen,
@@ -89,16 +91,16 @@ pub fn kick(stream: &mut dyn Stream, gen: u64, twist_rad: f64, flap_m: f64) -> O
 
 /// Run a background job (a boundary search or a Campbell sweep) to its result message; `None`
 /// for effects that are not jobs.
-pub fn job(engine: &dyn Engine, effect: &Effect) -> Option<Msg> {
+pub fn job(engine: &dyn Engine, effect: &Effect, cancel: &Cancel) -> Option<Msg> {
     match effect {
         Effect::Boundary { gen, preset, range } => Some(Msg::Boundary {
             gen: *gen,
             key: range.key.clone(),
-            result: guarded("boundary search", || engine.boundary(preset, range)),
+            result: guarded("boundary search", || engine.boundary(preset, range, cancel)),
         }),
         Effect::Campbell { gen, preset, grid } => Some(Msg::Campbell {
             gen: *gen,
-            result: guarded("Campbell sweep", || engine.campbell(preset, grid)),
+            result: guarded("Campbell sweep", || engine.campbell(preset, grid, cancel)),
         }),
         _ => None,
     }

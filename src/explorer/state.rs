@@ -17,6 +17,9 @@ use std::sync::Arc;
 pub const BOUNDARY_POINTS: usize = 41;
 /// Rotor speeds in the Campbell diagram, 0 to `view.rotor_speed_max`.
 pub const CAMPBELL_POINTS: usize = 41;
+/// A solve running longer than this (s) is reported in the status line with its time: keys keep
+/// working meanwhile and the newest position replaces it.
+pub const SOLVE_BUDGET_S: f64 = 0.5;
 /// Earlier pole positions kept as the fading trail while parameters move.
 pub const TRAIL_LEN: usize = 12;
 /// Tip kick when the preset gives none: a 1° twist and a flap of 1 % of the span, small against
@@ -197,6 +200,8 @@ pub struct AppState {
     pub solved_gen: u64,
     pub solved: Option<Solved>,
     pub solve_error: Option<String>,
+    /// How long the solve of the current parameters has run (s), as last told by the event loop.
+    pub solve_seconds: f64,
     /// Modes before the last change, for the trend arrows.
     pub prev_modes: Vec<Mode>,
     /// Earlier pole positions (σ, ω), newest first.
@@ -249,6 +254,11 @@ pub enum Msg {
     Campbell {
         gen: u64,
         result: Result<TrackedSweep, String>,
+    },
+    /// The solve of generation `gen` has been running for `seconds` (from the event loop's clock).
+    SolveTime {
+        gen: u64,
+        seconds: f64,
     },
     /// The worker died and was restarted (or could not be).
     WorkerFailed(String),
@@ -303,6 +313,7 @@ impl AppState {
             solved_gen: 0,
             solved: None,
             solve_error: None,
+            solve_seconds: 0.0,
             prev_modes: Vec::new(),
             trails: Vec::new(),
             fresh: false,
@@ -376,6 +387,7 @@ impl AppState {
     /// The parameters changed: new generation, re-solve.
     fn changed(&mut self) -> Vec<Effect> {
         self.gen += 1;
+        self.solve_seconds = 0.0;
         vec![self.solve_effect()]
     }
 
@@ -684,6 +696,10 @@ pub fn update(s: &mut AppState, msg: Msg) -> Vec<Effect> {
         Msg::Solved { gen, .. } | Msg::Samples { gen, .. } | Msg::SimFailed { gen, .. } => {
             *gen == s.gen
         }
+        // Only a slow solve of the current parameters is worth a redraw.
+        Msg::SolveTime { gen, seconds } => {
+            *gen == s.gen && s.solving() && *seconds >= SOLVE_BUDGET_S
+        }
         Msg::Boundary { gen, key, .. } => {
             s.boundary
                 .as_ref()
@@ -745,6 +761,10 @@ pub fn update(s: &mut AppState, msg: Msg) -> Vec<Effect> {
             if let Some(c) = s.campbell.as_mut() {
                 c.result = Some(result);
             }
+            Vec::new()
+        }
+        Msg::SolveTime { seconds, .. } => {
+            s.solve_seconds = seconds;
             Vec::new()
         }
         Msg::WorkerFailed(e) => {

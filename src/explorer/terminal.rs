@@ -9,7 +9,7 @@
 use crate::error::{Error, Result};
 use crate::explorer::engine::Engine;
 use crate::explorer::keys::action_for;
-use crate::explorer::state::{update, AppState, Msg};
+use crate::explorer::state::{update, AppState, Effect, Msg};
 use crate::explorer::worker::{Worker, JOBS_THREAD, SOLVER_THREAD};
 use crossbeam_channel::{unbounded, Receiver, RecvTimeoutError, Sender};
 use crossterm::cursor::{Hide, Show};
@@ -104,9 +104,16 @@ fn draw(
     terminal.backend_mut().flush()
 }
 
-/// Handle one message: update the state, hand its effects to the worker.
-fn handle(state: &mut AppState, worker: &mut Worker, msg: Msg) {
+/// How often a running solve's time is told to the state once it is over its budget.
+const SOLVE_CLOCK: Duration = Duration::from_millis(250);
+
+/// Handle one message: update the state, hand its effects to the worker, and note when the
+/// newest solve was asked for (`solve_sent`), to report a slow one.
+fn handle(state: &mut AppState, worker: &mut Worker, solve_sent: &mut (u64, Instant), msg: Msg) {
     for effect in update(state, msg) {
+        if let Effect::Solve { gen, .. } = &effect {
+            *solve_sent = (*gen, Instant::now());
+        }
         worker.send(effect);
     }
 }
@@ -122,6 +129,7 @@ pub fn run(mut state: AppState, engine: Arc<dyn Engine>, fps: u32) -> Result<()>
         Terminal::new(CrosstermBackend::new(stdout())).map_err(|e| io("cannot start", e))?;
     spawn_input(tx.clone()).map_err(|e| io("cannot start the input thread", e))?;
     let mut worker = Worker::spawn(engine, tx, frame_interval);
+    let mut solve_sent = (state.gen + 1, Instant::now());
     for effect in state.start() {
         worker.send(effect);
     }
@@ -148,21 +156,31 @@ pub fn run(mut state: AppState, engine: Arc<dyn Engine>, fps: u32) -> Result<()>
                 Err(RecvTimeoutError::Timeout) => continue,
                 Err(RecvTimeoutError::Disconnected) => break Ok(()),
             }
+        } else if state.solving() {
+            // Idle but for a solve in flight: wake up to report its time if it runs long.
+            match rx.recv_timeout(SOLVE_CLOCK) {
+                Ok(m) => m,
+                Err(RecvTimeoutError::Timeout) => Msg::SolveTime {
+                    gen: solve_sent.0,
+                    seconds: solve_sent.1.elapsed().as_secs_f64(),
+                },
+                Err(RecvTimeoutError::Disconnected) => break Ok(()),
+            }
         } else {
             match rx.recv() {
                 Ok(m) => m,
                 Err(_) => break Ok(()),
             }
         };
-        handle(&mut state, &mut worker, first);
+        handle(&mut state, &mut worker, &mut solve_sent, first);
         for m in rx.try_iter().take(MAX_BATCH) {
-            handle(&mut state, &mut worker, m);
+            handle(&mut state, &mut worker, &mut solve_sent, m);
             if state.quit {
                 break;
             }
         }
     };
-    worker.send(crate::explorer::state::Effect::Quit);
+    worker.send(Effect::Quit);
     drop(terminal);
     drop(guard);
     outcome?;

@@ -13,6 +13,7 @@
 //! in the headless explorer. If a thread dies anyway, the next send spawns it again and the state
 //! is told.
 
+use crate::analysis::cancel::Cancel;
 use crate::analysis::simulate::RunStatus;
 use crate::explorer::engine::{Engine, Stream};
 use crate::explorer::runner;
@@ -36,8 +37,16 @@ const MAX_CATCH_UP_S: f64 = 0.25;
 const JOB_SETTLE: Duration = Duration::from_millis(120);
 
 enum SolverReq {
-    Solve { gen: u64, preset: Arc<ValidPreset> },
-    Kick { gen: u64, twist: f64, flap: f64 },
+    Solve {
+        gen: u64,
+        preset: Arc<ValidPreset>,
+        cancel: Cancel,
+    },
+    Kick {
+        gen: u64,
+        twist: f64,
+        flap: f64,
+    },
     Pause(bool),
     Quit,
 }
@@ -48,10 +57,15 @@ pub struct Worker {
     out: Sender<Msg>,
     batch_interval: Duration,
     solver: Sender<SolverReq>,
-    jobs: Sender<Effect>,
+    jobs: Sender<(Effect, Cancel)>,
     /// The last solve and pause requests, re-sent to a restarted solver.
     last_solve: Option<(u64, Arc<ValidPreset>)>,
     paused: bool,
+    /// Flags of the requests in flight: a newer request of the same kind raises the older one's,
+    /// so the thread on it moves on at its next check instead of finishing stale work.
+    solve_cancel: Cancel,
+    boundary_cancel: Cancel,
+    campbell_cancel: Cancel,
 }
 
 impl Worker {
@@ -68,6 +82,9 @@ impl Worker {
             jobs,
             last_solve: None,
             paused: false,
+            solve_cancel: Cancel::never(),
+            boundary_cancel: Cancel::never(),
+            campbell_cancel: Cancel::never(),
         }
     }
 
@@ -76,7 +93,17 @@ impl Worker {
         match effect {
             Effect::Solve { gen, preset } => {
                 self.last_solve = Some((gen, preset.clone()));
-                self.send_solver(SolverReq::Solve { gen, preset });
+                // New parameters: the solve and the boundary search of the old ones are stale
+                // (the Campbell diagram may not be: it is kept while only the rotor speed moves).
+                self.solve_cancel.cancel();
+                self.boundary_cancel.cancel();
+                self.solve_cancel = Cancel::new();
+                let cancel = self.solve_cancel.clone();
+                self.send_solver(SolverReq::Solve {
+                    gen,
+                    preset,
+                    cancel,
+                });
             }
             Effect::Kick {
                 gen,
@@ -92,10 +119,28 @@ impl Worker {
                 self.send_solver(SolverReq::Pause(p));
             }
             // Background jobs travel as the effects themselves.
-            job @ (Effect::Boundary { .. } | Effect::Campbell { .. }) => self.send_jobs(job),
+            job @ Effect::Boundary { .. } => {
+                self.boundary_cancel.cancel();
+                self.boundary_cancel = Cancel::new();
+                let cancel = self.boundary_cancel.clone();
+                self.send_jobs(job, cancel);
+            }
+            job @ Effect::Campbell { .. } => {
+                self.campbell_cancel.cancel();
+                self.campbell_cancel = Cancel::new();
+                let cancel = self.campbell_cancel.clone();
+                self.send_jobs(job, cancel);
+            }
             Effect::Quit => {
+                for c in [
+                    &self.solve_cancel,
+                    &self.boundary_cancel,
+                    &self.campbell_cancel,
+                ] {
+                    c.cancel();
+                }
                 let _ = self.solver.send(SolverReq::Quit);
-                let _ = self.jobs.send(Effect::Quit);
+                let _ = self.jobs.send((Effect::Quit, Cancel::never()));
             }
         }
     }
@@ -114,15 +159,21 @@ impl Worker {
             let req = failed.into_inner();
             if !matches!(req, SolverReq::Solve { .. }) {
                 if let Some((gen, preset)) = self.last_solve.clone() {
-                    let _ = self.solver.send(SolverReq::Solve { gen, preset });
+                    self.solve_cancel = Cancel::new();
+                    let cancel = self.solve_cancel.clone();
+                    let _ = self.solver.send(SolverReq::Solve {
+                        gen,
+                        preset,
+                        cancel,
+                    });
                 }
             }
             let _ = self.solver.send(req);
         }
     }
 
-    fn send_jobs(&mut self, req: Effect) {
-        if let Err(failed) = self.jobs.send(req) {
+    fn send_jobs(&mut self, req: Effect, cancel: Cancel) {
+        if let Err(failed) = self.jobs.send((req, cancel)) {
             let _ = self.out.send(Msg::WorkerFailed(
                 "the background-job thread stopped; restarted it".into(),
             ));
@@ -158,7 +209,7 @@ fn spawn_solver(
     tx
 }
 
-fn spawn_jobs(engine: Arc<dyn Engine>, out: Sender<Msg>) -> Sender<Effect> {
+fn spawn_jobs(engine: Arc<dyn Engine>, out: Sender<Msg>) -> Sender<Job> {
     let (tx, rx) = unbounded();
     let spawned = std::thread::Builder::new()
         .name(JOBS_THREAD.into())
@@ -223,9 +274,11 @@ impl Solver {
                             sim.last_tick = Instant::now();
                         }
                     }
-                    SolverReq::Solve { gen, preset } if Some(i) == newest => {
-                        self.solve(gen, &preset)
-                    }
+                    SolverReq::Solve {
+                        gen,
+                        preset,
+                        cancel,
+                    } if Some(i) == newest => self.solve(gen, &preset, &cancel),
                     SolverReq::Solve { .. } => {}
                     SolverReq::Kick { gen, twist, flap } => {
                         if newest.is_some_and(|n| i < n) {
@@ -244,8 +297,12 @@ impl Solver {
         }
     }
 
-    fn solve(&mut self, gen: u64, preset: &ValidPreset) {
-        let (solved, stream) = runner::solve(&*self.engine, gen, preset);
+    fn solve(&mut self, gen: u64, preset: &ValidPreset, cancel: &Cancel) {
+        let (solved, stream) = runner::solve(&*self.engine, gen, preset, cancel);
+        if cancel.is_cancelled() {
+            // A newer request is already in the channel; this result is stale.
+            return;
+        }
         if self.out.send(solved).is_err() {
             return;
         }
@@ -294,9 +351,11 @@ impl Solver {
     }
 }
 
-fn run_jobs(engine: &dyn Engine, out: &Sender<Msg>, rx: &Receiver<Effect>) {
-    let mut boundary: Option<Effect> = None;
-    let mut campbell: Option<Effect> = None;
+type Job = (Effect, Cancel);
+
+fn run_jobs(engine: &dyn Engine, out: &Sender<Msg>, rx: &Receiver<Job>) {
+    let mut boundary: Option<Job> = None;
+    let mut campbell: Option<Job> = None;
     loop {
         if boundary.is_none() && campbell.is_none() {
             match rx.recv() {
@@ -322,13 +381,16 @@ fn run_jobs(engine: &dyn Engine, out: &Sender<Msg>, rx: &Receiver<Effect>) {
             }
         }
         // One job, then look at the channel again: a newer request may have replaced the other.
-        let Some(msg) = boundary
-            .take()
-            .or_else(|| campbell.take())
-            .and_then(|job| runner::job(engine, &job))
-        else {
+        let Some((job, cancel)) = boundary.take().or_else(|| campbell.take()) else {
             continue;
         };
+        let Some(msg) = runner::job(engine, &job, &cancel) else {
+            continue;
+        };
+        if cancel.is_cancelled() {
+            // Replaced while it ran: the newer request is in the channel.
+            continue;
+        }
         if out.send(msg).is_err() {
             return;
         }
@@ -336,11 +398,11 @@ fn run_jobs(engine: &dyn Engine, out: &Sender<Msg>, rx: &Receiver<Effect>) {
 }
 
 /// File a job request (latest wins); false on quit.
-fn take(r: Effect, boundary: &mut Option<Effect>, campbell: &mut Option<Effect>) -> bool {
-    match r {
+fn take(r: Job, boundary: &mut Option<Job>, campbell: &mut Option<Job>) -> bool {
+    match r.0 {
         Effect::Quit => return false,
-        b @ Effect::Boundary { .. } => *boundary = Some(b),
-        c @ Effect::Campbell { .. } => *campbell = Some(c),
+        Effect::Boundary { .. } => *boundary = Some(r),
+        Effect::Campbell { .. } => *campbell = Some(r),
         // Only jobs and Quit are sent to this thread.
         _ => {}
     }

@@ -4,6 +4,7 @@
 
 use crossbeam_channel::{bounded, unbounded, Receiver, Sender};
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
+use flutterscope::analysis::cancel::Cancel;
 use flutterscope::analysis::eigen::{Mode, Stability, Verdict};
 use flutterscope::analysis::flutter::{Boundary, BoundaryKind, SearchRange};
 use flutterscope::analysis::simulate::{RunStatus, TipSample};
@@ -38,6 +39,9 @@ struct TestEngine {
     started: AtomicUsize,
     fail_solve: bool,
     panic_solve_at_rpm: Option<f64>,
+    /// A solve at this rotor speed never ends on its own: only its cancellation flag stops it.
+    endless_solve_at_rpm: Option<f64>,
+    endless_started: AtomicUsize,
     boundaries: AtomicUsize,
     campbells: AtomicUsize,
 }
@@ -146,7 +150,17 @@ impl TestEngine {
 }
 
 impl Engine for TestEngine {
-    fn solve(&self, p: &ValidPreset) -> Solve {
+    fn solve(&self, p: &ValidPreset, cancel: &Cancel) -> Solve {
+        if self.endless_solve_at_rpm == Some(p.operating.rotor_speed) {
+            self.endless_started.fetch_add(1, Ordering::SeqCst);
+            while !cancel.is_cancelled() {
+                std::thread::sleep(Duration::from_millis(1));
+            }
+            return Solve {
+                solved: Err(Error::Cancelled),
+                stream: Err(Error::Cancelled),
+            };
+        }
         Solve {
             solved: self.solved(p),
             stream: Ok(Box::new(TestStream {
@@ -156,8 +170,9 @@ impl Engine for TestEngine {
         }
     }
 
-    fn boundary(&self, p: &ValidPreset, range: &SearchRange) -> Result<Boundary> {
+    fn boundary(&self, p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<Boundary> {
         self.boundaries.fetch_add(1, Ordering::SeqCst);
+        cancel.check()?;
         let (key, from, to) = (range.key.as_str(), range.from, range.to);
         // Flutter where the flap σ of `test_stability` crosses zero along the wind speed.
         let critical = if key == "operating.wind_speed" {
@@ -175,8 +190,9 @@ impl Engine for TestEngine {
         })
     }
 
-    fn campbell(&self, p: &ValidPreset, grid: &[f64]) -> Result<TrackedSweep> {
+    fn campbell(&self, p: &ValidPreset, grid: &[f64], cancel: &Cancel) -> Result<TrackedSweep> {
         self.campbells.fetch_add(1, Ordering::SeqCst);
+        cancel.check()?;
         let modes = ["flap 1", "torsion 1"]
             .iter()
             .enumerate()
@@ -665,7 +681,9 @@ fn worker_solves_only_the_latest_of_a_flood() {
             _ => None,
         })
         .collect();
-    assert_eq!(solved, vec![1, 200]);
+    // The first solve was replaced while it ran: its result is dropped, not shown (this engine
+    // ignores the cancellation flag, so it finished; the real one stops at its next check).
+    assert_eq!(solved, vec![200]);
     assert_eq!(engine.solves.load(Ordering::SeqCst), 2);
     assert_eq!(*engine.solved_rpm.lock().unwrap(), vec![1.0, 200.0]);
     worker.send(Effect::Quit);
@@ -697,6 +715,32 @@ fn worker_streams_samples_and_stops_when_paused() {
     );
     worker.send(Effect::Pause(false));
     collect_until(&rx, |m| matches!(m, Msg::Samples { gen: 1, .. }));
+    worker.send(Effect::Quit);
+}
+
+/// A solve that would never end is abandoned as soon as a newer request arrives: the worker
+/// answers the newest position and never reports the old one.
+#[test]
+fn worker_abandons_a_solve_in_flight_for_a_newer_one() {
+    let engine = Arc::new(TestEngine {
+        endless_solve_at_rpm: Some(13.0),
+        ..TestEngine::default()
+    });
+    let (tx, rx) = unbounded();
+    let mut worker = Worker::spawn(engine.clone(), tx, Duration::from_millis(20));
+    worker.send(solve_effect(1, 13.0));
+    // The endless solve is running when the newer request replaces it.
+    wait_for(|| engine.endless_started.load(Ordering::SeqCst) == 1);
+    worker.send(solve_effect(2, 20.0));
+    let msgs = collect_until(&rx, |m| matches!(m, Msg::Solved { gen: 2, .. }));
+    assert!(matches!(
+        msgs.last(),
+        Some(Msg::Solved { result: Ok(_), .. })
+    ));
+    assert!(
+        !msgs.iter().any(|m| matches!(m, Msg::Solved { gen: 1, .. })),
+        "the abandoned solve reported a result"
+    );
     worker.send(Effect::Quit);
 }
 
@@ -822,19 +866,19 @@ fn snapshot_large_window() {
 struct FailingSolve;
 
 impl Engine for FailingSolve {
-    fn solve(&self, p: &ValidPreset) -> Solve {
+    fn solve(&self, p: &ValidPreset, _cancel: &Cancel) -> Solve {
         Solve {
             solved: Err(Error::numerical(
                 "eigenvalues of the state matrix did not converge (test)",
             )),
-            ..Physics.solve(p)
+            ..Physics.solve(p, &Cancel::never())
         }
     }
-    fn boundary(&self, p: &ValidPreset, range: &SearchRange) -> Result<Boundary> {
-        Physics.boundary(p, range)
+    fn boundary(&self, p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<Boundary> {
+        Physics.boundary(p, range, cancel)
     }
-    fn campbell(&self, p: &ValidPreset, grid: &[f64]) -> Result<TrackedSweep> {
-        Physics.campbell(p, grid)
+    fn campbell(&self, p: &ValidPreset, grid: &[f64], cancel: &Cancel) -> Result<TrackedSweep> {
+        Physics.campbell(p, grid, cancel)
     }
 }
 
@@ -955,4 +999,37 @@ fn each_preset_opens_on_the_parameter_it_selects() {
         s.boundary.as_ref().map(|b| b.key),
         Some("operating.tunnel_speed")
     );
+}
+
+/// A solve over its time budget is reported with its running time in the status line; the last
+/// result stays on screen and keys keep working. Time for stale or fast solves changes nothing.
+#[test]
+fn a_slow_solve_shows_its_running_time() {
+    let engine = TestEngine::default();
+    let mut s = settled(&engine);
+    let e = update(&mut s, Msg::Action(Action::Increase));
+    assert!(s.solving());
+    let gen = s.gen;
+    // Fast so far, or from an older generation: nothing to redraw.
+    s.dirty = false;
+    update(&mut s, Msg::SolveTime { gen, seconds: 0.1 });
+    update(
+        &mut s,
+        Msg::SolveTime {
+            gen: gen - 1,
+            seconds: 9.0,
+        },
+    );
+    assert!(!s.dirty);
+    update(&mut s, Msg::SolveTime { gen, seconds: 2.26 });
+    assert!(s.dirty);
+    let text = render_text(&s, 160, 48);
+    assert!(text.contains("solving… 2.3 s"), "{text}");
+    // The previous result is still drawn, and a key still moves the parameters on.
+    assert!(text.contains("flap 1"), "{text}");
+    let next = update(&mut s, Msg::Action(Action::Increase));
+    assert_eq!(solve_gens(&next), vec![gen + 1]);
+    settle(&mut s, &engine, [e, next].concat());
+    let text = render_text(&s, 160, 48);
+    assert!(!text.contains("solving…"), "{text}");
 }

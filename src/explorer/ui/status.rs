@@ -6,7 +6,7 @@ use super::{sig, Theme};
 use crate::analysis::eigen::{Mode, Stability, Verdict};
 use crate::analysis::flutter::BoundaryKind;
 use crate::explorer::state::ParamKind;
-use crate::explorer::state::{unit, AppState, ViewMode, PARAMS};
+use crate::explorer::state::{unit, AppState, ViewMode, PARAMS, SOLVE_BUDGET_S};
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
@@ -162,11 +162,11 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
         _ => None,
     };
     let margin = margin_text(state).map(|m| format!("margin along {m}"));
-    let solving = state.solving() && state.solved.is_some();
+    let solving = (state.solving() && state.solved.is_some()).then(|| solving_text(state));
     // The badge and the margin always; the least-damped mode in the room that is left.
     let used = badge.chars().count()
         + margin.as_ref().map_or(0, |m| m.chars().count() + 5)
-        + if solving { 10 } else { 0 };
+        + solving.as_ref().map_or(0, |t| t.chars().count());
     let mut spans = vec![Span::styled(badge, style.add_modifier(Modifier::REVERSED))];
     if let Some((long, short)) = least {
         if used + long.chars().count() <= width {
@@ -179,8 +179,8 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
         spans.push(Span::styled("  │  ", theme.dim()));
         spans.push(Span::styled(margin, theme.accent()));
     }
-    if solving {
-        spans.push(Span::styled("  solving…", theme.dim()));
+    if let Some(text) = solving {
+        spans.push(Span::styled(text, theme.dim()));
     }
     frame.render_widget(Paragraph::new(Line::from(spans)), top);
 
@@ -202,6 +202,16 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
         Line::from(spans)
     };
     frame.render_widget(Paragraph::new(line), bottom);
+}
+
+/// The solving mark: with its running time once the solve is over its budget (the last result
+/// stays on screen, and keys keep working).
+fn solving_text(state: &AppState) -> String {
+    if state.solve_seconds >= SOLVE_BUDGET_S {
+        format!("  solving… {:.1} s", state.solve_seconds)
+    } else {
+        "  solving…".to_string()
+    }
 }
 
 /// The key hints, longest first; the first that fits is shown.
