@@ -3,6 +3,7 @@
 
 pub mod aero;
 pub mod basis;
+pub mod blade;
 pub mod inflow;
 pub mod laminate;
 pub mod section;

@@ -1,0 +1,179 @@
+//! A tabulated blade (docs/model.md §11): section properties that vary along the span, read from
+//! a real blade's files and interpolated linearly between the input stations, in the frame the
+//! finite elements use.
+//!
+//! Frame (docs/model.md §11.1): `z` along the straight pitch axis from the blade root (radius
+//! `r = r_hub + z`), `x` out of the rotor plane (downwind), `y` in the rotor plane toward the
+//! leading edge at zero pitch and twist, so that a positive rotation about `z` (x toward y) turns
+//! the leading edge upwind: toward feather. Each section has its own frame, turned from `(x, y)`
+//! by its structural twist plus the pitch: `ξ` normal to the chord (flap direction) and `η` along
+//! the chord toward the leading edge.
+
+pub mod fem;
+pub mod modal;
+
+use crate::error::{Error, Result};
+
+/// One input station, in its section frame `(ξ, η)` about the reference (pitch) axis.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Section {
+    /// Span position from the root (m).
+    pub z: f64,
+    /// Mass per length (kg/m).
+    pub mass: f64,
+    /// Centre of mass from the reference axis (m): `[ξ, η]`.
+    pub cg: [f64; 2],
+    /// Mass moments per length about the reference axis (kg·m): `[∫ρξ², ∫ρη², ∫ρξη]`.
+    pub inertia: [f64; 3],
+    /// Flap bending stiffness, for curvature along ξ (N·m²).
+    pub ei_flap: f64,
+    /// Edge bending stiffness, for curvature along η (N·m²).
+    pub ei_edge: f64,
+    /// Cross term of the two curvatures when ξ, η are not principal (N·m²).
+    pub ei_cross: f64,
+    /// Torsional stiffness (N·m²).
+    pub gj: f64,
+    /// Flap–twist coupling (N·m²): positive twists the section toward feather when the blade
+    /// bends downwind (strain energy `−g κ_ξ φ'`).
+    pub flap_twist: f64,
+    /// Edge–twist coupling (N·m²): positive twists toward feather when the blade bends toward
+    /// the leading edge.
+    pub edge_twist: f64,
+    /// Structural twist of the section frame from the rotor plane (rad), toward feather.
+    pub twist: f64,
+}
+
+impl Section {
+    /// Linear interpolation between two stations (at fraction `t` from `a` to `b`).
+    fn lerp(a: &Section, b: &Section, t: f64) -> Section {
+        let l = |x: f64, y: f64| x + (y - x) * t;
+        Section {
+            z: l(a.z, b.z),
+            mass: l(a.mass, b.mass),
+            cg: [l(a.cg[0], b.cg[0]), l(a.cg[1], b.cg[1])],
+            inertia: [
+                l(a.inertia[0], b.inertia[0]),
+                l(a.inertia[1], b.inertia[1]),
+                l(a.inertia[2], b.inertia[2]),
+            ],
+            ei_flap: l(a.ei_flap, b.ei_flap),
+            ei_edge: l(a.ei_edge, b.ei_edge),
+            ei_cross: l(a.ei_cross, b.ei_cross),
+            gj: l(a.gj, b.gj),
+            flap_twist: l(a.flap_twist, b.flap_twist),
+            edge_twist: l(a.edge_twist, b.edge_twist),
+            twist: l(a.twist, b.twist),
+        }
+    }
+
+    /// The named quantities that must be finite and, for masses and stiffnesses, positive.
+    fn check(&self, origin: &str, index: usize) -> Result<()> {
+        let positive = [
+            ("mass per length", self.mass),
+            ("flap stiffness", self.ei_flap),
+            ("edge stiffness", self.ei_edge),
+            ("torsional stiffness", self.gj),
+        ];
+        let finite = [
+            ("centre of mass ξ", self.cg[0]),
+            ("centre of mass η", self.cg[1]),
+            ("mass moment ∫ρξ²", self.inertia[0]),
+            ("mass moment ∫ρη²", self.inertia[1]),
+            ("mass moment ∫ρξη", self.inertia[2]),
+            ("bending cross stiffness", self.ei_cross),
+            ("flap–twist coupling", self.flap_twist),
+            ("edge–twist coupling", self.edge_twist),
+            ("structural twist", self.twist),
+        ];
+        let at = format!("station {} (z = {} m)", index + 1, self.z);
+        let invalid = |message: String| Error::Invalid {
+            origin: origin.to_string(),
+            message: format!("{at}: {message}"),
+        };
+        if let Some((name, v)) = positive.iter().find(|(_, v)| !(v.is_finite() && *v > 0.0)) {
+            return Err(invalid(format!("{name} = {v} must be positive")));
+        }
+        if let Some((name, v)) = finite.iter().find(|(_, v)| !v.is_finite()) {
+            return Err(invalid(format!("{name} = {v} is not finite")));
+        }
+        if self.inertia[0] < 0.0 || self.inertia[1] < 0.0 {
+            return Err(invalid(format!(
+                "mass moments ∫ρξ² = {}, ∫ρη² = {} must not be negative",
+                self.inertia[0], self.inertia[1]
+            )));
+        }
+        Ok(())
+    }
+}
+
+/// A blade as a table of sections along its span.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BladeTable {
+    /// Where the table came from, for messages.
+    pub origin: String,
+    /// Hub radius (m): the root is at `r = hub_radius`.
+    pub hub_radius: f64,
+    /// Stations sorted by `z`, the first at the root (`z = 0`), the last at the tip.
+    pub sections: Vec<Section>,
+}
+
+impl BladeTable {
+    /// A table checked for what the elements need: at least two stations, strictly increasing
+    /// span from 0, every property finite and every mass and stiffness positive.
+    pub fn new(origin: &str, hub_radius: f64, sections: Vec<Section>) -> Result<BladeTable> {
+        let invalid = |message: String| Error::Invalid {
+            origin: origin.to_string(),
+            message,
+        };
+        if sections.len() < 2 {
+            return Err(invalid(format!(
+                "a blade needs at least two stations, got {}",
+                sections.len()
+            )));
+        }
+        if !(hub_radius.is_finite() && hub_radius >= 0.0) {
+            return Err(invalid(format!(
+                "hub radius {hub_radius} m must be finite and not negative"
+            )));
+        }
+        if sections[0].z != 0.0 {
+            return Err(invalid(format!(
+                "the first station must be at the root (z = 0), not z = {} m",
+                sections[0].z
+            )));
+        }
+        for (k, w) in sections.windows(2).enumerate() {
+            if w[1].z.partial_cmp(&w[0].z) != Some(std::cmp::Ordering::Greater) {
+                return Err(invalid(format!(
+                    "stations {} and {} are not in increasing span order (z = {} m, then {} m)",
+                    k + 1,
+                    k + 2,
+                    w[0].z,
+                    w[1].z
+                )));
+            }
+        }
+        for (k, s) in sections.iter().enumerate() {
+            s.check(origin, k)?;
+        }
+        Ok(BladeTable {
+            origin: origin.to_string(),
+            hub_radius,
+            sections,
+        })
+    }
+
+    /// Blade length (m): the span of the last station.
+    pub fn length(&self) -> f64 {
+        self.sections[self.sections.len() - 1].z
+    }
+
+    /// The section at span `z`, linear between the stations (clamped to the ends).
+    pub fn at(&self, z: f64) -> Section {
+        let s = &self.sections;
+        let k = s.partition_point(|x| x.z <= z).clamp(1, s.len() - 1);
+        let (a, b) = (&s[k - 1], &s[k]);
+        let t = ((z - a.z) / (b.z - a.z)).clamp(0.0, 1.0);
+        Section::lerp(a, b, t)
+    }
+}

@@ -1,0 +1,202 @@
+//! The rotating structural modes of a tabulated blade (docs/model.md §11.4), from a reduced
+//! basis: the assembled `M`, `K₀`, `K_Ω` are projected once onto the lowest modes at the
+//! reference rotor speeds, so the modes at any rotor speed are a small dense eigenproblem
+//! (microseconds), not a re-assembly or a full-size solve.
+
+use super::fem::{BladeMatrices, NODE_DOFS, PHI, U, V};
+use crate::error::{Error, Result};
+use nalgebra::{DMatrix, DVector, SymmetricEigen};
+
+/// Iteration cap of the symmetric eigensolver (nalgebra's implicit QR): far beyond what these
+/// sizes need, so reaching it means broken input, reported as an error.
+const MAX_SWEEPS: usize = 10_000;
+
+/// A basis vector whose M-norm falls below this fraction of its norm before
+/// orthogonalisation repeats earlier ones and is dropped.
+const DEPENDENT: f64 = 1e-8;
+
+/// The motion families of a mode (docs/model.md §11.4).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Family {
+    Flap,
+    Edge,
+    Torsion,
+}
+
+/// One natural mode of the rotating blade.
+#[derive(Debug, Clone)]
+pub struct BladeMode {
+    pub frequency_hz: f64,
+    /// Shares of the mode's kinetic energy in flap, edge and twist motion: the diagonal blocks
+    /// `qᵤᵀMᵤᵤqᵤ`, `qᵥᵀMᵥᵥqᵥ`, `q_φᵀM_φφq_φ` over their sum (the cross terms, from the centre
+    /// of mass offset, left out so that the shares add up to 1).
+    pub shares: [f64; 3],
+    /// Free-dof vector (`[u, u', v, v', φ]` per node after the root), M-normalised.
+    pub shape: DVector<f64>,
+}
+
+impl BladeMode {
+    /// The family with the largest share.
+    pub fn family(&self) -> Family {
+        let [f, e, t] = self.shares;
+        if t >= f && t >= e {
+            Family::Torsion
+        } else if e > f {
+            Family::Edge
+        } else {
+            Family::Flap
+        }
+    }
+}
+
+/// A blade's structure reduced onto a basis of its modes.
+#[derive(Debug, Clone)]
+pub struct ModalBlade {
+    pub matrices: BladeMatrices,
+    /// Basis (dofs × b), M-orthonormal.
+    basis: DMatrix<f64>,
+    reduced_k0: DMatrix<f64>,
+    reduced_k_omega: DMatrix<f64>,
+}
+
+impl ModalBlade {
+    /// Reduce onto the lowest `per_speed` modes at each of `reference_speeds` (rad/s), made
+    /// M-orthonormal together: modes at rotor speeds between and near the references are then
+    /// reproduced closely (docs/model.md §11.4 shows the convergence).
+    pub fn new(
+        matrices: BladeMatrices,
+        reference_speeds: &[f64],
+        per_speed: usize,
+    ) -> Result<ModalBlade> {
+        let n = matrices.mass.nrows();
+        let per_speed = per_speed.min(n);
+        let mut columns: Vec<DVector<f64>> = Vec::new();
+        for &omega in reference_speeds {
+            let k = &matrices.k0 + &matrices.k_omega * (omega * omega);
+            let (_, vectors) = full_modes(&matrices.mass, &k)?;
+            columns.extend((0..per_speed).map(|j| vectors.column(j).into_owned()));
+        }
+        let basis = m_orthonormal(&matrices.mass, columns);
+        if basis.ncols() == 0 {
+            return Err(Error::numerical("blade modal basis is empty"));
+        }
+        let reduced_k0 = symmetric(basis.transpose() * &matrices.k0 * &basis);
+        let reduced_k_omega = symmetric(basis.transpose() * &matrices.k_omega * &basis);
+        Ok(ModalBlade {
+            matrices,
+            basis,
+            reduced_k0,
+            reduced_k_omega,
+        })
+    }
+
+    /// Size of the reduced basis.
+    pub fn basis_size(&self) -> usize {
+        self.basis.ncols()
+    }
+
+    /// The lowest `count` modes at rotor speed `omega` (rad/s), ascending in frequency.
+    pub fn modes(&self, omega: f64, count: usize) -> Result<Vec<BladeMode>> {
+        let k = &self.reduced_k0 + &self.reduced_k_omega * (omega * omega);
+        let eig = SymmetricEigen::try_new(k, f64::EPSILON, MAX_SWEEPS).ok_or_else(|| {
+            Error::numerical("blade modes: symmetric eigensolver did not converge")
+        })?;
+        let mut order: Vec<usize> = (0..eig.eigenvalues.len()).collect();
+        order.sort_by(|&a, &b| eig.eigenvalues[a].total_cmp(&eig.eigenvalues[b]));
+        order
+            .into_iter()
+            .take(count)
+            .map(|j| {
+                let lambda = eig.eigenvalues[j];
+                if !(lambda.is_finite() && lambda > 0.0) {
+                    return Err(Error::numerical(format!(
+                        "blade modes: ω² = {lambda:e} (rad/s)² at Ω = {omega} rad/s; the \
+                         rotating blade has no stiffness against this shape (rotor speed too high?)"
+                    )));
+                }
+                let shape = &self.basis * eig.eigenvectors.column(j);
+                Ok(BladeMode {
+                    frequency_hz: lambda.sqrt() / std::f64::consts::TAU,
+                    shares: self.shares(&shape),
+                    shape,
+                })
+            })
+            .collect()
+    }
+
+    fn shares(&self, q: &DVector<f64>) -> [f64; 3] {
+        let m = &self.matrices.mass;
+        let part = |offsets: &[usize]| -> f64 {
+            let idx: Vec<usize> = (0..q.len())
+                .filter(|i| offsets.contains(&(i % NODE_DOFS)))
+                .collect();
+            idx.iter()
+                .map(|&i| idx.iter().map(|&j| q[i] * m[(i, j)] * q[j]).sum::<f64>())
+                .sum()
+        };
+        let e = [part(&[U, U + 1]), part(&[V, V + 1]), part(&[PHI])];
+        let total: f64 = e.iter().sum();
+        if total > 0.0 {
+            e.map(|x| x / total)
+        } else {
+            e
+        }
+    }
+}
+
+/// Every eigenpair of `K x = ω² M x` by Cholesky reduction, ascending: `(ω², vectors)`.
+fn full_modes(mass: &DMatrix<f64>, k: &DMatrix<f64>) -> Result<(Vec<f64>, DMatrix<f64>)> {
+    let l = mass
+        .clone()
+        .cholesky()
+        .ok_or_else(|| Error::numerical("blade mass matrix is not positive definite"))?
+        .unpack();
+    let lk = l
+        .solve_lower_triangular(k)
+        .ok_or_else(|| Error::numerical("singular blade mass factor"))?;
+    let a = l
+        .solve_lower_triangular(&lk.transpose())
+        .ok_or_else(|| Error::numerical("singular blade mass factor"))?;
+    let eig = SymmetricEigen::try_new(symmetric(a), f64::EPSILON, MAX_SWEEPS)
+        .ok_or_else(|| Error::numerical("blade modes: symmetric eigensolver did not converge"))?;
+    let mut order: Vec<usize> = (0..eig.eigenvalues.len()).collect();
+    order.sort_by(|&a, &b| eig.eigenvalues[a].total_cmp(&eig.eigenvalues[b]));
+    let lt = l.transpose();
+    let mut vectors = DMatrix::zeros(k.nrows(), order.len());
+    for (c, &j) in order.iter().enumerate() {
+        let y = eig.eigenvectors.column(j).into_owned();
+        let x = lt
+            .solve_upper_triangular(&y)
+            .ok_or_else(|| Error::numerical("singular blade mass factor"))?;
+        vectors.set_column(c, &x);
+    }
+    Ok((order.iter().map(|&j| eig.eigenvalues[j]).collect(), vectors))
+}
+
+/// Modified Gram–Schmidt in the M inner product, twice for round-off; dependent vectors dropped.
+fn m_orthonormal(mass: &DMatrix<f64>, columns: Vec<DVector<f64>>) -> DMatrix<f64> {
+    let mut kept: Vec<DVector<f64>> = Vec::new();
+    for mut c in columns {
+        let start = (c.dot(&(mass * &c))).sqrt();
+        for _ in 0..2 {
+            for k in &kept {
+                let proj = k.dot(&(mass * &c));
+                c -= k * proj;
+            }
+        }
+        let norm = (c.dot(&(mass * &c))).sqrt();
+        if norm > DEPENDENT * start && norm.is_finite() {
+            kept.push(c / norm);
+        }
+    }
+    if kept.is_empty() {
+        return DMatrix::zeros(mass.nrows(), 0);
+    }
+    DMatrix::from_columns(&kept)
+}
+
+fn symmetric(a: DMatrix<f64>) -> DMatrix<f64> {
+    let t = a.transpose();
+    (a + t) * 0.5
+}
