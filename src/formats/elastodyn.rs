@@ -1,5 +1,5 @@
-//! ElastoDyn blade files (OpenFAST): the distributed blade properties and the modal structural
-//! damping.
+//! ElastoDyn blade files (OpenFAST): the distributed blade properties, the factors ElastoDyn
+//! scales them by and the modal structural damping.
 //!
 //! ElastoDyn models a blade by flap and edge bending alone, so its file has no torsional
 //! stiffness (and no shear-centre or elastic-axis offsets): nothing here offers one. A
@@ -35,12 +35,23 @@ pub struct ModalDamping {
     pub edge_1_pct: f64,
 }
 
+/// `AdjBlMs`, `AdjFlSt`, `AdjEdSt`: the factors ElastoDyn multiplies `BMassDen`, `FlpStff`
+/// and `EdgStff` by. They change what the table means (the NREL 5MW file adds 4.5 % mass this
+/// way), so they travel with it rather than being applied here.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Adjustment {
+    pub mass: f64,
+    pub flap_stiffness: f64,
+    pub edge_stiffness: f64,
+}
+
 /// The ElastoDyn blade file.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ElastoDynBlade {
     /// `None` when the file has none of the three damping lines.
     pub damping: Option<ModalDamping>,
-    /// `NBlInpSt` stations, `bl_fract` strictly increasing.
+    pub adjustment: Adjustment,
+    /// `NBlInpSt` stations as written, unadjusted, `bl_fract` strictly increasing.
     pub stations: Vec<ElastoDynStation>,
 }
 
@@ -54,6 +65,12 @@ pub fn parse_blade(text: &str, origin: &str) -> Result<ElastoDynBlade> {
     let n_line = src.key("NBlInpSt", 0)?;
     let n = src.count(&n_line, 1)?;
     let damping = damping(&src)?;
+    let factor = |key| src.key(key, 0).and_then(|k| src.number(&k));
+    let adjustment = Adjustment {
+        mass: factor("AdjBlMs")?,
+        flap_stiffness: factor("AdjFlSt")?,
+        edge_stiffness: factor("AdjEdSt")?,
+    };
 
     let header = src.line_starting(
         "BlFract",
@@ -74,6 +91,7 @@ pub fn parse_blade(text: &str, origin: &str) -> Result<ElastoDynBlade> {
     let at = |r: &Row, c| super::value(r, c);
     Ok(ElastoDynBlade {
         damping,
+        adjustment,
         stations: rows
             .iter()
             .map(|r| ElastoDynStation {

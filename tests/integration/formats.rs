@@ -80,6 +80,11 @@ fn beamdyn_blade_nrel5mw() {
 fn elastodyn_blade_nrel5mw() {
     let b = elastodyn::read_blade(&blades(ED_BLADE)).unwrap();
     assert_eq!(b.stations.len(), 49);
+    let a = b.adjustment;
+    assert_eq!(
+        (a.mass, a.flap_stiffness, a.edge_stiffness),
+        (1.04536, 1.0, 1.0)
+    );
     let d = b.damping.unwrap();
     assert_eq!(
         (d.flap_1_pct, d.flap_2_pct, d.edge_1_pct),
