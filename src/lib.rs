@@ -3,7 +3,8 @@
 //! Data flows one way: `physics` (section → structure → aero → system) → `analysis`
 //! (eigen, tracking, flutter, sweep, simulate) → `explorer` (worker → state → ui). `numeric`
 //! (eigendecomposition, balancing, assignment) holds the linear algebra both physics and
-//! analysis use, with no physics in it.
+//! analysis use, with no physics in it. `formats` reads the blade definition files engineers
+//! already have (OpenFAST, HAWC2) into plain tables in the files' own units, for physics to map.
 //! The physics reference is `docs/model.md`; each module cites the section it implements.
 
 pub mod analysis;
@@ -11,6 +12,7 @@ pub mod cli;
 pub mod commands;
 pub mod error;
 pub mod explorer;
+pub mod formats;
 pub mod numeric;
 pub mod physics;
 pub mod plot;

@@ -92,9 +92,16 @@ impl Preset {
             || name_or_path.contains(std::path::MAIN_SEPARATOR)
             || name_or_path.contains('/');
         if looks_like_path || path.exists() {
-            let text = std::fs::read_to_string(path).map_err(|e| Error::Preset {
+            // The capped reader: a wrong path (a device, a FIFO, a huge file) fails at once.
+            let text = crate::formats::read_text(path).map_err(|e| Error::Preset {
                 origin: name_or_path.to_string(),
-                message: format!("cannot read preset file: {e}"),
+                message: match e {
+                    Error::Format { message, .. } => format!(
+                        "cannot read preset file: {}",
+                        message.strip_prefix("cannot read: ").unwrap_or(&message)
+                    ),
+                    other => other.to_string(),
+                },
             })?;
             return Preset::from_toml(&text, name_or_path, overrides);
         }

@@ -5,6 +5,7 @@ mod blade;
 mod cli_basic;
 mod eigen;
 mod explorer;
+mod formats;
 mod laminate;
 mod onera;
 mod paper_figures;
