@@ -9,6 +9,7 @@
 //! by its structural twist plus the pitch: `ξ` normal to the chord (flap direction) and `η` along
 //! the chord toward the leading edge.
 
+pub mod beamdyn;
 pub mod fem;
 pub mod modal;
 
