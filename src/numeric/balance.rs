@@ -17,7 +17,8 @@ const RADIX: f64 = 2.0;
 const MIN_REDUCTION: f64 = 0.95;
 
 /// Diagonal scaling D (powers of two) such that D⁻¹AD has comparable off-diagonal row and column
-/// 1-norms (Parlett & Reinsch, as LAPACK's `gebal` without the permutation step).
+/// 1-norms (Parlett & Reinsch, as LAPACK's `gebal`; its permutation step is `isolate.rs`, which
+/// the eigendecomposition runs first).
 ///
 /// Sweeps over the rows until a sweep changes no scale, at most [`MAX_SWEEPS`]; tolerance: a
 /// scale changes only when that cuts its row + column sum by at least 5 % ([`MIN_REDUCTION`]).

@@ -2,13 +2,15 @@
 //! eigenvalue with its right and, when asked, left eigenvector, one entry per real root or
 //! conjugate pair. This is the solver behind the stability analysis; nalgebra alone would not do
 //! (it has no non-symmetric eigenvectors, and its eigenvalue-only Schur solver can spin on NaN
-//! input). The fast path (balancing, Hessenberg QR, inverse iteration) falls back on faer's full
-//! decomposition.
+//! input). Isolation by permutation first takes out the roots that need no iteration (the
+//! still-air aerodynamic states); on the rest the fast path (balancing, Hessenberg QR, inverse
+//! iteration) falls back on faer's full decomposition.
 
 use super::balance::{balanced, balancing_scale};
 use super::faer_evd::real_evd;
 use super::hessenberg::hessenberg_eigenvalues;
 use super::inverse_iteration::InverseIteration;
+use super::isolate::Isolation;
 use crate::error::{Error, Result};
 use nalgebra::{Complex, DMatrix};
 
@@ -21,6 +23,18 @@ pub struct Roots {
     pub vectors: DMatrix<Complex<f64>>,
     /// Column k is the left eigenvector of `values[k]`: `lᴴ A = λ lᴴ`.
     pub left: DMatrix<Complex<f64>>,
+    /// Which solver found the roots of the active block, so callers and tests can count
+    /// fallbacks instead of timing them.
+    pub solver: Solver,
+}
+
+/// The solver behind a [`Roots`] (see [`decompose`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Solver {
+    /// Balancing, Hessenberg QR eigenvalues, inverse iteration (or nothing left to iterate on).
+    Fast,
+    /// faer's full decomposition, after the fast path failed.
+    Fallback,
 }
 
 impl Roots {
@@ -62,8 +76,17 @@ pub fn eigen_decomposition(a: &DMatrix<f64>) -> Result<Roots> {
 /// Eigenvalues with right eigenvectors, and left eigenvectors when `want_left` (otherwise
 /// [`Roots::left`] is empty, n × 0).
 ///
-/// Method (chosen by measurement, `cargo bench --bench stability`, `part_eigen_*`): the matrix is
-/// balanced (D⁻¹AD) and reduced to Hessenberg form H = QᵀD⁻¹ADQ; the eigenvalues come from the
+/// Method. First, isolation by permutation (`isolate.rs`, LAPACK `gebal` job 'P') moves out every
+/// row and column that is exactly zero off the diagonal within the rest: their roots are
+/// diagonal entries, found without iteration, and only the active block B goes on (B is the
+/// matrix itself when nothing isolates, and then nothing below changes); every vector of the
+/// whole matrix follows from B's by block back-substitution. This is what makes still air
+/// solvable: there the aerodynamic states have no dynamics, hundreds of exactly zero roots in one
+/// defective cluster that fails inverse iteration and made faer's deflation spin forever;
+/// isolated, they reach neither solver, and B is the structure alone.
+///
+/// Then (chosen by measurement, `cargo bench --bench stability`, `part_eigen_*`) B is
+/// balanced (D⁻¹BD) and reduced to Hessenberg form H = QᵀD⁻¹BDQ; the eigenvalues come from the
 /// double-shift QR iteration on H *without* accumulating the Schur form or its vectors (a port
 /// of LAPACK's `dlahqr` with `wantt = wantz = false`: Ahues–Tisseur deflation, exceptional shifts,
 /// an iteration cap of 30·max(10, n) per eigenvalue). Each eigenvector, one per real root or
@@ -81,11 +104,12 @@ pub fn eigen_decomposition(a: &DMatrix<f64>) -> Result<Roots> {
 /// nalgebra's bounded `Schur::try_new` was also measured and is slower than faer here (it
 /// always accumulates Q, and it has no exceptional shifts). Roots of (nearly) equal value get
 /// different start vectors and are orthogonalised against each other, so an exactly repeated
-/// root still returns a basis of its eigenspace. Whenever the fast path fails — the QR iteration hits its cap, or a residual
-/// check fails (defective or extremely ill-conditioned roots) — the matrix goes to faer's
-/// robust full decomposition (Francis QR with aggressive deflation, also capped) instead; if
-/// that fails too the result is an [`Error::Numerical`]. Non-finite input is rejected up
-/// front, so neither path can spin on NaN.
+/// root still returns a basis of its eigenspace. Whenever the fast path fails — the QR
+/// iteration hits its cap, or a residual check fails (defective or extremely ill-conditioned
+/// roots) — B goes to faer's robust full decomposition (Francis QR with aggressive deflation)
+/// instead ([`Solver::Fallback`]); B never has a row or column that is zero off the diagonal, the
+/// structure on which that deflation spun. If faer fails too the result is an
+/// [`Error::Numerical`]. Non-finite input is rejected up front, so neither path can spin on NaN.
 pub fn decompose(a: &DMatrix<f64>, want_left: bool) -> Result<Roots> {
     let n = a.nrows();
     if a.ncols() != n {
@@ -105,11 +129,35 @@ pub fn decompose(a: &DMatrix<f64>, want_left: bool) -> Result<Roots> {
             "state matrix entry ({i}, {j}) is {v}; cannot compute eigenvalues"
         )));
     }
+    let isolation = Isolation::of(a);
+    let roots = if isolation.is_trivial() {
+        active_roots(a, want_left)?
+    } else {
+        let active = active_roots(&isolation.active_block(a), want_left)?;
+        isolation.roots(a, active, want_left)
+    };
+    let finite = |c: &Complex<f64>| c.re.is_finite() && c.im.is_finite();
+    if !roots.values.iter().all(finite)
+        || !roots.vectors.iter().all(finite)
+        || !roots.left.iter().all(finite)
+    {
+        return Err(Error::numerical(
+            "eigen-analysis produced non-finite eigenvalues or eigenvectors",
+        ));
+    }
+    Ok(roots)
+}
+
+/// Balancing, then the fast path or faer's fallback, on a matrix with nothing to isolate (see
+/// [`decompose`]); vectors in the matrix's own coordinates.
+fn active_roots(a: &DMatrix<f64>, want_left: bool) -> Result<Roots> {
+    let n = a.nrows();
     if n == 0 {
         return Ok(Roots {
             values: Vec::new(),
             vectors: DMatrix::zeros(0, 0),
             left: DMatrix::zeros(0, 0),
+            solver: Solver::Fast,
         });
     }
     // Balance first: D⁻¹AD has the same eigenvalues, rows and columns of comparable norm, and
@@ -117,22 +165,15 @@ pub fn decompose(a: &DMatrix<f64>, want_left: bool) -> Result<Roots> {
     // 10⁵ rad/s roots). Right vectors map back as D r, left vectors as D⁻¹ l.
     let scale = balancing_scale(a);
     let b = balanced(a, &scale);
-    let (values, right, left) = match fast_decomposition(&b, want_left) {
-        Some(r) => r,
-        None => faer_decomposition(&b, want_left)?,
+    let ((values, right, left), solver) = match fast_decomposition(&b, want_left) {
+        Some(r) => (r, Solver::Fast),
+        None => (faer_decomposition(&b, want_left)?, Solver::Fallback),
     };
-    let vectors = DMatrix::from_fn(n, right.ncols(), |i, k| right[(i, k)] * scale[i]);
-    let left = DMatrix::from_fn(n, left.ncols(), |i, k| left[(i, k)] / scale[i]);
-    let finite = |c: &Complex<f64>| c.re.is_finite() && c.im.is_finite();
-    if !values.iter().all(finite) || !vectors.iter().all(finite) || !left.iter().all(finite) {
-        return Err(Error::numerical(
-            "eigen-analysis produced non-finite eigenvalues or eigenvectors",
-        ));
-    }
     Ok(Roots {
         values,
-        vectors,
-        left,
+        vectors: DMatrix::from_fn(n, right.ncols(), |i, k| right[(i, k)] * scale[i]),
+        left: DMatrix::from_fn(n, left.ncols(), |i, k| left[(i, k)] / scale[i]),
+        solver,
     })
 }
 

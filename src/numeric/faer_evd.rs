@@ -22,7 +22,10 @@ pub(crate) struct RealEvd {
 /// faer's full real eigendecomposition (Hessenberg reduction, Francis QR with aggressive early
 /// deflation, back-substitution for the vectors). Its iteration cap and deflation tolerance are
 /// faer's own defaults (the QR iteration stops at machine precision and gives up with
-/// [`EvdError::NoConvergence`] past its cap). Sequential: our matrices are small (a thread pool's
+/// [`EvdError::NoConvergence`] past 30·max(10, n) sweeps). The reordering inside its deflation
+/// has no cap of its own and spun forever on the defective clusters of exactly zero roots of
+/// still air; neither caller passes such structure any more (the eigendecomposition isolates it
+/// first, the strong form's M⁻¹K is dense). Sequential: our matrices are small (a thread pool's
 /// start-up would dominate) and sweeps already use every core across points.
 pub(crate) fn real_evd(a: &DMatrix<f64>, want_left: bool) -> Result<RealEvd, EvdError> {
     let n = a.nrows();

@@ -1,10 +1,10 @@
 //! Numerical linear algebra with no physics in it, one algorithm per file (as faer lays itself
 //! out). It exists so that the analyses read as physics and the solvers can be tested, measured
 //! and reused on plain matrices: the dense non-symmetric eigendecomposition behind the stability
-//! analysis ([`decompose`]) and its parts, balancing (also used by the simulator), faer's general
-//! eigendecomposition (also used for the strong-form natural modes), and the optimal assignment
-//! that mode labelling and tracking share ([`hungarian`]). Nothing here depends on the rest of
-//! the crate but its error type.
+//! analysis ([`decompose`]) and its parts, isolation by permutation, balancing (also used by the
+//! simulator), faer's general eigendecomposition (also used for the strong-form natural modes),
+//! and the optimal assignment that mode labelling and tracking share ([`hungarian`]). Nothing
+//! here depends on the rest of the crate but its error type.
 
 mod assignment;
 pub(crate) mod balance;
@@ -12,6 +12,7 @@ pub(crate) mod eigen;
 pub(crate) mod faer_evd;
 mod hessenberg;
 mod inverse_iteration;
+mod isolate;
 
 pub use assignment::hungarian;
-pub use eigen::{decompose, eigen_decomposition, shares, Roots};
+pub use eigen::{decompose, eigen_decomposition, shares, Roots, Solver};

@@ -1,7 +1,15 @@
-//! Mode labels from the in-vacuo natural modes (docs/model.md §6).
+//! Mode labels from the in-vacuo natural modes (docs/model.md §6), and still air, where the
+//! aerodynamic states have no dynamics (§6.1).
 
-use flutterscope::analysis::eigen::{analyse, SECOND_ROOT_SUFFIX};
+use crate::stability::within;
+use flutterscope::analysis::eigen::{
+    analyse, analyse_system, linear_system, Stability, SECOND_ROOT_SUFFIX,
+};
+use flutterscope::numeric::{decompose, Solver};
+use flutterscope::physics::aero::{model_for, Kinematics, SteadyStates, StripEval, StripModel};
+use flutterscope::physics::inflow::{preset_stations, Station};
 use flutterscope::physics::structure::assemble;
+use flutterscope::physics::system::System;
 use flutterscope::preset::{Preset, ValidPreset};
 use std::collections::HashSet;
 
@@ -125,4 +133,167 @@ fn many_identical_stations_still_give_eigenvectors() {
             .re
     };
     assert!((flap1(&s32) / flap1(&s24) - 1.0).abs() < 1e-3);
+}
+
+/// The still-air cases that used to hang (faer's deflation spinning on the defective cluster of
+/// exactly zero aero roots), as `(preset, overrides)`.
+fn still_air_cases() -> Vec<(&'static str, Vec<String>)> {
+    let set = |o: &[&str]| o.iter().map(|s| s.to_string()).collect::<Vec<_>>();
+    let rotor = ["operating.rotor_speed=0", "operating.wind_speed=0"];
+    let mut cases = Vec::new();
+    for (modes, stations) in [
+        (1, &[25, 23, 27, 45, 52, 55, 63][..]),
+        (5, &[28, 31, 44, 49, 50][..]),
+    ] {
+        for s in stations {
+            let mut o = set(&rotor);
+            o.extend(set(&["aero.model=onera"]));
+            o.push(format!("structure.modes={modes}"));
+            o.push(format!("aero.stations={s}"));
+            cases.push(("liu2017", o));
+        }
+    }
+    for s in 20..=61 {
+        let mut o = set(&rotor);
+        o.extend(set(&["aero.model=onera"]));
+        o.push(format!("aero.stations={s}"));
+        cases.push(("demo-blade", o));
+    }
+    for modes in [21, 29, 38] {
+        let mut o = set(&["aero.model=onera", "operating.tunnel_speed=0"]);
+        o.push(format!("structure.modes={modes}"));
+        cases.push(("goland", o));
+    }
+    cases
+}
+
+/// Every still-air case answers, on the fast path (a count, not a clock: the roots of the
+/// active block never went to faer), with finite results in which every aerodynamic state is
+/// an exactly zero root reported apart with structural share 0, and the 4N structural states
+/// are the structural roots.
+fn check_still_air(name: &str, overrides: &[String]) -> Stability {
+    let what = format!("{name} {overrides:?}");
+    let p = Preset::load(name, overrides).unwrap();
+    let ls = linear_system(&p).unwrap();
+    let roots = decompose(&ls.a, true).unwrap();
+    assert_eq!(roots.solver, Solver::Fast, "{what}");
+    let s = analyse_system(&ls).unwrap();
+    for m in s.eigenvalues.iter().chain(&s.aero_lags) {
+        let numbers = [
+            m.re,
+            m.im,
+            m.frequency_hz,
+            m.damping_ratio,
+            m.structural_share,
+        ];
+        assert!(numbers.iter().all(|v| v.is_finite()), "{what}: {m:?}");
+    }
+    assert_eq!(s.aero_lags.len(), ls.n_aero, "{what}");
+    for m in &s.aero_lags {
+        assert!(
+            m.re == 0.0 && m.im == 0.0,
+            "{what}: {} at {}",
+            m.label,
+            m.re
+        );
+        assert_eq!(m.structural_share, 0.0, "{what}: {}", m.label);
+    }
+    let structural: usize = s
+        .eigenvalues
+        .iter()
+        .map(|m| if m.im > 0.0 { 2 } else { 1 })
+        .sum();
+    assert_eq!(structural, 2 * ls.nq, "{what}");
+    assert!(s.stable, "{what}");
+    s
+}
+
+#[test]
+fn still_air_onera_cases_answer_on_the_fast_path() {
+    // One guard against a hang for all of them (the bound that matters is the path above).
+    within(600, || {
+        for (name, overrides) in still_air_cases() {
+            check_still_air(name, &overrides);
+        }
+    });
+}
+
+/// `name`'s aerodynamic model reduced to its apparent mass: no loads, no states.
+#[derive(Debug)]
+struct ApparentMassOnly(Box<dyn StripModel>);
+
+impl StripModel for ApparentMassOnly {
+    fn name(&self) -> &'static str {
+        "apparent mass only"
+    }
+    fn states_per_station(&self) -> usize {
+        0
+    }
+    fn apparent_mass(&self, s: &Station) -> [[f64; 2]; 2] {
+        self.0.apparent_mass(s)
+    }
+    fn evaluate(&self, _: &Station, _: &Kinematics, _: &[f64], out: &mut StripEval, _: bool) {
+        out.clear();
+    }
+    fn steady_states(&self, _: &Station, _: f64, _: f64, _: &mut SteadyStates) {}
+}
+
+#[test]
+fn still_air_structural_roots_are_the_structure_with_apparent_mass() {
+    // At V0 = 0 every ONERA load vanishes (circulatory and stall loads ∝ V0 or V0², the lag
+    // states' effect ∝ V0) except the apparent mass, which stays in the mass matrix. So the
+    // structural roots are those of (M − M_a, C_s, K) at Ω = 0, not the bare in-vacuo (M, K):
+    // the added air inertia lowers every natural frequency.
+    for (name, overrides) in [
+        (
+            "goland",
+            vec![
+                "aero.model=onera",
+                "operating.tunnel_speed=0",
+                "structure.modes=21",
+            ],
+        ),
+        (
+            "liu2017",
+            vec![
+                "aero.model=onera",
+                "operating.rotor_speed=0",
+                "operating.wind_speed=0",
+                "aero.stations=28",
+                "structure.loss_factor=0",
+            ],
+        ),
+    ] {
+        let p = preset(name, &overrides);
+        let o: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
+        let still = check_still_air(name, &o);
+        let model = Box::new(ApparentMassOnly(model_for(&p).unwrap()));
+        let loaded = System::from_parts(assemble(&p).unwrap(), preset_stations(&p), model)
+            .unwrap()
+            .linearise()
+            .unwrap();
+        let loaded = analyse_system(&loaded).unwrap();
+        let sorted = |s: &Stability| {
+            let mut l: Vec<(f64, f64)> = s.eigenvalues.iter().map(|m| (m.im, m.re)).collect();
+            l.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+            l
+        };
+        let (a, b) = (sorted(&still), sorted(&loaded));
+        assert_eq!(a.len(), b.len(), "{name}");
+        for (x, y) in a.iter().zip(&b) {
+            let scale = x.0.hypot(x.1);
+            assert!(
+                (x.0 - y.0).abs() <= 1e-10 * scale && (x.1 - y.1).abs() <= 1e-10 * scale,
+                "{name}: {x:?} vs {y:?}"
+            );
+        }
+        // Undamped here, so the roots are ±iω: each frequency sits below its in-vacuo one.
+        let natural = assemble(&p).unwrap().natural_modes().unwrap();
+        let mut f: Vec<f64> = still.eigenvalues.iter().map(|m| m.frequency_hz).collect();
+        f.sort_by(f64::total_cmp);
+        assert_eq!(f.len(), natural.len(), "{name}");
+        for (f, m) in f.iter().zip(&natural) {
+            assert!(*f < m.frequency_hz, "{name} {}: {f} Hz", m.label);
+        }
+    }
 }

@@ -22,7 +22,7 @@ fn preset(name: &str, overrides: &[&str]) -> ValidPreset {
 }
 
 /// Run `f` on a thread and fail if it does not finish in `secs` (guards against hangs).
-fn within<T: Send + 'static>(secs: u64, f: impl FnOnce() -> T + Send + 'static) -> T {
+pub(crate) fn within<T: Send + 'static>(secs: u64, f: impl FnOnce() -> T + Send + 'static) -> T {
     let (tx, rx) = mpsc::channel();
     std::thread::spawn(move || {
         let _ = tx.send(f());
