@@ -66,6 +66,15 @@ impl Error {
     pub fn usage(msg: impl Into<String>) -> Self {
         Error::Usage(msg.into())
     }
+    /// A numerical error prefixed with where it happened (`at`: the operating point, the values
+    /// being varied), so the user knows which point to look at; other errors already name their
+    /// origin and are returned unchanged.
+    pub fn at(self, at: impl std::fmt::Display) -> Self {
+        match self {
+            Error::Numerical(m) => Error::Numerical(format!("{at}: {m}")),
+            e => e,
+        }
+    }
     /// A [`Error::Format`] at `line` of `path`.
     pub fn format(path: impl Into<String>, line: usize, message: impl Into<String>) -> Self {
         Error::Format {

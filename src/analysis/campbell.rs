@@ -104,6 +104,7 @@ mod tests {
             parameter: parameter.into(),
             values: vec![0.0, 60.0, 120.0],
             modes,
+            failed: Vec::new(),
         }
     }
 

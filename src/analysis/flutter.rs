@@ -9,9 +9,16 @@
 //! solves (≈ 10 for a 40-point grid). The kind (flutter or divergence) and frequency come from
 //! the critical root just past the crossing; its mode label is the one it had at the start of the
 //! range, tracked by MAC along the grid.
+//!
+//! A grid point that cannot be solved (a numerical failure, e.g. no static equilibrium) is
+//! skipped, counted and named in the result's message: one unconvergent point says nothing
+//! about the stability of its neighbours, and aborting would hide a boundary the rest of the
+//! grid brackets. A refinement point inside the final bracket that cannot be solved ends the
+//! search with an error naming the bracket and the value.
 
 use crate::analysis::cancel::Cancel;
 use crate::analysis::eigen::{analyse, Mode, Stability, NEUTRAL_TOLERANCE};
+use crate::analysis::sweep::{failed_points, point_result, FailedPoint, PointResult};
 use crate::analysis::tracking::track_modes;
 use crate::error::{Error, Result};
 use crate::preset::{key_spec, ValidPreset};
@@ -41,11 +48,17 @@ pub struct Boundary {
 }
 
 /// A boundary with the result in plain words (also when there is no crossing: stable throughout,
-/// or already unstable at the start of the range).
+/// or already unstable at the start of the range), the largest σ the grid met, and the grid
+/// points that could not be solved.
 #[derive(Debug, Clone, Serialize)]
 pub struct Search {
+    #[serde(flatten)]
     pub boundary: Boundary,
     pub message: String,
+    /// The largest σ (1/s) over the solved grid points: the margin when stable throughout.
+    pub max_re: f64,
+    /// Grid points that could not be solved (numerical failures), skipped by the search.
+    pub failed: Vec<FailedPoint>,
 }
 
 /// Relative accuracy of the critical value (docs/model.md §6).
@@ -124,15 +137,47 @@ pub fn search(p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<S
     let grid: Vec<f64> = (0..points)
         .map(|i| from + (to - from) * i as f64 / (points - 1) as f64)
         .collect();
-    let results: Vec<Stability> = grid
+    let results: Vec<PointResult> = grid
         .par_iter()
-        .map(|&v| cancel.check().and_then(|_| stability_at(p, key, v)))
+        .map(|&v| {
+            cancel.check()?;
+            point_result(stability_at(p, key, v))
+        })
         .collect::<Result<_>>()?;
     let unit = if spec.unit.is_empty() {
         String::new()
     } else {
         format!(" {}", spec.unit)
     };
+    let failed = failed_points(&grid, &results);
+    // The search runs over the solved points; a failed one is skipped, and said.
+    let solved: Vec<(f64, &Stability)> = grid
+        .iter()
+        .zip(&results)
+        .filter_map(|(&v, r)| r.as_ref().ok().map(|s| (v, s)))
+        .collect();
+    let skipped = match failed.first() {
+        Some(f) => format!(
+            "; {} of {points} grid points could not be solved and were skipped (the first at \
+             {key} = {}{unit}: {})",
+            failed.len(),
+            f.value,
+            f.error
+        ),
+        None => String::new(),
+    };
+    let Some(&(start, first_solved)) = solved.first() else {
+        let f = &failed[0];
+        return Err(Error::numerical(format!(
+            "flutter: none of the {points} grid points of {key} in {from} … {to}{unit} could be \
+             solved; at {key} = {}{unit}: {}",
+            f.value, f.error
+        )));
+    };
+    let max_re = solved
+        .iter()
+        .map(|(_, s)| s.max_re())
+        .fold(f64::NEG_INFINITY, f64::max);
     let none = |message: String| Search {
         boundary: Boundary {
             parameter: key.to_string(),
@@ -141,33 +186,37 @@ pub fn search(p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<S
             kind: None,
             mode: None,
         },
-        message,
+        message: message + &skipped,
+        max_re,
+        failed: failed.clone(),
     };
-    if unstable(&results[0]) {
-        let m = results[0].critical().map(describe).unwrap_or_default();
+    if unstable(first_solved) {
+        let m = first_solved.critical().map(describe).unwrap_or_default();
         return Ok(none(format!(
-            "already unstable at the start of the range, {key} = {from}{unit} ({m}); \
+            "already unstable at the start of the range, {key} = {start}{unit} ({m}); \
              start the search from a value where the blade is stable (--from is where it \
              starts; the range may run downward)"
         )));
     }
-    let Some(first) = results.iter().position(unstable) else {
-        let margin = results
-            .iter()
-            .map(Stability::max_re)
-            .fold(f64::NEG_INFINITY, f64::max);
+    let Some(first) = solved.iter().position(|(_, s)| unstable(s)) else {
         return Ok(none(format!(
             "no stability boundary for {key} in {from} … {to}{unit}: stable throughout \
-             (largest σ = {margin:.4} 1/s)"
+             (largest σ = {max_re:.4} 1/s)"
         )));
     };
-    let (mut lo, mut hi) = (grid[first - 1], grid[first]);
-    let (mut s_lo, mut s_hi) = (results[first - 1].clone(), results[first].clone());
+    let (mut lo, mut hi) = (solved[first - 1].0, solved[first].0);
+    let (mut s_lo, mut s_hi) = (solved[first - 1].1.clone(), solved[first].1.clone());
+    let stable_side: Vec<Stability> = solved[..first].iter().map(|(_, s)| (*s).clone()).collect();
     let scale = (to - from).abs();
     while (hi - lo).abs() > RELATIVE_TOLERANCE * lo.abs().max(hi.abs()).max(1e-3 * scale) {
         let mid = 0.5 * (lo + hi);
         cancel.check()?;
-        let s = stability_at(p, key, mid)?;
+        let s = stability_at(p, key, mid).map_err(|e| {
+            e.at(format!(
+                "flutter: the boundary lies between {key} = {lo} and {hi}{unit}, but {key} = \
+                 {mid}{unit} could not be solved"
+            ))
+        })?;
         if unstable(&s) {
             hi = mid;
             s_hi = s;
@@ -186,8 +235,8 @@ pub fn search(p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<S
     let mut crossing = s_hi
         .critical()
         .cloned()
-        .ok_or_else(|| Error::numerical("flutter: no roots at the crossing"))?;
-    crossing.label = tracked_label(&results[..first], &s_hi, &crossing);
+        .ok_or_else(|| Error::numerical(format!("flutter: no roots at {key} = {hi}{unit}")))?;
+    crossing.label = tracked_label(&stable_side, &s_hi, &crossing);
     let kind = if crossing.im > 0.0 {
         BoundaryKind::Flutter
     } else {
@@ -213,7 +262,9 @@ pub fn search(p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<S
             kind: Some(kind),
             mode: Some(crossing.label),
         },
-        message: what,
+        message: what + &skipped,
+        max_re,
+        failed,
     })
 }
 

@@ -2,7 +2,8 @@
 //! docs/model.md §6.4).
 //!
 //! One-dimensional: [`track`] solves every grid point on all cores, then tracks the structural
-//! modes of the first point through the grid by MAC (sequential, cheap).
+//! modes through the grid by MAC (sequential, cheap), from the first solved point, starting a
+//! track wherever a root appears. A point that cannot be solved costs that point only.
 //!
 //! Multi-dimensional ([`grid_sweep`]): the grid is the product of the keys' axes, the last key
 //! varying fastest. Modes are tracked along the last key, one *line* per combination of the other
@@ -15,7 +16,7 @@ use crate::analysis::cancel::Cancel;
 use crate::analysis::eigen::{analyse, Mode, Stability};
 use crate::analysis::tracking::track_modes;
 use crate::error::{Error, Result};
-use crate::preset::ValidPreset;
+use crate::preset::{key_spec, ValidPreset};
 use rayon::prelude::*;
 use serde::Serialize;
 use std::ops::Range;
@@ -23,11 +24,26 @@ use std::ops::Range;
 /// One tracked mode along a one-dimensional sweep.
 #[derive(Debug, Clone, Serialize)]
 pub struct TrackedMode {
-    /// Label at the first grid point; kept through crossings by MAC tracking.
+    /// Label where the track starts (its first solved point, or where its root first appears),
+    /// kept through crossings by MAC tracking; a label an earlier track already has is followed
+    /// by ` (from VALUE)`, the key's value where this one starts.
     pub label: String,
+    /// NaN where the mode has no root: the point failed ([`TrackedSweep::failed`]), or the mode
+    /// has not appeared yet or has merged with another there.
     pub frequency_hz: Vec<f64>,
     pub damping_ratio: Vec<f64>,
     pub re: Vec<f64>,
+}
+
+/// A grid point that could not be solved (a numerical failure such as no static equilibrium).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FailedPoint {
+    /// Its position in the grid.
+    pub index: usize,
+    /// The varied key's value there.
+    pub value: f64,
+    /// Why (the numerical error).
+    pub error: String,
 }
 
 /// Tracked modes over a one-dimensional grid.
@@ -36,11 +52,23 @@ pub struct TrackedSweep {
     pub parameter: String,
     pub values: Vec<f64>,
     pub modes: Vec<TrackedMode>,
+    /// The points that could not be solved, in grid order: every mode is NaN there.
+    pub failed: Vec<FailedPoint>,
 }
 
-/// Tracked structural modes of `p` along `key` over `grid`. Values where a mode has no partner
-/// (e.g. a pair that split into real roots) or where the point could not be solved (a numerical
-/// failure such as no static equilibrium) are NaN (null in JSON); input errors still fail.
+impl TrackedSweep {
+    /// Why point `k` could not be solved, if it could not.
+    pub fn failure_at(&self, k: usize) -> Option<&FailedPoint> {
+        self.failed.iter().find(|f| f.index == k)
+    }
+}
+
+/// One grid point's result: its analysis, or the numerical error that stopped it.
+pub type PointResult = std::result::Result<Stability, Error>;
+
+/// Tracked structural modes of `p` along `key` over `grid`. A point that cannot be solved (a
+/// numerical failure) costs that point only: it is listed in [`TrackedSweep::failed`] and the
+/// tracks cross it; input errors still fail the whole sweep.
 pub fn track(p: &ValidPreset, key: &str, grid: &[f64]) -> Result<TrackedSweep> {
     track_cancellable(p, key, grid, &Cancel::never())
 }
@@ -52,39 +80,37 @@ pub fn track_cancellable(
     grid: &[f64],
     cancel: &Cancel,
 ) -> Result<TrackedSweep> {
-    let points: Vec<Option<Stability>> = grid
+    let points: Vec<PointResult> = grid
         .par_iter()
         .map(|&v| {
             cancel.check()?;
-            solved_or_gap(p.with(key, v).and_then(|q| analyse(&q)))
+            point_result(p.with(key, v).and_then(|q| analyse(&q)))
         })
         .collect::<Result<_>>()?;
     Ok(tracked_with_gaps(key, grid, &points))
 }
 
-/// Track already-solved points (the explorer can solve incrementally and call this).
-pub fn tracked_from(key: &str, grid: &[f64], points: &[Stability]) -> TrackedSweep {
-    let points: Vec<Option<Stability>> = points.iter().cloned().map(Some).collect();
-    tracked_with_gaps(key, grid, &points)
-}
-
-/// A point's result, with numerical failures turned into a gap (None).
-fn solved_or_gap(r: Result<Stability>) -> Result<Option<Stability>> {
+/// A point's result, keeping a numerical failure as that point's result; any other error (bad
+/// input, cancellation) ends the whole computation.
+pub fn point_result(r: Result<Stability>) -> Result<PointResult> {
     match r {
-        Ok(s) => Ok(Some(s)),
-        Err(Error::Numerical(_)) => Ok(None),
+        Ok(s) => Ok(Ok(s)),
+        Err(e @ Error::Numerical(_)) => Ok(Err(e)),
         Err(e) => Err(e),
     }
 }
 
-/// Track through points some of which are gaps (no modes there; tracks resume after).
-pub fn tracked_with_gaps(key: &str, grid: &[f64], points: &[Option<Stability>]) -> TrackedSweep {
+/// Track through points some of which failed (no modes there; the tracks cross them).
+pub fn tracked_with_gaps(key: &str, grid: &[f64], points: &[PointResult]) -> TrackedSweep {
     let lists: Vec<Vec<Mode>> = points
         .iter()
-        .map(|s| s.as_ref().map_or_else(Vec::new, |s| s.eigenvalues.clone()))
+        .map(|s| {
+            s.as_ref()
+                .map_or_else(|_| Vec::new(), |s| s.eigenvalues.clone())
+        })
         .collect();
-    let tracks = track_modes(&lists);
-    let modes = tracks
+    let mut labels: Vec<String> = Vec::new();
+    let modes = track_modes(&lists)
         .into_iter()
         .map(|t| {
             let pick = |f: fn(&Mode) -> f64| -> Vec<f64> {
@@ -94,8 +120,10 @@ pub fn tracked_with_gaps(key: &str, grid: &[f64], points: &[Option<Stability>]) 
                     .map(|(i, modes)| i.map_or(f64::NAN, |i| f(&modes[i])))
                     .collect()
             };
+            let label = unique_label(&labels, &t.label, grid[t.start]);
+            labels.push(label.clone());
             TrackedMode {
-                label: t.label.clone(),
+                label,
                 frequency_hz: pick(|m| m.frequency_hz),
                 damping_ratio: pick(|m| m.damping_ratio),
                 re: pick(|m| m.re),
@@ -106,7 +134,40 @@ pub fn tracked_with_gaps(key: &str, grid: &[f64], points: &[Option<Stability>]) 
         parameter: key.to_string(),
         values: grid.to_vec(),
         modes,
+        failed: failed_points(grid, points),
     }
+}
+
+/// The points of `grid` whose result is an error, with the error.
+pub fn failed_points(grid: &[f64], points: &[PointResult]) -> Vec<FailedPoint> {
+    points
+        .iter()
+        .zip(grid)
+        .enumerate()
+        .filter_map(|(index, (r, &value))| {
+            r.as_ref().err().map(|e| FailedPoint {
+                index,
+                value,
+                error: e.to_string(),
+            })
+        })
+        .collect()
+}
+
+/// `label`, or when an earlier track has it (a root that appeared later and was labelled like
+/// one already tracked), `label (from VALUE)`, numbered if even that is taken.
+fn unique_label(taken: &[String], label: &str, start: f64) -> String {
+    if !taken.iter().any(|t| t == label) {
+        return label.to_string();
+    }
+    let base = format!("{label} (from {start})");
+    let mut name = base.clone();
+    let mut k = 2;
+    while taken.contains(&name) {
+        name = format!("{base} #{k}");
+        k += 1;
+    }
+    name
 }
 
 /// Slice `index` (1-based) of `count` of a grid sweep.
@@ -140,6 +201,9 @@ impl Shard {
     }
 }
 
+/// Most points a grid sweep takes (the product of its axes).
+pub const MAX_GRID_POINTS: usize = 100_000_000;
+
 /// A product grid: `keys[k]` takes the values `axes[k]`; the last key varies fastest.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Grid {
@@ -164,46 +228,170 @@ impl Grid {
         }
         out
     }
+
+    /// The grid's input errors, found before any point is solved (so a command prints nothing
+    /// before them): its size, every value of every axis against its key's range, and the rules
+    /// across keys at every corner of the grid (each key at the first or the last value of its
+    /// axis). Each rule is monotone or convex in every key separately, so its worst case over
+    /// the grid lies at a corner; there are never more corners than grid points.
+    pub fn check(&self, p: &ValidPreset) -> Result<()> {
+        if self.keys.is_empty()
+            || self.keys.len() != self.axes.len()
+            || self.axes.iter().any(Vec::is_empty)
+        {
+            return Err(Error::usage(
+                "sweep: every --vary needs at least one grid point",
+            ));
+        }
+        let total = self
+            .axes
+            .iter()
+            .try_fold(1usize, |acc, a| acc.checked_mul(a.len()));
+        if total.is_none_or(|t| t > MAX_GRID_POINTS) {
+            let sizes: Vec<String> = self.axes.iter().map(|a| a.len().to_string()).collect();
+            return Err(Error::usage(format!(
+                "sweep: the grid is too large: {} points; the limit is {MAX_GRID_POINTS} \
+                 (100 million)",
+                sizes.join(" × ")
+            )));
+        }
+        for (key, axis) in self.keys.iter().zip(&self.axes) {
+            let spec = key_spec(key)?;
+            for &v in axis {
+                spec.check(&p.origin, v)?;
+            }
+        }
+        let spread: Vec<usize> = (0..self.axes.len())
+            .filter(|&k| self.axes[k].len() > 1)
+            .collect();
+        for corner in 0..1usize << spread.len() {
+            let values: Vec<(&str, f64)> = self
+                .keys
+                .iter()
+                .zip(&self.axes)
+                .enumerate()
+                .map(|(k, (key, axis))| {
+                    let last = spread
+                        .iter()
+                        .position(|&s| s == k)
+                        .is_some_and(|bit| corner >> bit & 1 == 1);
+                    (
+                        key.as_str(),
+                        if last { axis[axis.len() - 1] } else { axis[0] },
+                    )
+                })
+                .collect();
+            p.with_all(&values).map_err(|e| match e {
+                Error::Invalid { origin, message } => Error::Invalid {
+                    origin,
+                    message: format!(
+                        "at the sweep's grid point {}: {message}",
+                        values
+                            .iter()
+                            .map(|(k, v)| format!("{k} = {v}"))
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    ),
+                },
+                e => e,
+            })?;
+        }
+        Ok(())
+    }
 }
 
-/// One output row: a tracked mode at one grid point.
+/// What a sweep row holds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum RowStatus {
+    /// The mode's frequency, damping ratio and σ at this point.
+    Ok,
+    /// The point was solved but this mode has no root there: it appears further along the line,
+    /// or its root merged with another (two real roots became one oscillating pair).
+    NoRoot,
+    /// The point could not be solved ([`SweepRow::error`] says why): one row, no mode.
+    Failed,
+}
+
+impl RowStatus {
+    /// The word in CSV and JSON.
+    pub fn name(self) -> &'static str {
+        match self {
+            RowStatus::Ok => "ok",
+            RowStatus::NoRoot => "no-root",
+            RowStatus::Failed => "failed",
+        }
+    }
+}
+
+/// One output row: a tracked mode at one grid point, or a point that failed.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SweepRow {
     /// Values of the grid keys, in key order.
     pub values: Vec<f64>,
-    pub mode: String,
+    /// The tracked mode; `None` on a failed point's row.
+    pub mode: Option<String>,
+    /// NaN (null in JSON, empty in CSV) unless the status is ok.
     pub frequency_hz: f64,
     pub damping_ratio: f64,
     pub re: f64,
+    pub status: RowStatus,
+    /// Why the point could not be solved (failed rows only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub error: Option<String>,
+}
+
+/// What a grid sweep could not compute, counted over the shard's own points, with the first
+/// row of each kind, for the command's warning.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct SweepSummary {
+    /// The shard's grid points.
+    pub points: usize,
+    /// Points that could not be solved (status failed).
+    pub failed: usize,
+    pub first_failed: Option<SweepRow>,
+    /// Rows of solved points where a mode has no root (status no-root).
+    pub no_root: usize,
+    pub first_no_root: Option<SweepRow>,
+}
+
+impl SweepSummary {
+    fn count(&mut self, r: &SweepRow) {
+        let (n, first) = match r.status {
+            RowStatus::Ok => return,
+            RowStatus::Failed => (&mut self.failed, &mut self.first_failed),
+            RowStatus::NoRoot => (&mut self.no_root, &mut self.first_no_root),
+        };
+        *n += 1;
+        first.get_or_insert_with(|| r.clone());
+    }
 }
 
 /// Points solved per parallel batch: bounds memory on huge grids while keeping cores busy.
 const BATCH_POINTS: usize = 4096;
 
 /// Solve the shard's slice of `grid`, handing rows to `sink` batch by batch in grid order.
-/// `progress` is called with the number of points just solved (warm-up included). Returns how
-/// many of the shard's points could not be solved (numerical failure: their rows are NaN).
+/// `progress` is called with the number of points just solved (warm-up included). Every point
+/// of the grid is in the output: a solved point as one row per tracked mode of its line, a point
+/// that could not be solved (a numerical failure) as one `failed` row. Input errors fail before
+/// any point is solved ([`Grid::check`]).
 pub fn grid_sweep(
     p: &ValidPreset,
     grid: &Grid,
     shard: Option<Shard>,
     progress: &(dyn Fn(u64) + Sync),
     sink: &mut dyn FnMut(&[SweepRow]) -> Result<()>,
-) -> Result<usize> {
-    if grid.keys.is_empty()
-        || grid.keys.len() != grid.axes.len()
-        || grid.axes.iter().any(Vec::is_empty)
-    {
-        return Err(Error::usage(
-            "sweep: every --vary needs at least one grid point",
-        ));
-    }
+) -> Result<SweepSummary> {
+    grid.check(p)?;
     let total = grid.total();
     let own = shard.map_or(0..total, |s| s.range(total));
+    let mut summary = SweepSummary {
+        points: own.len(),
+        ..SweepSummary::default()
+    };
     if own.is_empty() {
-        return Ok(0);
+        return Ok(summary);
     }
-    let mut failed = 0;
     let line = grid.line_length();
     let first_line = own.start / line;
     let last_line = (own.end - 1) / line;
@@ -220,19 +408,14 @@ pub fn grid_sweep(
             next_line += 1;
         }
         let flat: Vec<usize> = lines.iter().flat_map(|r| r.clone()).collect();
-        let solved: Vec<Option<Stability>> = flat
+        let solved: Vec<PointResult> = flat
             .par_iter()
             .map(|&i| {
-                let s = solved_or_gap(solve_point(p, grid, i));
+                let s = point_result(solve_point(p, grid, i));
                 progress(1);
                 s
             })
             .collect::<Result<_>>()?;
-        failed += flat
-            .iter()
-            .zip(&solved)
-            .filter(|(i, s)| own.contains(i) && s.is_none())
-            .count();
         let mut rows = Vec::new();
         let mut offset = 0;
         for r in &lines {
@@ -249,20 +432,40 @@ pub fn grid_sweep(
                     continue;
                 }
                 let values = grid.values(i);
+                if let Some(f) = tracked.failure_at(k) {
+                    rows.push(SweepRow {
+                        values,
+                        mode: None,
+                        frequency_hz: f64::NAN,
+                        damping_ratio: f64::NAN,
+                        re: f64::NAN,
+                        status: RowStatus::Failed,
+                        error: Some(f.error.clone()),
+                    });
+                    continue;
+                }
                 for m in &tracked.modes {
+                    let status = if m.re[k].is_nan() {
+                        RowStatus::NoRoot
+                    } else {
+                        RowStatus::Ok
+                    };
                     rows.push(SweepRow {
                         values: values.clone(),
-                        mode: m.label.clone(),
+                        mode: Some(m.label.clone()),
                         frequency_hz: m.frequency_hz[k],
                         damping_ratio: m.damping_ratio[k],
                         re: m.re[k],
+                        status,
+                        error: None,
                     });
                 }
             }
         }
+        rows.iter().for_each(|r| summary.count(r));
         sink(&rows)?;
     }
-    Ok(failed)
+    Ok(summary)
 }
 
 fn solve_point(p: &ValidPreset, grid: &Grid, i: usize) -> Result<Stability> {
@@ -298,6 +501,48 @@ mod tests {
         for bad in ["0/3", "4/3", "1/0", "x/2", "3"] {
             assert!(Shard::parse(bad).is_err(), "{bad}");
         }
+    }
+
+    #[test]
+    fn grid_check_finds_range_rule_and_size_errors_up_front() {
+        let p = crate::preset::Preset::load("liu2017", &[]).unwrap();
+        let grid = |keys: &[&str], axes: Vec<Vec<f64>>| Grid {
+            keys: keys.iter().map(|k| k.to_string()).collect(),
+            axes,
+        };
+        let ok = grid(
+            &["aero.onera.alpha1", "operating.rotor_speed"],
+            vec![vec![0.0, 10.0], vec![0.0, 100.0]],
+        );
+        assert!(ok.check(&p).is_ok());
+        // alpha2 = 18 must exceed alpha1: fine at 0 and 10, broken at the corner alpha1 = 20.
+        let e = grid(&["aero.onera.alpha1"], vec![vec![0.0, 10.0, 20.0]])
+            .check(&p)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("grid point aero.onera.alpha1 = 20"), "{e}");
+        let e = grid(&["operating.rotor_speed"], vec![vec![0.0, 6000.0]])
+            .check(&p)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("6000 is out of range"), "{e}");
+        let big = vec![vec![0.0; 100_000]; 2];
+        let e = grid(&["operating.pitch", "operating.wind_speed"], big)
+            .check(&p)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("100000 × 100000 points"), "{e}");
+    }
+
+    #[test]
+    fn a_label_already_tracked_names_where_its_track_starts() {
+        let taken = vec!["flap 1".to_string(), "flap 1 (from 50)".to_string()];
+        assert_eq!(unique_label(&taken, "flap 2", 50.0), "flap 2");
+        assert_eq!(
+            unique_label(&taken[..1], "flap 1", 50.0),
+            "flap 1 (from 50)"
+        );
+        assert_eq!(unique_label(&taken, "flap 1", 50.0), "flap 1 (from 50) #2");
     }
 
     #[test]

@@ -1,9 +1,12 @@
 //! Mode tracking along a swept parameter by eigenvector correlation (MAC; docs/model.md §6.2).
 //!
-//! Input: the structural modes at consecutive parameter values (each with its Galerkin shape).
-//! Output: tracks — for each mode of the first point, the index of the same physical mode at
-//! every later point (or none where it has no partner, e.g. when a complex pair turns into two
-//! real roots at divergence).
+//! Input: the structural modes at consecutive parameter values (each with its Galerkin shape); a
+//! point that could not be solved has none. Output: tracks — for each mode, the index of the same
+//! physical mode at every point, or none where it has no root: before it appears, at a point that
+//! could not be solved, or where its root merged with another (two real roots of an overdamped
+//! mode becoming one oscillating pair). A track starts wherever a root is left unclaimed by the
+//! tracks so far: the modes of the first solved point, and any root that appears later (a pair
+//! splitting into two real roots), so a failed first point or a growing root count drops nothing.
 //!
 //! Consecutive points are matched by the assignment that maximises the total Modal Assurance
 //! Criterion `MAC(a, b) = |aᴴb|² / (|a|²|b|²)`, solved exactly by the Hungarian algorithm
@@ -29,10 +32,12 @@ pub fn mac(a: &[Complex<f64>], b: &[Complex<f64>]) -> f64 {
     }
 }
 
-/// One tracked mode: its label at the first point and its index in each point's mode list.
+/// One tracked mode: its label where it starts and its index in each point's mode list.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Track {
     pub label: String,
+    /// The point where the track starts (its first root).
+    pub start: usize,
     pub index: Vec<Option<usize>>,
 }
 
@@ -41,30 +46,30 @@ pub struct Track {
 /// else.
 const EIGENVALUE_TIE_BREAK: f64 = 1e-3;
 
-/// Track the modes of `points[0]` through every later point.
+/// Track the modes through `points`, starting a track at every root no earlier track claims.
 pub fn track_modes(points: &[Vec<Mode>]) -> Vec<Track> {
-    let Some(first) = points.first() else {
-        return Vec::new();
-    };
-    let mut tracks: Vec<Track> = first
-        .iter()
-        .enumerate()
-        .map(|(i, m)| Track {
-            label: m.label.clone(),
-            index: vec![Some(i)],
-        })
-        .collect();
+    let mut tracks: Vec<Track> = Vec::new();
     // Reference (last matched) mode of each track.
-    let mut reference: Vec<Mode> = first.clone();
-    for modes in &points[1..] {
+    let mut reference: Vec<Mode> = Vec::new();
+    for (k, modes) in points.iter().enumerate() {
         let assignment = match_modes(&reference, modes);
-        for (t, a) in tracks.iter_mut().zip(&assignment) {
+        let mut claimed = vec![false; modes.len()];
+        for ((t, r), a) in tracks.iter_mut().zip(&mut reference).zip(&assignment) {
             t.index.push(*a);
-        }
-        for (r, a) in reference.iter_mut().zip(&assignment) {
-            if let Some(j) = a {
-                *r = modes[*j].clone();
+            if let Some(j) = *a {
+                claimed[j] = true;
+                *r = modes[j].clone();
             }
+        }
+        for (j, m) in modes.iter().enumerate().filter(|(j, _)| !claimed[*j]) {
+            let mut index = vec![None; k];
+            index.push(Some(j));
+            tracks.push(Track {
+                label: m.label.clone(),
+                start: k,
+                index,
+            });
+            reference.push(m.clone());
         }
     }
     tracks
@@ -148,5 +153,22 @@ mod tests {
         let tracks = track_modes(&points);
         assert_eq!(tracks[0].index, vec![Some(0), None]);
         assert_eq!(tracks[1].index, vec![Some(1), Some(0)]);
+    }
+
+    #[test]
+    fn tracks_start_after_a_failed_point_and_where_a_root_appears() {
+        // The first point could not be solved (no modes); the second has one root, the third
+        // two: tracks start at the first solved point, and the new root starts its own.
+        let points = vec![
+            vec![],
+            vec![mode("a", 1.0, &[1.0, 0.0])],
+            vec![mode("a", 1.1, &[1.0, 0.1]), mode("b", 2.0, &[0.0, 1.0])],
+        ];
+        let tracks = track_modes(&points);
+        assert_eq!(tracks.len(), 2);
+        assert_eq!((tracks[0].label.as_str(), tracks[0].start), ("a", 1));
+        assert_eq!(tracks[0].index, vec![None, Some(0), Some(0)]);
+        assert_eq!((tracks[1].label.as_str(), tracks[1].start), ("b", 2));
+        assert_eq!(tracks[1].index, vec![None, None, Some(1)]);
     }
 }

@@ -5,7 +5,7 @@ use crate::error::Result;
 use crate::preset::ValidPreset;
 
 pub fn run(p: &ValidPreset, json: bool) -> Result<()> {
-    let s = analyse(p)?;
+    let s = analyse(p).map_err(|e| e.at(p.operating_point()))?;
     if json {
         return super::print_json(&s);
     }

@@ -20,7 +20,7 @@ pub fn run(
     }
     let search = flutter_search(p, key, from, to, points)?;
     if json {
-        super::print_json(&search.boundary)?;
+        super::print_json(&search)?;
     } else {
         println!("{}: {}", p.display_name(), search.message);
     }

@@ -111,6 +111,9 @@ pub fn print_text(text: &str) -> Result<()> {
     }
 }
 
+/// Most points one `--vary KEY=FROM:TO:STEP` axis may have.
+pub const MAX_AXIS_POINTS: usize = 10_000_000;
+
 /// Parse `KEY=FROM:TO:STEP` into the key and its grid (FROM and TO included when STEP divides
 /// the range; the last point never overshoots TO).
 pub fn parse_vary(spec: &str) -> Result<(String, Vec<f64>)> {
@@ -138,12 +141,24 @@ pub fn parse_vary(spec: &str) -> Result<(String, Vec<f64>)> {
     if to < from {
         return Err(bad("TO must not be below FROM"));
     }
-    let count = ((to - from) / step + 1e-9).floor() as usize + 1;
-    if count > 10_000_000 {
-        return Err(bad("grid larger than 10 million points"));
+    // Counted in floating point: a tiny STEP gives more points than any integer holds.
+    let count = ((to - from) / step + 1e-9).floor() + 1.0;
+    if count > MAX_AXIS_POINTS as f64 {
+        let count = if count.is_finite() {
+            format!("{count:.4e} points")
+        } else {
+            "more points than a number holds".to_string()
+        };
+        return Err(bad(&format!(
+            "the grid is too large: {count}; the limit is {MAX_AXIS_POINTS} (10 million) per \
+             --vary, so STEP must be at least (TO − FROM)/{}",
+            MAX_AXIS_POINTS - 1
+        )));
     }
     crate::preset::key_spec(key.trim())?;
-    let grid = (0..count).map(|i| from + step * i as f64).collect();
+    let grid = (0..count as usize)
+        .map(|i| from + step * i as f64)
+        .collect();
     Ok((key.trim().to_string(), grid))
 }
 
@@ -170,5 +185,24 @@ mod tests {
         ] {
             assert!(parse_vary(bad).is_err(), "{bad} accepted");
         }
+    }
+
+    #[test]
+    fn a_tiny_step_is_a_grid_too_large_with_its_count() {
+        for spec in [
+            "operating.rotor_speed=0:5000:1e-300",
+            "operating.rotor_speed=0:5000:5e-324",
+            "operating.rotor_speed=0:1:1e-7",
+        ] {
+            let e = parse_vary(spec).unwrap_err().to_string();
+            assert!(
+                e.contains("too large") && e.contains("10000000"),
+                "{spec}: {e}"
+            );
+        }
+        assert!(parse_vary("operating.rotor_speed=0:5000:1e-300")
+            .unwrap_err()
+            .to_string()
+            .contains("5.0000e303 points"));
     }
 }

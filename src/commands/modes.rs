@@ -6,8 +6,17 @@ use crate::physics::structure::{assemble, NaturalMode};
 use crate::preset::{Form, ValidPreset};
 
 pub fn run(p: &ValidPreset, json: bool) -> Result<()> {
-    let model = assemble(p)?;
-    let modes = model.natural_modes()?;
+    // The structure alone depends on the rotor speed only, of the operating point.
+    let at = || {
+        format!(
+            "{} at operating.rotor_speed = {} rpm",
+            p.display_name(),
+            p.operating.rotor_speed
+        )
+    };
+    let modes = assemble(p)
+        .and_then(|model| model.natural_modes())
+        .map_err(|e| e.at(at()))?;
     if json {
         return super::print_json(&serde_json::json!({ "modes": modes }));
     }

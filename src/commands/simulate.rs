@@ -10,7 +10,7 @@ pub fn run(p: &ValidPreset, json: bool, csv: bool, plot: Option<&Path>) -> Resul
     if let Some(path) = plot {
         crate::plot::format_for(path)?;
     }
-    let r = simulate(p)?;
+    let r = simulate(p).map_err(|e| e.at(p.operating_point()))?;
     if json {
         super::print_json(&r)?;
     } else if csv {

@@ -1,7 +1,7 @@
 //! `flutterscope sweep`: tracked modes over a grid of one or more keys (CSV or JSON), on all
 //! cores, optionally one shard of the grid.
 
-use crate::analysis::sweep::{grid_sweep, Grid, Shard, SweepRow};
+use crate::analysis::sweep::{grid_sweep, Grid, Shard, SweepRow, SweepSummary};
 use crate::error::{Error, Result};
 use crate::preset::ValidPreset;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -26,6 +26,8 @@ pub fn run(
         }
     }
     let grid = parse_grid(vary)?;
+    // Every input error before the first line of output.
+    grid.check(p)?;
     // Rows kept for the plot (one key: the tracked modes along it).
     let mut plotted: Vec<SweepRow> = Vec::new();
     let keep = plot.is_some();
@@ -42,9 +44,15 @@ pub fn run(
             }
             Ok(())
         })
-        .and_then(|failed| {
-            super::print_json(&serde_json::json!({ "parameters": grid.keys, "rows": rows }))
-                .map(|()| failed)
+        .and_then(|summary| {
+            super::print_json(&serde_json::json!({
+                "parameters": grid.keys,
+                "points": summary.points,
+                "failed_points": summary.failed,
+                "no_root_rows": summary.no_root,
+                "rows": rows,
+            }))
+            .map(|()| summary)
         })
     } else {
         let io = |e: std::io::Error| Error::Io(format!("cannot write CSV: {e}"));
@@ -59,15 +67,12 @@ pub fn run(
             }
             Ok(())
         })
-        .and_then(|failed| out.flush().map_err(io).map(|()| failed))
+        .and_then(|summary| out.flush().map_err(io).map(|()| summary))
     };
     bar.finish_and_clear();
-    let failed = result?;
-    if failed > 0 {
-        eprintln!(
-            "warning: {failed} grid point(s) could not be solved (e.g. no static equilibrium); \
-             their rows have empty values"
-        );
+    let summary = result?;
+    for line in warnings(&grid.keys, &summary) {
+        eprintln!("{line}");
     }
     if let Some(path) = plot {
         let tracked = crate::plot::from_results::tracked_from_rows(&grid.keys[0], &plotted);
@@ -78,8 +83,42 @@ pub fn run(
     Ok(())
 }
 
+/// What the rows without values mean, counted: failed points (a warning, with the first one's
+/// values and error) and modes without a root at a solved point (a note: physics, not failure).
+pub fn warnings(keys: &[String], s: &SweepSummary) -> Vec<String> {
+    let at = |r: &SweepRow| {
+        keys.iter()
+            .zip(&r.values)
+            .map(|(k, v)| format!("{k} = {v}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let mut out = Vec::new();
+    if let Some(r) = &s.first_failed {
+        out.push(format!(
+            "warning: {} of {} grid point(s) could not be solved (rows with status `failed`, no \
+             values); the first, at {}: {}",
+            s.failed,
+            s.points,
+            at(r),
+            r.error.as_deref().unwrap_or("unknown error")
+        ));
+    }
+    if let Some(r) = &s.first_no_root {
+        out.push(format!(
+            "note: {} row(s) have no values because that mode has no root at that point (status \
+             `no-root`: it appears further along the sweep, or two of its real roots merged into \
+             one oscillating pair); the first: {} at {}",
+            s.no_root,
+            r.mode.as_deref().unwrap_or(""),
+            at(r)
+        ));
+    }
+    out
+}
+
 /// The product grid of the `--vary KEY=A:B:STEP` arguments, in order (the last varies fastest
-/// and is the tracking direction).
+/// and is the tracking direction); [`Grid::check`] checks it against a preset.
 pub fn parse_grid(vary: &[String]) -> Result<Grid> {
     let mut keys = Vec::new();
     let mut axes = Vec::new();
@@ -94,22 +133,17 @@ pub fn parse_grid(vary: &[String]) -> Result<Grid> {
     if keys.is_empty() {
         return Err(Error::usage("sweep: give at least one --vary KEY=A:B:STEP"));
     }
-    let total = axes
-        .iter()
-        .try_fold(1usize, |acc, a| acc.checked_mul(a.len()));
-    if total.is_none_or(|t| t > 100_000_000) {
-        return Err(Error::usage("sweep: grid larger than 100 million points"));
-    }
     Ok(Grid { keys, axes })
 }
 
 pub fn csv_header(keys: &[String]) -> String {
     let mut cols: Vec<&str> = keys.iter().map(String::as_str).collect();
-    cols.extend(["mode", "frequency_hz", "damping_ratio", "re"]);
+    cols.extend(["mode", "frequency_hz", "damping_ratio", "re", "status"]);
     cols.join(",")
 }
 
-/// One CSV line; a mode with no partner at this point leaves its numbers empty.
+/// One CSV line; a row whose status is not `ok` leaves its numbers empty (a failed point its
+/// mode too).
 pub fn csv_row(r: &SweepRow) -> String {
     let num = |v: f64| {
         if v.is_finite() {
@@ -119,8 +153,9 @@ pub fn csv_row(r: &SweepRow) -> String {
         }
     };
     let mut cols: Vec<String> = r.values.iter().map(|v| format!("{v}")).collect();
-    cols.push(r.mode.clone());
+    cols.push(r.mode.clone().unwrap_or_default());
     cols.extend([num(r.frequency_hz), num(r.damping_ratio), num(r.re)]);
+    cols.push(r.status.name().to_string());
     cols.join(",")
 }
 

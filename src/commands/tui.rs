@@ -9,6 +9,18 @@ use std::io::IsTerminal;
 use std::sync::Arc;
 
 pub fn run(preset: &PresetArgs, display: &DisplayArgs, fps: u32) -> Result<()> {
+    // A dumb terminal (Emacs shell buffers, some CI consoles) cannot move the cursor or switch
+    // to the alternate screen: the full-screen explorer would scribble escape codes over it.
+    if std::env::var_os("TERM").is_some_and(|t| t == "dumb") {
+        return Err(Error::usage(format!(
+            "TERM=dumb: this terminal cannot show the full-screen explorer (no cursor movement \
+             or alternate screen). Use the headless commands: `flutterscope snapshot --preset \
+             {p} --size 120x40` renders one explorer frame as text; `flutterscope eigen \
+             --preset {p}`, `flutter`, `sweep`, `simulate` compute the same results (see \
+             `flutterscope --help`); or run it in a terminal with a real TERM (e.g. xterm-256color)",
+            p = preset.preset
+        )));
+    }
     if !(std::io::stdin().is_terminal() && std::io::stdout().is_terminal()) {
         return Err(Error::usage(format!(
             "the explorer needs a terminal on stdin and stdout. Without one, use the headless \

@@ -128,19 +128,25 @@ pub fn parse_size(text: &str) -> Result<(u16, u16)> {
         .trim()
         .split_once(['x', 'X'])
         .ok_or_else(|| bad("missing 'x'"))?;
-    let num = |s: &str| -> Result<u16> {
-        s.trim()
-            .parse::<u16>()
-            .map_err(|_| bad(&format!("'{s}' is not a whole number")))
+    // Digits that overflow an integer are a size too large, not "not a number".
+    let num = |s: &str| -> Result<u64> {
+        let s = s.trim();
+        if s.is_empty() || !s.bytes().all(|b| b.is_ascii_digit()) {
+            return Err(bad(&format!("'{s}' is not a whole number")));
+        }
+        Ok(s.parse::<u64>().unwrap_or(u64::MAX))
     };
     let (w, h) = (num(w)?, num(h)?);
     if w < 80 || h < 24 {
         return Err(bad("smaller than 80x24, the smallest explorer layout"));
     }
     if w > 1000 || h > 500 {
-        return Err(bad("larger than 1000x500"));
+        return Err(bad(&format!(
+            "{} is too large: at most 1000 columns and 500 rows",
+            text.trim()
+        )));
     }
-    Ok((w, h))
+    Ok((w as u16, h as u16))
 }
 
 /// Render `state` into a `cols × rows` buffer and return it as text, one line per row, trailing

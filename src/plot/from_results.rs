@@ -6,7 +6,7 @@ use super::{Figure, Guide, Mark, Marker, Panel, Series, PALETTE};
 use crate::analysis::campbell::ROTOR_SPEED_KEY;
 use crate::analysis::flutter::{BoundaryKind, Search};
 use crate::analysis::simulate::{Response, RunStatus};
-use crate::analysis::sweep::{SweepRow, TrackedMode, TrackedSweep};
+use crate::analysis::sweep::{FailedPoint, SweepRow, TrackedMode, TrackedSweep};
 use crate::physics::laminate::LayupSection;
 
 /// "key (unit)" for a preset key, or the bare key when it has no unit or is unknown.
@@ -70,6 +70,15 @@ pub fn sweep(preset: &str, s: &TrackedSweep) -> Figure {
     let (mut freq, mut damp) = mode_panels(s, &x_label);
     freq.title = "(a) frequency".into();
     damp.title = "(b) damping ratio ζ = −σ/|λ|".into();
+    if let Some(first) = s.failed.first() {
+        damp.notes.push(format!(
+            "{} of {} point(s) could not be solved (the first at {} = {}): gaps",
+            s.failed.len(),
+            s.values.len(),
+            s.parameter,
+            first.value
+        ));
+    }
     if let (true, Some((lo, hi))) = (campbell, finite_extent(&s.values)) {
         for n in [1.0, 3.0] {
             freq.guides.push(Guide::segment(
@@ -114,11 +123,12 @@ pub fn tip_response(preset: &str, aero: &str, r: &Response) -> Figure {
 }
 
 /// The tracked sweep of a one-key `sweep` rebuilt from its output rows (grid order: the key's
-/// values in order, every mode at each). Modes keep their first-appearance order; a mode missing
-/// at a value is NaN there.
+/// values in order, every mode at each, or one `failed` row). Modes keep their first-appearance
+/// order; a mode missing at a value is NaN there.
 pub fn tracked_from_rows(key: &str, rows: &[SweepRow]) -> TrackedSweep {
     let mut values: Vec<f64> = Vec::new();
     let mut modes: Vec<TrackedMode> = Vec::new();
+    let mut failed: Vec<FailedPoint> = Vec::new();
     for r in rows {
         let Some(&v) = r.values.last() else { continue };
         if values.last() != Some(&v) {
@@ -130,11 +140,19 @@ pub fn tracked_from_rows(key: &str, rows: &[SweepRow]) -> TrackedSweep {
             }
         }
         let n = values.len();
-        let idx = match modes.iter().position(|m| m.label == r.mode) {
+        let Some(label) = &r.mode else {
+            failed.push(FailedPoint {
+                index: n - 1,
+                value: v,
+                error: r.error.clone().unwrap_or_default(),
+            });
+            continue;
+        };
+        let idx = match modes.iter().position(|m| &m.label == label) {
             Some(i) => i,
             None => {
                 modes.push(TrackedMode {
-                    label: r.mode.clone(),
+                    label: label.clone(),
                     frequency_hz: vec![f64::NAN; n],
                     damping_ratio: vec![f64::NAN; n],
                     re: vec![f64::NAN; n],
@@ -151,6 +169,7 @@ pub fn tracked_from_rows(key: &str, rows: &[SweepRow]) -> TrackedSweep {
         parameter: key.to_string(),
         values,
         modes,
+        failed,
     }
 }
 

@@ -175,6 +175,22 @@ impl Preset {
         }
     }
 
+    /// Where one solve of this preset runs, in words, for numerical errors: the preset, its
+    /// aerodynamic model and its operating point.
+    pub fn operating_point(&self) -> String {
+        let o = &self.operating;
+        format!(
+            "{} ({} aerodynamics) at operating.rotor_speed = {} rpm, operating.wind_speed = {} \
+             m/s, operating.tunnel_speed = {} m/s, operating.pitch = {} deg",
+            self.display_name(),
+            self.aero.model.name(),
+            o.rotor_speed,
+            o.wind_speed,
+            o.tunnel_speed,
+            o.pitch
+        )
+    }
+
     // ---- SI accessors for the physics layers ----
 
     /// Rotor speed Ω (rad/s).
@@ -198,10 +214,30 @@ fn apply_override(table: &mut toml::Table, ov: &str) -> Result<()> {
     })?;
     let key = key.trim();
     let raw = raw.trim();
-    if key.is_empty() || key.split('.').any(|p| p.is_empty()) {
+    let bare = |part: &str| {
+        !part.is_empty()
+            && part
+                .bytes()
+                .all(|b| b.is_ascii_alphanumeric() || b == b'_' || b == b'-')
+    };
+    if !key.split('.').all(bare) {
         return Err(Error::usage(format!(
-            "--set: malformed key '{key}' in '{ov}'"
+            "--set: malformed key '{}' in '{}'; a key is dotted words, e.g. section.ply_angle",
+            key.escape_debug(),
+            ov.escape_debug()
         )));
+    }
+    // One --set sets one key: a line break would smuggle a second assignment into the TOML
+    // parsed below (and be silently dropped), a table or an array would replace several keys.
+    let one_key = |what: &str| {
+        Error::usage(format!(
+            "--set {key}: the value '{}' {what}; --set sets one key to one value: give each key \
+             its own --set (e.g. --set blade.length=5 --set structure.modes=3)",
+            raw.escape_debug()
+        ))
+    };
+    if raw.contains(['\n', '\r']) {
+        return Err(one_key("spans several lines"));
     }
     let value: toml::Value = match format!("v = {raw}").parse::<toml::Table>() {
         Ok(mut t) => t
@@ -209,6 +245,9 @@ fn apply_override(table: &mut toml::Table, ov: &str) -> Result<()> {
             .unwrap_or(toml::Value::String(raw.to_string())),
         Err(_) => toml::Value::String(raw.to_string()),
     };
+    if value.is_table() || value.is_array() {
+        return Err(one_key("is a TOML table or array"));
+    }
     let parts: Vec<&str> = key.split('.').collect();
     let mut cur = table;
     for part in &parts[..parts.len() - 1] {

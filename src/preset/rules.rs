@@ -3,7 +3,7 @@
 //! every preset whatever its `section.source` (`flutterscope section` evaluates the layup of any
 //! preset).
 
-use super::{ContourShape, Preset};
+use super::{ContourShape, Preset, SectionSource};
 use crate::error::{Error, Result};
 
 /// Most samples one time response may hold (`simulation.duration × simulation.sample_rate`):
@@ -38,8 +38,34 @@ pub fn check(p: &Preset) -> Result<()> {
             p.section.ea_offset, p.section.chord
         )));
     }
+    inertia_exceeds_offset_mass(p).map_err(invalid)?;
     ply_is_physical(p).map_err(invalid)?;
     walls_do_not_overlap(p).map_err(invalid)
+}
+
+/// For the sections whose mass properties the preset gives (`direct`, `table`), the polar inertia
+/// about the elastic axis `I` must exceed `m d²`: by the parallel-axis theorem `I − m d²` is the
+/// inertia about the centre of mass, which must be positive, or the mass matrix is not positive
+/// definite (docs/model.md §3–§4). The layup source computes `m`, `I` and `d` from its own walls.
+fn inertia_exceeds_offset_mass(p: &Preset) -> std::result::Result<(), String> {
+    let s = &p.section;
+    if s.source == SectionSource::Layup {
+        return Ok(());
+    }
+    let about_cg = s.polar_inertia - s.mass_per_length * s.cg_offset * s.cg_offset;
+    if about_cg > 0.0 {
+        return Ok(());
+    }
+    Err(format!(
+        "section.polar_inertia = {} kg·m (the inertia about the elastic axis) must exceed \
+         section.mass_per_length × section.cg_offset² = {} kg/m × ({} m)² = {:.4e} kg·m: the \
+         inertia about the centre of mass, I − m·d² = {about_cg:.4e} kg·m, must be positive \
+         (move the centre of mass closer to the elastic axis or raise the inertia)",
+        s.polar_inertia,
+        s.mass_per_length,
+        s.cg_offset,
+        s.mass_per_length * s.cg_offset * s.cg_offset
+    ))
 }
 
 /// A ply's compliance must be positive definite: with positive moduli (key ranges) that is

@@ -296,3 +296,172 @@ fn presets_show_prints_every_key_with_defaults_and_overrides() {
         &["no-such-blade"],
     );
 }
+
+// ---- hostile input (issue 15): errors that name what is wrong and where ----
+
+/// A centre of mass so far from the elastic axis that the inertia about it would be negative
+/// used to surface as "mass matrix is not positive definite"; the rule names keys and values.
+#[test]
+fn an_offset_mass_beyond_the_inertia_names_keys_and_values() {
+    let r = run(&[
+        "modes",
+        "--preset",
+        "goland",
+        "--set",
+        "section.cg_offset=1",
+    ]);
+    assert_fails_naming(
+        &r,
+        &[
+            "goland",
+            "section.polar_inertia = 8.64",
+            "section.mass_per_length × section.cg_offset² = 35.71 kg/m × (1 m)²",
+            "I − m·d²",
+        ],
+    );
+    assert_eq!(r.code, Some(1));
+    assert!(!r.stderr.contains("positive definite"), "{}", r.stderr);
+    // Within the rule (I = 8.64 > 35.71 × 0.45² = 7.23) the modes are computed.
+    let ok = run(&[
+        "modes",
+        "--preset",
+        "goland",
+        "--set",
+        "section.cg_offset=0.45",
+    ]);
+    assert_eq!(ok.code, Some(0), "{}", ok.stderr);
+}
+
+/// A single solve that fails numerically names the preset and its operating point.
+#[test]
+fn numerical_errors_name_the_operating_point() {
+    let point = [
+        "liu2017-stall (onera aerodynamics) at operating.rotor_speed = 0 rpm",
+        "operating.wind_speed = 20 m/s",
+        "operating.pitch = 10 deg",
+        "static equilibrium",
+    ];
+    for args in [
+        &["eigen", "--set", "operating.rotor_speed=0"][..],
+        &[
+            "simulate",
+            "--set",
+            "operating.rotor_speed=0",
+            "--set",
+            "simulation.start=equilibrium",
+        ][..],
+    ] {
+        let r = run(&[args, &["--preset", "liu2017-stall"]].concat());
+        assert_fails_naming(&r, &point);
+        assert_eq!(r.code, Some(1));
+    }
+}
+
+/// One unconvergent grid point (0 rpm) used to abort the whole search without saying which
+/// rpm; now it is skipped, and the result names it, in text and JSON.
+#[test]
+fn a_flutter_search_skips_a_failed_point_and_names_it() {
+    let args = [
+        "flutter",
+        "--preset",
+        "liu2017-stall",
+        "--vary",
+        "operating.rotor_speed",
+        "--from",
+        "0",
+        "--to",
+        "5000",
+        "--points",
+        "11",
+    ];
+    let text = run(&args);
+    assert_eq!(text.code, Some(0), "{}", text.stderr);
+    assert!(
+        text.stdout
+            .contains("1 of 11 grid points could not be solved and were skipped")
+            && text
+                .stdout
+                .contains("operating.rotor_speed = 0 rpm: numerical: static equilibrium"),
+        "{}",
+        text.stdout
+    );
+    let v = json(&run(&[&args[..], &["--json"]].concat()));
+    assert_eq!(v["failed"].as_array().unwrap().len(), 1);
+    assert_eq!(v["failed"][0]["value"], 0.0);
+    assert!(v["failed"][0]["error"]
+        .as_str()
+        .unwrap()
+        .contains("static equilibrium"));
+    assert!(v["message"].as_str().unwrap().contains("skipped"));
+    assert!(v["max_re"].as_f64().unwrap().is_finite());
+}
+
+/// With no crossing, the JSON used to carry only nulls while the text said why.
+#[test]
+fn flutter_json_without_a_crossing_says_why_and_gives_the_largest_sigma() {
+    let v = json(&run(&[
+        "flutter",
+        "--vary",
+        "operating.rotor_speed",
+        "--from",
+        "100",
+        "--to",
+        "200",
+        "--points",
+        "5",
+        "--json",
+    ]));
+    assert!(v["critical"].is_null());
+    let message = v["message"].as_str().unwrap();
+    assert!(message.contains("stable throughout"), "{message}");
+    let max_re = v["max_re"].as_f64().unwrap();
+    assert!(max_re < 0.0);
+    assert!(
+        message.contains(&format!("largest σ = {max_re:.4}")),
+        "{message}"
+    );
+    assert_eq!(v["failed"], serde_json::json!([]));
+}
+
+/// `--set` sets one key: a line break or a table would smuggle in more (and used to be
+/// ignored silently).
+#[test]
+fn set_refuses_more_than_one_assignment() {
+    for (value, needle) in [
+        ("blade.length=5\nstructure.modes=3", "spans several lines"),
+        ("blade.length=5\r\nstructure.modes=3", "spans several lines"),
+        ("blade={length=5}", "table or array"),
+        ("section.ply_angle=[30, 45]", "table or array"),
+        ("blade.len\ngth=5", "malformed key"),
+    ] {
+        let r = run(&["modes", "--set", value]);
+        assert_fails_naming(&r, &[needle]);
+        assert_eq!(r.code, Some(2), "{value:?}: {}", r.stderr);
+    }
+}
+
+/// A dumb terminal cannot hold the full-screen explorer: refused before anything is drawn,
+/// pointing to the headless commands.
+#[test]
+fn the_explorer_refuses_a_dumb_terminal() {
+    let out = cargo_bin_cmd!("flutterscope")
+        .args(["tui", "--preset", "goland"])
+        .env("TERM", "dumb")
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("TERM=dumb") && stderr.contains("snapshot --preset goland"),
+        "{stderr}"
+    );
+    assert!(out.stdout.is_empty());
+}
+
+/// `snapshot --size` with digits beyond any integer: too large, not "not a whole number".
+#[test]
+fn a_huge_snapshot_size_is_too_large() {
+    let r = run(&["snapshot", "--size", "99999x99999"]);
+    assert_fails_naming(&r, &["99999x99999 is too large", "1000 columns"]);
+    assert_eq!(r.code, Some(2));
+}

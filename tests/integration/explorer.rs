@@ -216,6 +216,7 @@ impl Engine for TestEngine {
             parameter: "operating.rotor_speed".into(),
             values: grid.to_vec(),
             modes,
+            failed: Vec::new(),
         })
     }
 }
@@ -620,6 +621,14 @@ fn size_argument_is_checked() {
         let e = parse_size(bad).unwrap_err().to_string();
         assert!(e.contains("COLSxROWS"), "{bad}: {e}");
     }
+    // Digits too many for any integer are a size too large, not "not a whole number".
+    for huge in ["99999x99999", "120x99999999999999999999999"] {
+        let e = parse_size(huge).unwrap_err().to_string();
+        assert!(
+            e.contains("too large") && !e.contains("not a whole number"),
+            "{huge}: {e}"
+        );
+    }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -822,6 +831,22 @@ fn snapshot_of(name: &str, view: ViewKind, cols: u16, rows: u16) -> String {
     let p = Preset::load(name, &[]).expect("preset loads");
     let s = settled_state(name, p, &Physics, view, MarkerKind::Braille);
     render_text(&s, cols, rows)
+}
+
+/// The stall preset has no equilibrium at 0 rpm: its Campbell diagram used to be empty without
+/// a word (tracking started from that point). Now it draws every speed that solves and its title
+/// says which failed.
+#[test]
+fn campbell_view_draws_past_a_failed_speed_and_says_so() {
+    let text = snapshot_of("liu2017-stall", ViewKind::Campbell, 120, 40);
+    assert!(
+        text.contains("Campbell · 1/41 speeds not solved, first 0 rpm"),
+        "{text}"
+    );
+    assert!(
+        text.contains("flap 1") && text.contains("28.6 Hz"),
+        "{text}"
+    );
 }
 
 #[test]

@@ -439,7 +439,7 @@ fn malformed_figures_are_usage_errors_not_panics() {
 mod from_results {
     use flutterscope::analysis::flutter::{Boundary, BoundaryKind, Search};
     use flutterscope::analysis::simulate::{Response, RunStatus};
-    use flutterscope::analysis::sweep::{SweepRow, TrackedMode, TrackedSweep};
+    use flutterscope::analysis::sweep::{RowStatus, SweepRow, TrackedMode, TrackedSweep};
     use flutterscope::plot::from_results;
     use flutterscope::plot::GuideKind;
 
@@ -473,6 +473,7 @@ mod from_results {
                 mode("torsion 1", vec![96.0; n], vec![0.005; n]),
             ],
             values,
+            failed: Vec::new(),
         }
     }
 
@@ -547,10 +548,12 @@ mod from_results {
     fn sweep_rows_regroup_into_tracked_modes() {
         let row = |v: f64, mode: &str, f: f64| SweepRow {
             values: vec![v],
-            mode: mode.into(),
+            mode: Some(mode.into()),
             frequency_hz: f,
             damping_ratio: 0.1 * f,
             re: -f,
+            status: RowStatus::Ok,
+            error: None,
         };
         let rows = [
             row(0.0, "flap 1", 1.0),
@@ -558,15 +561,35 @@ mod from_results {
             row(5.0, "flap 1", 1.5),
             row(10.0, "flap 1", 2.0),
             row(10.0, "torsion 1", 9.5),
+            // A point that could not be solved: one row, no mode.
+            SweepRow {
+                values: vec![15.0],
+                mode: None,
+                frequency_hz: f64::NAN,
+                damping_ratio: f64::NAN,
+                re: f64::NAN,
+                status: RowStatus::Failed,
+                error: Some("numerical: no equilibrium".into()),
+            },
         ];
         let t = from_results::tracked_from_rows("operating.wind_speed", &rows);
-        assert_eq!(t.values, [0.0, 5.0, 10.0]);
+        assert_eq!(t.values, [0.0, 5.0, 10.0, 15.0]);
         assert_eq!(t.modes.len(), 2);
         assert_eq!(t.modes[0].label, "flap 1");
-        assert_eq!(t.modes[0].frequency_hz, [1.0, 1.5, 2.0]);
+        assert_eq!(t.modes[0].frequency_hz[..3], [1.0, 1.5, 2.0]);
+        assert!(t.modes[0].frequency_hz[3].is_nan());
         assert_eq!(t.modes[1].frequency_hz[0], 9.0);
         assert!(t.modes[1].frequency_hz[1].is_nan());
         assert_eq!(t.modes[1].re[2], -9.5);
+        assert_eq!(t.failed.len(), 1);
+        assert_eq!((t.failed[0].index, t.failed[0].value), (3, 15.0));
+        assert_eq!(t.failed[0].error, "numerical: no equilibrium");
+        // The figure says so.
+        let fig = from_results::sweep("test", &t);
+        assert_eq!(
+            fig.panels[1].notes,
+            ["1 of 4 point(s) could not be solved (the first at operating.wind_speed = 15): gaps"]
+        );
     }
 
     #[test]
@@ -582,6 +605,8 @@ mod from_results {
                 mode: Some("flap 2".into()),
             },
             message: "flutter at 33.25 m/s".into(),
+            max_re: 0.4,
+            failed: Vec::new(),
         };
         let fig = from_results::flutter("test", &tracked, &search);
         let damp = &fig.panels[0];
@@ -611,6 +636,8 @@ mod from_results {
                 mode: None,
             },
             message: "stable throughout".into(),
+            max_re: -0.1,
+            failed: Vec::new(),
         };
         let fig = from_results::flutter("test", &tracked, &none);
         assert!(fig.panels[0].markers.is_empty());

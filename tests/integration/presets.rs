@@ -48,7 +48,9 @@ fn every_key_can_be_overridden_with_set() {
         } else if current != 0.0 {
             current * 1.1
         } else {
-            0.5 * spec.max
+            // A small step off zero: half the range would break the rules across keys (a 25 m
+            // centre-of-mass offset on a 6 cm blade section).
+            1e-5 * spec.max
         };
         let v = if spec.contains(candidate) {
             candidate

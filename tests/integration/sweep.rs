@@ -54,11 +54,11 @@ fn csv_shards_merge_like_the_readme_says() {
     let mut lines = whole.lines();
     assert_eq!(
         lines.next().unwrap(),
-        "operating.rotor_speed,mode,frequency_hz,damping_ratio,re"
+        "operating.rotor_speed,mode,frequency_hz,damping_ratio,re,status"
     );
     let first = lines.next().unwrap();
     assert!(
-        first.starts_with("0,") && first.split(',').count() == 5,
+        first.starts_with("0,") && first.split(',').count() == 6,
         "{first}"
     );
     // Header from the first shard, body of every shard.
@@ -94,7 +94,14 @@ fn sweep_json_shape_and_errors() {
     assert_eq!(v["parameters"][0], "operating.tunnel_speed");
     let rows = v["rows"].as_array().unwrap();
     assert!(rows.len() >= 3);
-    for key in ["values", "mode", "frequency_hz", "damping_ratio", "re"] {
+    for key in [
+        "values",
+        "mode",
+        "frequency_hz",
+        "damping_ratio",
+        "re",
+        "status",
+    ] {
         assert!(rows.iter().all(|r| r.get(key).is_some()), "{key}");
     }
     // The goland wing flutters between 120 and 140 m/s: its torsion-1 track turns unstable.
@@ -118,4 +125,190 @@ fn sweep_json_shape_and_errors() {
             .assert()
             .code(2);
     }
+}
+
+struct Run {
+    code: Option<i32>,
+    stdout: String,
+    stderr: String,
+}
+
+fn run(args: &[&str]) -> Run {
+    let out = Command::cargo_bin("flutterscope")
+        .unwrap()
+        .args(args)
+        .output()
+        .unwrap();
+    Run {
+        code: out.status.code(),
+        stdout: String::from_utf8_lossy(&out.stdout).into_owned(),
+        stderr: String::from_utf8_lossy(&out.stderr).into_owned(),
+    }
+}
+
+/// The stall preset has no static equilibrium at 0 rpm (20 m/s of wind straight into a blade
+/// that does not turn): that point fails, and it used to take every row with it, because
+/// tracking started from the first point. Now it costs that point only, is counted and named.
+#[test]
+fn a_failed_first_point_costs_that_point_only_json() {
+    let r = run(&[
+        "sweep",
+        "--preset",
+        "liu2017-stall",
+        "--vary",
+        "operating.rotor_speed=0:5000:500",
+        "--json",
+    ]);
+    assert_eq!(r.code, Some(0), "{}", r.stderr);
+    let v: serde_json::Value = serde_json::from_str(&r.stdout).unwrap();
+    assert_eq!(v["points"], 11);
+    assert_eq!(v["failed_points"], 1);
+    let rows = v["rows"].as_array().unwrap();
+    let failed = &rows[0];
+    assert_eq!(failed["status"], "failed");
+    assert_eq!(failed["values"][0], 0.0);
+    assert!(failed["mode"].is_null() && failed["re"].is_null());
+    assert!(
+        failed["error"]
+            .as_str()
+            .unwrap()
+            .contains("static equilibrium"),
+        "{failed}"
+    );
+    // Every other speed has its modes; values exactly where the status is ok.
+    for rpm in (1..=10).map(|k| 500.0 * k as f64) {
+        let at: Vec<&serde_json::Value> = rows.iter().filter(|r| r["values"][0] == rpm).collect();
+        assert!(
+            at.iter()
+                .any(|r| r["mode"] == "flap 1" && r["status"] == "ok"),
+            "{rpm}"
+        );
+    }
+    let mut no_root = 0;
+    for row in rows {
+        let ok = row["status"] == "ok";
+        no_root += usize::from(row["status"] == "no-root");
+        for key in ["frequency_hz", "damping_ratio", "re"] {
+            assert_eq!(row[key].is_f64(), ok, "{row}");
+        }
+    }
+    assert_eq!(v["no_root_rows"], no_root);
+    assert!(
+        r.stderr
+            .contains("warning: 1 of 11 grid point(s) could not be solved")
+            && r.stderr
+                .contains("at operating.rotor_speed = 0: numerical: static equilibrium"),
+        "{}",
+        r.stderr
+    );
+}
+
+/// Two keys: the failed point (20 m/s, 0 rpm) used to take its whole `wind = 20` line.
+#[test]
+fn a_failed_point_keeps_the_rest_of_its_line_csv() {
+    let r = run(&[
+        "sweep",
+        "--preset",
+        "liu2017-stall",
+        "--vary",
+        "operating.wind_speed=10:20:10",
+        "--vary",
+        "operating.rotor_speed=0:100:50",
+    ]);
+    assert_eq!(r.code, Some(0), "{}", r.stderr);
+    let lines: Vec<&str> = r.stdout.lines().collect();
+    assert_eq!(
+        lines[0],
+        "operating.wind_speed,operating.rotor_speed,mode,frequency_hz,damping_ratio,re,status"
+    );
+    assert!(lines.contains(&"20,0,,,,,failed"), "{}", r.stdout);
+    for rpm in ["50", "100"] {
+        assert!(
+            lines
+                .iter()
+                .any(|l| l.starts_with(&format!("20,{rpm},flap 1,")) && l.ends_with(",ok")),
+            "no wind = 20, {rpm} rpm rows:\n{}",
+            r.stdout
+        );
+    }
+    for l in &lines[1..] {
+        let cols: Vec<&str> = l.split(',').collect();
+        assert_eq!(cols.len(), 7, "{l}");
+        let empty = cols[3..6].iter().all(|c| c.is_empty());
+        assert_eq!(empty, cols[6] != "ok", "{l}");
+    }
+    assert!(
+        r.stderr.contains("1 of 6 grid point(s)")
+            && r.stderr
+                .contains("operating.wind_speed = 20, operating.rotor_speed = 0"),
+        "{}",
+        r.stderr
+    );
+}
+
+/// Nothing failed, yet some rows are empty: a mode whose two real roots at 0 rpm merged into
+/// one oscillating pair has no root of its own further on. Those rows say `no-root` and a note
+/// counts them; nothing is called a failure.
+#[test]
+fn rows_without_a_root_are_explained_not_called_failures() {
+    let r = run(&[
+        "sweep",
+        "--preset",
+        "liu2017",
+        "--vary",
+        "operating.rotor_speed=0:100:50",
+    ]);
+    assert_eq!(r.code, Some(0), "{}", r.stderr);
+    let empty: Vec<&str> = r.stdout.lines().filter(|l| l.contains(",,,")).collect();
+    assert!(!empty.is_empty());
+    assert!(empty.iter().all(|l| l.ends_with(",no-root")), "{empty:?}");
+    assert!(r.stdout.contains("50,torsion 1,,,,no-root"), "{}", r.stdout);
+    assert!(!r.stderr.contains("warning"), "{}", r.stderr);
+    assert!(
+        r.stderr
+            .contains(&format!("note: {} row(s) have no values", empty.len())),
+        "{}",
+        r.stderr
+    );
+}
+
+/// Bad input is found before the first line of output: no CSV header above the error.
+#[test]
+fn input_errors_come_before_any_output() {
+    for (vary, needle) in [
+        (
+            &["operating.rotor_speed=0:6000:1000"][..],
+            "operating.rotor_speed = 6000 is out of range",
+        ),
+        // alpha2 (18) must exceed alpha1: broken at the grid's corner alpha1 = 20.
+        (
+            &["aero.onera.alpha1=0:20:10", "operating.rotor_speed=0:10:10"][..],
+            "at the sweep's grid point aero.onera.alpha1 = 20",
+        ),
+        (&["structure.modes=1:3:0.5"][..], "structure.modes = 1.5"),
+    ] {
+        let mut args = vec!["sweep"];
+        for v in vary {
+            args.extend(["--vary", v]);
+        }
+        for json in [false, true] {
+            let mut args = args.clone();
+            if json {
+                args.push("--json");
+            }
+            let r = run(&args);
+            assert_eq!(r.code, Some(1), "{args:?}: {}", r.stderr);
+            assert_eq!(r.stdout, "", "{args:?} printed before failing");
+            assert!(r.stderr.contains(needle), "{args:?}: {}", r.stderr);
+        }
+    }
+    // An enormous grid is too large, with its count and the limit.
+    let r = run(&["sweep", "--vary", "operating.rotor_speed=0:5000:1e-300"]);
+    assert_eq!(r.code, Some(2), "{}", r.stderr);
+    assert!(
+        r.stderr.contains("too large: 5.0000e303 points") && r.stderr.contains("10000000"),
+        "{}",
+        r.stderr
+    );
+    assert_eq!(r.stdout, "");
 }

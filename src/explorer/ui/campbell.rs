@@ -41,10 +41,23 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
     let job = state.campbell.as_ref();
     let result = job.and_then(|j| j.result.as_ref());
     let sweep = match result {
-        Some(Ok(s)) => s,
+        Some(Ok(s)) if !s.modes.is_empty() => s,
         other => {
             let text = match other {
                 Some(Err(e)) => Line::styled(format!("no Campbell diagram: {e}"), theme.error()),
+                Some(Ok(s)) => Line::styled(
+                    match s.failed.first() {
+                        Some(f) => format!(
+                            "no Campbell diagram: none of the {} rotor speeds could be solved; \
+                             at {} rpm: {}",
+                            s.values.len(),
+                            sig(f.value, 4),
+                            f.error
+                        ),
+                        None => "no Campbell diagram: no structural modes".to_string(),
+                    },
+                    theme.error(),
+                ),
                 _ => Line::styled("sweeping rotor speed…", theme.dim()),
             };
             frame.render_widget(
@@ -85,6 +98,17 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
     if left_off > 0 {
         legend.push(Span::styled(format!(" · {left_off} more off scale"), dim));
     }
+    // Points that could not be solved are gaps in every curve: the title says how many, and
+    // where the first is (the status line shows solve errors of the current point only).
+    let title = match sweep.failed.first() {
+        Some(f) => format!(
+            " Campbell · {}/{} speeds not solved, first {} rpm ",
+            sweep.failed.len(),
+            sweep.values.len(),
+            sig(f.value, 4)
+        ),
+        None => " Campbell diagram: frequency against rotor speed ".to_string(),
+    };
     legend.push(Span::raw(" "));
 
     let freq: Vec<Vec<Vec<(f64, f64)>>> = shown
@@ -139,10 +163,7 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
     let [f_area, z_area] =
         Layout::vertical([Constraint::Percentage(58), Constraint::Percentage(42)]).areas(area);
     let f_chart = Chart::new(f_sets)
-        .block(
-            pane(" Campbell diagram: frequency against rotor speed ", theme)
-                .title_bottom(Line::from(legend)),
-        )
+        .block(pane(title, theme).title_bottom(Line::from(legend)))
         .x_axis(x_axis())
         .y_axis(Axis::default().bounds([0.0, f_max]).style(dim).labels([
             Span::raw("0 Hz"),
