@@ -31,6 +31,13 @@ pub fn render(p: &ValidPreset, s: &Stability) -> String {
     }
     out += "\n";
     out += &match (s.verdict, s.critical()) {
+        // Neutral roots (σ = 0 within the neutral tolerance: frozen aero states in still air,
+        // an undamped structure) are stable but do not decay: say which.
+        (Verdict::Stable, Some(m)) if m.re >= 0.0 => format!(
+            "STABLE: no root grows; the least damped is neutral ({}, σ = {:.1e} 1/s, within the \
+             neutral tolerance)\n",
+            m.label, m.re
+        ),
         (Verdict::Stable, Some(m)) => format!(
             "STABLE: every root has σ < 0 (least damped: {}, σ = {:.4} 1/s, ζ = {:.4})\n",
             m.label, m.re, m.damping_ratio

@@ -465,3 +465,29 @@ fn a_huge_snapshot_size_is_too_large() {
     assert_fails_naming(&r, &["99999x99999 is too large", "1000 columns"]);
     assert_eq!(r.code, Some(2));
 }
+
+/// Still air with the stall model: the frozen aerodynamic states are neutral roots (σ = 0), and the
+/// verdict says so rather than claiming every root decays (issue 15).
+#[test]
+fn still_air_verdict_names_the_neutral_roots() {
+    let r = run(&[
+        "eigen",
+        "--set",
+        "aero.model=onera",
+        "--set",
+        "structure.modes=1",
+        "--set",
+        "aero.stations=25",
+        "--set",
+        "operating.rotor_speed=0",
+        "--set",
+        "operating.wind_speed=0",
+    ]);
+    assert_eq!(r.code, Some(0), "{}", r.stderr);
+    assert!(
+        r.stdout
+            .contains("STABLE: no root grows; the least damped is neutral"),
+        "{}",
+        r.stdout
+    );
+}
