@@ -11,12 +11,28 @@ use clap::{Args, Parser, Subcommand, ValueEnum};
     version,
     about = "Aeroelastic stability of rotating composite wind-turbine blades: classical and stall flutter",
     long_about = "Aeroelastic stability of rotating composite wind-turbine blades with bending–torsion \
-coupling. With no subcommand in a terminal, opens the interactive explorer on the default preset; \
-the headless subcommands below run the same engine for scripts."
+coupling. With no subcommand in a terminal, opens the interactive explorer (the options below are \
+the explorer's, as for `flutterscope tui`); the headless subcommands run the same engine for scripts.",
+    args_conflicts_with_subcommands = true
 )]
 pub struct Cli {
     #[command(subcommand)]
     pub command: Option<Command>,
+    /// The explorer's options when no subcommand is given.
+    #[command(flatten)]
+    pub explorer: TuiArgs,
+}
+
+/// What the explorer opens on and how it draws (`flutterscope tui`, or no subcommand).
+#[derive(Debug, Clone, Args)]
+pub struct TuiArgs {
+    #[command(flatten)]
+    pub preset: PresetArgs,
+    #[command(flatten)]
+    pub display: DisplayArgs,
+    /// Frame-rate cap (frames per second); frames are drawn only when something changed.
+    #[arg(long, default_value_t = 20, value_parser = clap::value_parser!(u32).range(1..=120))]
+    pub fps: u32,
 }
 
 /// Which preset to start from and what to change in it.
@@ -75,15 +91,7 @@ pub struct DisplayArgs {
 #[derive(Debug, Subcommand)]
 pub enum Command {
     /// Open the interactive explorer (the default in a terminal).
-    Tui {
-        #[command(flatten)]
-        preset: PresetArgs,
-        #[command(flatten)]
-        display: DisplayArgs,
-        /// Frame-rate cap (frames per second); frames are drawn only when something changed.
-        #[arg(long, default_value_t = 20, value_parser = clap::value_parser!(u32).range(1..=120))]
-        fps: u32,
-    },
+    Tui(TuiArgs),
     /// Coupled natural frequencies of the blade structure (no aerodynamics).
     Modes {
         #[command(flatten)]

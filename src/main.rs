@@ -9,7 +9,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Some(command) => flutterscope::commands::run(command),
         None if std::io::stdout().is_terminal() && std::io::stdin().is_terminal() => {
-            flutterscope::commands::run_default_tui()
+            flutterscope::commands::run_default_tui(&cli.explorer)
         }
         None => {
             let _ = Cli::command().print_help();

@@ -17,11 +17,7 @@ pub mod tui;
 
 pub fn run(command: Command) -> Result<()> {
     match command {
-        Command::Tui {
-            preset,
-            display,
-            fps,
-        } => tui::run(&preset, &display, fps),
+        Command::Tui(args) => tui::run(&args),
         Command::Modes { preset, json } => modes::run(&preset.load()?, json),
         Command::Eigen { preset, json } => eigen::run(&preset.load()?, json),
         Command::Flutter {
@@ -82,12 +78,8 @@ pub fn run(command: Command) -> Result<()> {
 }
 
 /// No subcommand in a terminal: the explorer on the default preset.
-pub fn run_default_tui() -> Result<()> {
-    use clap::Parser;
-    match crate::cli::Cli::parse_from(["flutterscope", "tui"]).command {
-        Some(command) => run(command),
-        None => Err(Error::usage("internal: default command missing")),
-    }
+pub fn run_default_tui(args: &crate::cli::TuiArgs) -> Result<()> {
+    tui::run(args)
 }
 
 /// Print a serialisable value as pretty JSON on stdout.

@@ -1,6 +1,6 @@
 //! `flutterscope tui`: the interactive explorer (needs a terminal on stdin and stdout).
 
-use crate::cli::{DisplayArgs, PresetArgs};
+use crate::cli::TuiArgs;
 use crate::error::{Error, Result};
 use crate::explorer::headless::preset_entries;
 use crate::explorer::state::{AppState, Options};
@@ -8,7 +8,8 @@ use crate::explorer::{terminal, Physics};
 use std::io::IsTerminal;
 use std::sync::Arc;
 
-pub fn run(preset: &PresetArgs, display: &DisplayArgs, fps: u32) -> Result<()> {
+pub fn run(args: &TuiArgs) -> Result<()> {
+    let (preset, display, fps) = (&args.preset, &args.display, args.fps);
     // A dumb terminal (Emacs shell buffers, some CI consoles) cannot move the cursor or switch
     // to the alternate screen: the full-screen explorer would scribble escape codes over it.
     if std::env::var_os("TERM").is_some_and(|t| t == "dumb") {

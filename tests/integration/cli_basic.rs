@@ -491,3 +491,30 @@ fn still_air_verdict_names_the_neutral_roots() {
         r.stdout
     );
 }
+
+/// With no subcommand the explorer's options apply (`flutterscope --preset goland --set …` opens
+/// the explorer on that preset, as `tui` does); after a subcommand they are the subcommand's.
+#[test]
+fn explorer_options_work_without_the_tui_subcommand() {
+    use clap::Parser;
+    use flutterscope::cli::{Cli, Command};
+    let cli = Cli::try_parse_from([
+        "flutterscope",
+        "--preset",
+        "goland",
+        "--set",
+        "operating.tunnel_speed=120",
+        "--marker",
+        "dot",
+    ])
+    .unwrap();
+    assert!(cli.command.is_none());
+    assert_eq!(cli.explorer.preset.preset, "goland");
+    assert_eq!(cli.explorer.preset.set, ["operating.tunnel_speed=120"]);
+    let cli = Cli::try_parse_from(["flutterscope", "eigen", "--preset", "goland"]).unwrap();
+    assert!(
+        matches!(cli.command, Some(Command::Eigen { ref preset, .. }) if preset.preset == "goland")
+    );
+    let cli = Cli::try_parse_from(["flutterscope", "tui", "--preset", "demo-blade"]).unwrap();
+    assert!(matches!(cli.command, Some(Command::Tui(ref a)) if a.preset.preset == "demo-blade"));
+}
