@@ -4,6 +4,7 @@
 mod cli_basic;
 mod eigen;
 mod explorer;
+mod hostile;
 mod laminate;
 mod onera;
 mod paper_figures;
