@@ -284,6 +284,7 @@ fn strong_tip_term(basis: &Basis, c23: f64) -> DMatrix<f64> {
 /// Mass, elastic and centrifugal matrices, ω1 and damping for a uniform section (docs/model.md §3–§4).
 fn assemble_section(section: SectionProps, spec: &BladeSpec) -> Result<StructuralModel> {
     let s = &section;
+    definite_section(s)?;
     let basis = Basis::new(spec.n, spec.length);
     let g = basis_integrals(&basis, spec.hub_radius);
     let omega2 = spec.omega * spec.omega;
@@ -338,6 +339,34 @@ fn assemble_section(section: SectionProps, spec: &BladeSpec) -> Result<Structura
         damping,
         omega1,
     })
+}
+
+/// The section's energy densities must be positive definite, or no matrix built from them is:
+/// the kinetic `I φ̇² + 2 m d φ̇ u̇ + m u̇²` needs `I − m d² > 0` (the inertia about the centre of
+/// mass), the strain `C22 φ'² + 2 C23 φ' u'' + C33 u''²` needs `C22 C33 − C23² > 0`. Checked on
+/// the section's own numbers (finite: [`section_properties`] checks), so a layup section (whose
+/// m, I and d are computed) says which property is wrong instead of "matrix is not positive
+/// definite".
+fn definite_section(s: &SectionProps) -> Result<()> {
+    let about_cg = s.i - s.m * s.cg_offset * s.cg_offset;
+    if about_cg <= 0.0 {
+        return Err(Error::numerical(format!(
+            "the section's inertia about its centre of mass, I − m·d² = {about_cg:.4e} kg·m \
+             (I = {:.4e} kg·m, m = {:.4e} kg/m, d = {:.4e} m), is not positive: the mass \
+             matrix is not positive definite",
+            s.i, s.m, s.cg_offset
+        )));
+    }
+    let det = s.c22 * s.c33 - s.c23 * s.c23;
+    if det <= 0.0 {
+        return Err(Error::numerical(format!(
+            "C22·C33 − C23² = {det:.4e} N²·m⁴ (C22 = {:.4e}, C23 = {:.4e}, C33 = {:.4e} N·m²) is \
+             not positive: the bending–twist coupling exceeds what the torsion and flap \
+             stiffnesses carry, and the section's stiffness is not positive definite",
+            s.c22, s.c23, s.c33
+        )));
+    }
+    Ok(())
 }
 
 /// ω1 = √λ_min; a non-positive λ means the blade has no stiffness against some shape.

@@ -39,6 +39,7 @@ pub fn check(p: &Preset) -> Result<()> {
         )));
     }
     inertia_exceeds_offset_mass(p).map_err(invalid)?;
+    stiffness_is_definite(p).map_err(invalid)?;
     ply_is_physical(p).map_err(invalid)?;
     walls_do_not_overlap(p).map_err(invalid)
 }
@@ -65,6 +66,29 @@ fn inertia_exceeds_offset_mass(p: &Preset) -> std::result::Result<(), String> {
         s.mass_per_length,
         s.cg_offset,
         s.mass_per_length * s.cg_offset * s.cg_offset
+    ))
+}
+
+/// For the `direct` section, the stiffnesses it gives must hold the coupling:
+/// `C22·C33 − C23² > 0`, or the strain energy `C22 φ'² + 2 C23 φ' u'' + C33 u''²` is not positive
+/// definite (docs/model.md §3–§4). The table and layup sources compute their own.
+fn stiffness_is_definite(p: &Preset) -> std::result::Result<(), String> {
+    let s = &p.section;
+    if s.source != SectionSource::Direct {
+        return Ok(());
+    }
+    let det = s.c22 * s.c33 - s.c23 * s.c23;
+    if det > 0.0 {
+        return Ok(());
+    }
+    Err(format!(
+        "section.c23 = {} N·m² couples more than section.c22 = {} and section.c33 = {} N·m² \
+         can carry: C22·C33 − C23² = {det:.4e} N²·m⁴ must be positive (|C23| < √(C22·C33) = \
+         {:.4e} N·m²)",
+        s.c23,
+        s.c22,
+        s.c33,
+        (s.c22 * s.c33).sqrt()
     ))
 }
 

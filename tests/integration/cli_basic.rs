@@ -330,6 +330,31 @@ fn an_offset_mass_beyond_the_inertia_names_keys_and_values() {
         "section.cg_offset=0.45",
     ]);
     assert_eq!(ok.code, Some(0), "{}", ok.stderr);
+    // A layup section computes m, I and d itself: the structure says which is wrong, and where.
+    let layup = run(&[
+        "modes",
+        "--preset",
+        "demo-blade",
+        "--set",
+        "section.cg_offset=50",
+    ]);
+    assert_fails_naming(
+        &layup,
+        &[
+            "demo-blade at operating.rotor_speed = 75 rpm",
+            "inertia about its centre of mass, I − m·d²",
+        ],
+    );
+    // A coupling stiffer than torsion and flap together carry, likewise named up front.
+    let coupled = run(&["modes", "--preset", "goland", "--set", "section.c23=1e7"]);
+    assert_fails_naming(
+        &coupled,
+        &[
+            "section.c23 = 10000000",
+            "section.c22 = 987000",
+            "C22·C33 − C23²",
+        ],
+    );
 }
 
 /// A single solve that fails numerically names the preset and its operating point.

@@ -6,6 +6,7 @@ mod cli_basic;
 mod eigen;
 mod explorer;
 mod formats;
+mod hostile;
 mod laminate;
 mod onera;
 mod paper_figures;
