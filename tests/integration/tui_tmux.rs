@@ -35,8 +35,9 @@ impl Session {
     }
 
     fn keys(&self, keys: &[&str]) {
+        // `--`: a key named `-` is a key, not an option.
         let ok = Command::new("tmux")
-            .args(["send-keys", "-t", &self.name])
+            .args(["send-keys", "-t", &self.name, "--"])
             .args(keys)
             .status()
             .expect("tmux send-keys")
@@ -44,16 +45,63 @@ impl Session {
         assert!(ok);
     }
 
+    fn resize(&self, cols: u16, rows: u16) {
+        let ok = Command::new("tmux")
+            .args(["resize-window", "-t", &self.name, "-x"])
+            .arg(cols.to_string())
+            .arg("-y")
+            .arg(rows.to_string())
+            .status()
+            .expect("tmux resize-window")
+            .success();
+        assert!(ok, "tmux resize-window {cols}x{rows} failed");
+    }
+
+    /// A pane format variable, e.g. `#{pane_pid}`.
+    fn display(&self, format: &str) -> String {
+        let out = Command::new("tmux")
+            .args(["display-message", "-p", "-t", &self.name, format])
+            .output()
+            .expect("tmux display-message");
+        String::from_utf8_lossy(&out.stdout).trim().to_string()
+    }
+
+    /// The whole pane, scrollback included (a panic message may have scrolled off).
+    fn history(&self) -> String {
+        let out = Command::new("tmux")
+            .args(["capture-pane", "-p", "-S", "-", "-t", &self.name])
+            .output()
+            .expect("tmux capture-pane");
+        String::from_utf8_lossy(&out.stdout).into_owned()
+    }
+
+    /// The process the pane's shell started (the explorer, while it runs).
+    fn child_pid(&self) -> u32 {
+        let shell = self.display("#{pane_pid}");
+        let children =
+            std::fs::read_to_string(format!("/proc/{shell}/task/{shell}/children")).unwrap();
+        children
+            .split_whitespace()
+            .next()
+            .and_then(|p| p.parse().ok())
+            .unwrap_or_else(|| panic!("the pane's shell {shell} has no child"))
+    }
+
     /// Wait until the screen shows `needle`, or fail with what it shows.
     fn wait_for(&self, needle: &str) -> String {
+        self.wait_for_all(&[needle])
+    }
+
+    /// Wait until the screen shows every one of `needles` at once.
+    fn wait_for_all(&self, needles: &[&str]) -> String {
         let start = Instant::now();
         loop {
             let screen = self.screen();
-            if screen.contains(needle) {
+            if needles.iter().all(|n| screen.contains(n)) {
                 return screen;
             }
             if start.elapsed() > Duration::from_secs(30) {
-                panic!("screen never showed {needle:?}; it shows:\n{screen}");
+                panic!("screen never showed {needles:?}; it shows:\n{screen}");
             }
             std::thread::sleep(Duration::from_millis(100));
         }
@@ -160,4 +208,164 @@ fn a_broken_preset_ends_with_a_message_and_a_clean_terminal() {
     assert!(screen.contains("blade.length = -3"), "{screen}");
     assert!(screen.contains("explorer exited with 1"), "{screen}");
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// User plus system CPU time of a process, in clock ticks (`/proc/PID/stat` fields 14 and 15).
+fn cpu_ticks(pid: u32) -> u64 {
+    let stat = std::fs::read_to_string(format!("/proc/{pid}/stat")).unwrap();
+    // Fields after the command name, which is in parentheses and may hold spaces.
+    let rest = &stat[stat.rfind(')').unwrap() + 2..];
+    let fields: Vec<&str> = rest.split_whitespace().collect();
+    // `rest` starts at field 3 (state): utime is field 14, stime 15.
+    fields[11].parse::<u64>().unwrap() + fields[12].parse::<u64>().unwrap()
+}
+
+/// CPU ticks `pid` uses over `window`.
+fn ticks_over(pid: u32, window: Duration) -> u64 {
+    let before = cpu_ticks(pid);
+    std::thread::sleep(window);
+    cpu_ticks(pid) - before
+}
+
+/// A small fixed-seed generator (xorshift64*): the same flood on every run.
+struct Keys(u64);
+
+impl Keys {
+    fn next(&mut self, n: usize) -> usize {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 33) as usize % n
+    }
+}
+
+/// Every key the explorer binds but quit (q, C-c) and pause (space, pressed once at the end so
+/// the idle measurement knows the explorer is paused).
+const FLOOD_KEYS: &[&str] = &[
+    "Left", "Right", "Up", "Down", "h", "l", "j", "-", "+", "H", "L", "S-Left", "S-Right", "Tab",
+    "BTab", "[", "]", "a", "r", "k", "f", "c", "m", "?", "Escape",
+];
+
+/// Keys handed to one `tmux send-keys` (one process per batch, not per key).
+const BATCH: usize = 50;
+const FLOOD: usize = 3000;
+
+/// Issue 15: the explorer under abuse. A few thousand random keys (fixed seed) with preset
+/// cycling, aero-model cycling through ONERA and wind and rotor speed dragged to zero, the window
+/// resized to 20×5 and 400×120 in between; then paused, it must fall back to idle, and `q` must
+/// end it with status 0 and a restored terminal. Prints its CPU measurements.
+#[test]
+fn a_flood_of_keys_and_resizes_ends_cleanly_and_idles() {
+    if !tmux_available() {
+        return;
+    }
+    let cmd = format!(
+        "{} tui --preset liu2017; echo \"explorer exited with $?\"; sleep 60",
+        binary().display()
+    );
+    let s = Session::start(120, 40, &cmd);
+    // Solved, and the first boundary search done: what is left is the streaming tip response.
+    s.wait_for_all(&["STABLE", "no flutter up to 200 rpm"]);
+    let pid = s.child_pid();
+    let streaming = ticks_over(pid, Duration::from_secs(3));
+    // About 3 % of a core in the test profile; a tenth of a core would be a busy loop.
+    assert!(
+        streaming <= 30,
+        "streaming took {streaming} CPU ticks in 3 s"
+    );
+
+    // Into still air with ONERA, deliberately: rotor speed (selected at start) to 0, wind to 0,
+    // aero model quasi-steady → theodorsen → onera (tunnel speed is 0 on liu2017).
+    s.keys(&["H"; 10]);
+    s.keys(&["Up", "Up"]);
+    s.keys(&["H"; 10]);
+    s.keys(&["a", "a"]);
+    let still = s.wait_for_all(&["onera", "margin along wind speed"]);
+    assert!(
+        still.contains(" 0 rpm") && still.contains(" 0.0 m/s"),
+        "{still}"
+    );
+
+    let mut rng = Keys(0x15_15_15_15);
+    let sizes = [(20, 5), (400, 120), (80, 24), (1, 1), (120, 40)];
+    let mut sent = 0;
+    while sent < FLOOD {
+        let mut batch: Vec<&str> = (0..BATCH)
+            .map(|_| FLOOD_KEYS[rng.next(FLOOD_KEYS.len())])
+            .collect();
+        // Now and then drag the selected parameter to zero (after `r` that is rotor speed, or
+        // tunnel speed on goland), then the one two rows up (wind speed), and cycle the model.
+        if rng.next(4) == 0 {
+            batch.extend(["r"; 1]);
+            batch.extend(["H"; 25]);
+            batch.extend(["Up", "Up"]);
+            batch.extend(["H"; 25]);
+            batch.extend(["a"; 3]);
+        }
+        sent += batch.len();
+        s.keys(&batch);
+        // A panic on a worker thread is caught and shown in the status line: none may appear.
+        let screen = s.screen();
+        assert!(!screen.contains("panicked"), "after {sent} keys:\n{screen}");
+        if rng.next(3) == 0 {
+            let (w, h) = sizes[rng.next(sizes.len())];
+            s.resize(w, h);
+        }
+    }
+    s.resize(120, 40);
+
+    // Paused, it must come back to idle once the last solve and background jobs are done.
+    s.keys(&["space"]);
+    let started = Instant::now();
+    let mut idle = Vec::new();
+    loop {
+        let ticks = ticks_over(pid, Duration::from_secs(3));
+        idle.push(ticks);
+        if ticks <= 3 || started.elapsed() > Duration::from_secs(30) {
+            break;
+        }
+    }
+    eprintln!(
+        "tmux abuse: {sent} keys; streaming {streaming} CPU ticks over 3 s (100/s); paused, \
+         3 s windows until idle: {idle:?} ticks"
+    );
+    assert!(
+        *idle.last().unwrap() <= 3,
+        "a paused explorer kept the CPU busy: {idle:?} ticks per 3 s"
+    );
+
+    s.keys(&["q"]);
+    let after = s.wait_for("explorer exited with");
+    let history = s.history();
+    assert!(after.contains("explorer exited with 0"), "{after}");
+    assert!(!history.contains("panicked"), "{history}");
+    assert_eq!(
+        s.display("#{alternate_on}"),
+        "0",
+        "alternate screen still on"
+    );
+    assert!(
+        !after.contains("Root locus"),
+        "terminal not restored:\n{after}"
+    );
+}
+
+/// With no subcommand in a terminal whose TERM is `dumb`, the explorer is refused with a clear
+/// message and exit 2, instead of drawing escape codes over a terminal that cannot show them.
+#[test]
+fn a_dumb_terminal_gets_the_headless_commands_instead_of_the_explorer() {
+    if !tmux_available() {
+        return;
+    }
+    let cmd = format!(
+        "TERM=dumb {}; echo \"explorer exited with $?\"; sleep 30",
+        binary().display()
+    );
+    let s = Session::start(120, 30, &cmd);
+    let screen = s.wait_for("explorer exited with");
+    assert!(screen.contains("explorer exited with 2"), "{screen}");
+    assert!(
+        screen.contains("TERM=dumb") && screen.contains("flutterscope snapshot"),
+        "{screen}"
+    );
 }
