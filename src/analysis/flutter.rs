@@ -64,6 +64,11 @@ pub struct Search {
 /// Relative accuracy of the critical value (docs/model.md §6).
 pub const RELATIVE_TOLERANCE: f64 = 1e-4;
 
+/// Bisection steps at most: each halves the bracket, so reaching 1e-4 of a value from a grid
+/// spacing takes about 24 of the 41-point grid's steps; the cap only guarantees the end (at
+/// the cap the bracket is as narrow as doubles allow, and the crossing is placed in it).
+pub const MAX_BISECTIONS: usize = 64;
+
 /// Stability with `key` set to `value`.
 pub fn stability_at(p: &ValidPreset, key: &str, value: f64) -> Result<Stability> {
     analyse(&p.with(key, value)?)
@@ -208,7 +213,10 @@ pub fn search(p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<S
     let (mut s_lo, mut s_hi) = (solved[first - 1].1.clone(), solved[first].1.clone());
     let stable_side: Vec<Stability> = solved[..first].iter().map(|(_, s)| (*s).clone()).collect();
     let scale = (to - from).abs();
-    while (hi - lo).abs() > RELATIVE_TOLERANCE * lo.abs().max(hi.abs()).max(1e-3 * scale) {
+    for _ in 0..MAX_BISECTIONS {
+        if (hi - lo).abs() <= RELATIVE_TOLERANCE * lo.abs().max(hi.abs()).max(1e-3 * scale) {
+            break;
+        }
         let mid = 0.5 * (lo + hi);
         cancel.check()?;
         let s = stability_at(p, key, mid).map_err(|e| {
