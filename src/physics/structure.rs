@@ -327,7 +327,24 @@ fn assemble_section(section: SectionProps, spec: &BladeSpec) -> Result<Structura
 
     let stiffness = &elastic + &centrifugal;
     let lambdas = eigenvalues(&mass, &stiffness)?;
-    let omega1 = lowest_frequency(&lambdas)?;
+    let omega1 = lowest_frequency(&lambdas).map_err(|e| match e {
+        // A section whose thickness-direction inertia exceeds its chordwise one is turned
+        // flat to the rotor plane by the propeller moment: name the cause, not just the symptom.
+        Error::Numerical(symptom) if s.km1_2 > s.km2_2 && omega2 > 0.0 => {
+            Error::numerical(format!(
+                "{symptom}: the propeller moment m·Ω²·(K_m2² − K_m1²) = {:.4e} N·m/m per rad is \
+                 negative (section.km1_2 = {} m² exceeds section.km2_2 = {} m²) and outweighs \
+                 the torsional stiffness at Ω = {:.4} rad/s: the section turns flat to the \
+                 rotor plane (propeller-moment divergence); lower the rotor speed or give the \
+                 section more chordwise than thickness-direction inertia",
+                s.m * omega2 * (s.km2_2 - s.km1_2),
+                s.km1_2,
+                s.km2_2,
+                spec.omega
+            ))
+        }
+        other => other,
+    })?;
     let damping = &elastic * (spec.loss_factor / omega1);
     Ok(StructuralModel {
         n: spec.n,

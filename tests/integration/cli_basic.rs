@@ -543,3 +543,18 @@ fn explorer_options_work_without_the_tui_subcommand() {
     let cli = Cli::try_parse_from(["flutterscope", "tui", "--preset", "demo-blade"]).unwrap();
     assert!(matches!(cli.command, Some(Command::Tui(ref a)) if a.preset.preset == "demo-blade"));
 }
+
+/// A section turned flat by the propeller moment (thickness-direction inertia above the
+/// chordwise one, rotating) is named by its cause and keys, not only "not positive definite".
+#[test]
+fn propeller_moment_divergence_names_its_keys() {
+    assert_fails_naming(
+        &run(&["modes", "--set", "section.km1_2=50"]),
+        &[
+            "propeller moment",
+            "section.km1_2 = 50",
+            "section.km2_2",
+            "60 rpm",
+        ],
+    );
+}
