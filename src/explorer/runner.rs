@@ -39,7 +39,7 @@ pub fn solve(
     preset: &ValidPreset,
     cancel: &Cancel,
 ) -> (Msg, Result<Box<dyn Stream>, Msg>) {
-    match catch_unwind(AssertUnwindSafe(|| engine.solve(preset, cancel))) {
+    match guarded("solve", || Ok(engine.solve(preset, cancel))) {
         Ok(s) => (
             Msg::Solved {
                 gen,
@@ -50,16 +50,14 @@ pub fn solve(
                 error: format!("simulation: {e}"),
             }),
         ),
-        Err(payload) => {
-            let error = format!("solve panicked: {}", panic_text(&*payload));
-            (
-                Msg::Solved {
-                    gen,
-                    result: Err(error.clone()),
-                },
-                Err(Msg::SimFailed { gen, error }),
-            )
-        }
+        // A panic: neither the analysis nor the stream exists.
+        Err(error) => (
+            Msg::Solved {
+                gen,
+                result: Err(error.clone()),
+            },
+            Err(Msg::SimFailed { gen, error }),
+        ),
     }
 }
 

@@ -111,11 +111,16 @@ const SOLVE_CLOCK: Duration = Duration::from_millis(250);
 /// newest solve was asked for (`solve_sent`), to report a slow one.
 fn handle(state: &mut AppState, worker: &mut Worker, solve_sent: &mut (u64, Instant), msg: Msg) {
     for effect in update(state, msg) {
-        if let Effect::Solve { gen, .. } = &effect {
-            *solve_sent = (*gen, Instant::now());
-        }
-        worker.send(effect);
+        dispatch(worker, solve_sent, effect);
     }
+}
+
+/// Hand one effect to the worker, noting when a solve was asked for.
+fn dispatch(worker: &mut Worker, solve_sent: &mut (u64, Instant), effect: Effect) {
+    if let Effect::Solve { gen, .. } = &effect {
+        *solve_sent = (*gen, Instant::now());
+    }
+    worker.send(effect);
 }
 
 /// Run the explorer until the user quits. The caller has checked that stdin and stdout are
@@ -129,9 +134,9 @@ pub fn run(mut state: AppState, engine: Arc<dyn Engine>, fps: u32) -> Result<()>
         Terminal::new(CrosstermBackend::new(stdout())).map_err(|e| io("cannot start", e))?;
     spawn_input(tx.clone()).map_err(|e| io("cannot start the input thread", e))?;
     let mut worker = Worker::spawn(engine, tx, frame_interval);
-    let mut solve_sent = (state.gen + 1, Instant::now());
+    let mut solve_sent = (0, Instant::now());
     for effect in state.start() {
-        worker.send(effect);
+        dispatch(&mut worker, &mut solve_sent, effect);
     }
     let mut last_draw: Option<Instant> = None;
     let outcome = loop {

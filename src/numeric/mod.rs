@@ -8,6 +8,7 @@
 
 mod assignment;
 pub(crate) mod balance;
+pub mod cholesky;
 pub(crate) mod eigen;
 pub(crate) mod faer_evd;
 mod hessenberg;

@@ -7,6 +7,7 @@
 //! span, once per N: a blade's matrices are those integrals scaled by its length and section.
 
 use crate::error::{Error, Result};
+use crate::numeric::cholesky::cholesky_reduce;
 use crate::numeric::faer_evd::real_evd;
 use crate::physics::basis::{torsion_wavenumber, Basis, BendingMode};
 use crate::physics::section::{section_properties, SectionProps};
@@ -401,25 +402,6 @@ fn lowest_frequency(lambdas: &[f64]) -> Result<f64> {
 /// Iteration cap for the eigensolvers: far beyond what a 2N ≤ 80 problem needs, so a
 /// failure means broken input, reported rather than looped on.
 const MAX_SWEEPS: usize = 10_000;
-
-/// `L⁻¹ K L⁻ᵀ` with `M = LLᵀ` (Cholesky), symmetrised against round-off, and `L`.
-fn cholesky_reduce(mass: &DMatrix<f64>, k: &DMatrix<f64>) -> Result<(DMatrix<f64>, DMatrix<f64>)> {
-    let chol = mass
-        .clone()
-        .cholesky()
-        .ok_or_else(|| Error::numerical("mass matrix is not positive definite"))?;
-    let l = chol.unpack();
-    let lk = l
-        .solve_lower_triangular(k)
-        .ok_or_else(|| Error::numerical("singular mass factor"))?;
-    let mut a = l
-        .solve_lower_triangular(&lk.transpose())
-        .ok_or_else(|| Error::numerical("singular mass factor"))?;
-    let at = a.transpose();
-    a += at;
-    a *= 0.5;
-    Ok((a, l))
-}
 
 /// Eigenvalues ω² of `K q = ω² M q`, ascending. Symmetric K (weak form, or no coupling):
 /// Cholesky reduction and the symmetric solver. Non-symmetric K (strong form): the real Schur

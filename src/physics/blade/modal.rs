@@ -5,6 +5,7 @@
 
 use super::fem::{BladeMatrices, NODE_DOFS, PHI, U, V};
 use crate::error::{Error, Result};
+use crate::numeric::cholesky::{cholesky_reduce, symmetrised};
 use nalgebra::{DMatrix, DVector, SymmetricEigen};
 
 /// Iteration cap of the symmetric eigensolver (nalgebra's implicit QR): far beyond what these
@@ -81,8 +82,8 @@ impl ModalBlade {
         if basis.ncols() == 0 {
             return Err(Error::numerical("blade modal basis is empty"));
         }
-        let reduced_k0 = symmetric(basis.transpose() * &matrices.k0 * &basis);
-        let reduced_k_omega = symmetric(basis.transpose() * &matrices.k_omega * &basis);
+        let reduced_k0 = symmetrised(basis.transpose() * &matrices.k0 * &basis);
+        let reduced_k_omega = symmetrised(basis.transpose() * &matrices.k_omega * &basis);
         Ok(ModalBlade {
             matrices,
             basis,
@@ -147,30 +148,15 @@ impl ModalBlade {
 
 /// Every eigenpair of `K x = ω² M x` by Cholesky reduction, ascending: `(ω², vectors)`.
 fn full_modes(mass: &DMatrix<f64>, k: &DMatrix<f64>) -> Result<(Vec<f64>, DMatrix<f64>)> {
-    let l = mass
-        .clone()
-        .cholesky()
-        .ok_or_else(|| Error::numerical("blade mass matrix is not positive definite"))?
-        .unpack();
-    let lk = l
-        .solve_lower_triangular(k)
-        .ok_or_else(|| Error::numerical("singular blade mass factor"))?;
-    let a = l
-        .solve_lower_triangular(&lk.transpose())
-        .ok_or_else(|| Error::numerical("singular blade mass factor"))?;
-    let eig = SymmetricEigen::try_new(symmetric(a), f64::EPSILON, MAX_SWEEPS)
+    let (a, l) = cholesky_reduce(mass, k)?;
+    let eig = SymmetricEigen::try_new(a, f64::EPSILON, MAX_SWEEPS)
         .ok_or_else(|| Error::numerical("blade modes: symmetric eigensolver did not converge"))?;
+    let x = l
+        .tr_solve_lower_triangular(&eig.eigenvectors)
+        .ok_or_else(|| Error::numerical("singular blade mass factor"))?;
     let mut order: Vec<usize> = (0..eig.eigenvalues.len()).collect();
     order.sort_by(|&a, &b| eig.eigenvalues[a].total_cmp(&eig.eigenvalues[b]));
-    let lt = l.transpose();
-    let mut vectors = DMatrix::zeros(k.nrows(), order.len());
-    for (c, &j) in order.iter().enumerate() {
-        let y = eig.eigenvectors.column(j).into_owned();
-        let x = lt
-            .solve_upper_triangular(&y)
-            .ok_or_else(|| Error::numerical("singular blade mass factor"))?;
-        vectors.set_column(c, &x);
-    }
+    let vectors = DMatrix::from_fn(x.nrows(), order.len(), |i, c| x[(i, order[c])]);
     Ok((order.iter().map(|&j| eig.eigenvalues[j]).collect(), vectors))
 }
 
@@ -194,9 +180,4 @@ fn m_orthonormal(mass: &DMatrix<f64>, columns: Vec<DVector<f64>>) -> DMatrix<f64
         return DMatrix::zeros(mass.nrows(), 0);
     }
     DMatrix::from_columns(&kept)
-}
-
-fn symmetric(a: DMatrix<f64>) -> DMatrix<f64> {
-    let t = a.transpose();
-    (a + t) * 0.5
 }
