@@ -13,7 +13,7 @@
 
 use crate::error::Result;
 use crate::numeric::{decompose, hungarian, shares};
-use crate::physics::structure::StructuralModel;
+use crate::physics::structure::Structure;
 use crate::physics::system::{LinearSystem, System};
 use crate::preset::ValidPreset;
 use nalgebra::{Complex, DVector};
@@ -137,7 +137,7 @@ pub fn analyse_system(ls: &LinearSystem) -> Result<Stability> {
             lags.push(mode);
         }
     }
-    label_structural_roots(&mut structural, &ls.structure)?;
+    label_structural_roots(&mut structural, ls.structure.as_ref())?;
     structural.sort_by(|a, b| b.re.total_cmp(&a.re));
     lags.sort_by(|a, b| b.re.total_cmp(&a.re));
     for (k, m) in lags.iter_mut().enumerate() {
@@ -169,12 +169,12 @@ pub const SECOND_ROOT_SUFFIX: &str = "'";
 /// in-vacuo torsion modes, but their modal content still identifies them. For the weak
 /// (symmetric) form η are the exact modal coordinates; for the strong form an M-weighted
 /// projection, which is all the assignment needs.
-fn label_structural_roots(roots: &mut [Mode], structure: &StructuralModel) -> Result<()> {
+fn label_structural_roots(roots: &mut [Mode], structure: &dyn Structure) -> Result<()> {
     if roots.is_empty() {
         return Ok(());
     }
     let natural = structure.natural_modes()?;
-    let mass = &structure.mass;
+    let mass = structure.mass();
     // Columns of W = M Φ̂ with Φ̂ mass-normalised: η_k = W_kᵀ q.
     let weights: Vec<DVector<f64>> = natural
         .iter()

@@ -562,21 +562,27 @@ impl Simulator {
         Ok(out)
     }
 
-    /// Add a tip twist (rad) and tip flap (m) to the current state, along the first torsion and
-    /// first flap Galerkin functions.
+    /// Add a tip twist (rad) and tip flap (m) to the current state, along the structure's first
+    /// torsion and first flap shapes
+    /// ([`crate::physics::structure::Structure::kick_shapes`]): the mix of the two that gives
+    /// exactly this tip twist and tip flap (the shapes may each move both).
     pub fn kick(&mut self, twist_rad: f64, flap_m: f64) {
-        let n = self.linear.nq / 2;
-        if n == 0 {
+        if twist_rad == 0.0 && flap_m == 0.0 {
             return;
         }
-        let twist_at_tip = self.linear.tip_twist[0];
-        let flap_at_tip = self.linear.tip_flap[n];
-        if twist_rad != 0.0 && twist_at_tip != 0.0 {
-            self.y[0] += twist_rad / twist_at_tip;
+        let l = &self.linear;
+        let shapes = l.structure.kick_shapes();
+        let tip = |s: &DVector<f64>| (l.tip_twist.dot(s), l.tip_flap.dot(s));
+        let ((t0, f0), (t1, f1)) = (tip(&shapes[0]), tip(&shapes[1]));
+        let det = t0 * f1 - t1 * f0;
+        if det == 0.0 || !det.is_finite() {
+            return;
         }
-        if flap_m != 0.0 && flap_at_tip != 0.0 {
-            self.y[n] += flap_m / flap_at_tip;
-        }
+        let a = (twist_rad * f1 - flap_m * t1) / det;
+        let b = (flap_m * t0 - twist_rad * f0) / det;
+        let mut q = self.y.rows_mut(0, l.nq);
+        q.axpy(a, &shapes[0], 1.0);
+        q.axpy(b, &shapes[1], 1.0);
         self.restart_history();
     }
 

@@ -29,9 +29,9 @@ pub fn solve(p: &ValidPreset) -> Result<Solution> {
 }
 
 impl Solution {
-    /// The section properties the structure was assembled from.
-    pub fn section(&self) -> &SectionProps {
-        &self.system.structure().section
+    /// The uniform section the structure was assembled from (none for a tabulated blade).
+    pub fn section(&self) -> Option<&SectionProps> {
+        self.system.structure().uniform_section()
     }
 
     /// The linearisation about the equilibrium, or why there is none.
@@ -49,20 +49,19 @@ impl Solution {
     /// rest of a nonlinear model without an equilibrium is split about the rest state instead.
     pub fn simulator(self, p: &ValidPreset) -> Result<Simulator> {
         let sim = &p.simulation;
+        let length = self.system.structure().length();
         let affine = self.system.model().nonlinear_support().is_affine();
         let mut s = match (self.linear, affine, sim.start) {
-            (Ok(linear), true, _) => {
-                Simulator::from_linear(linear, sim.sample_rate, p.blade.length)?
-            }
+            (Ok(linear), true, _) => Simulator::from_linear(linear, sim.sample_rate, length)?,
             (Ok(tangent), false, _) => {
-                Simulator::from_system(self.system, tangent, sim.sample_rate, p.blade.length)?
+                Simulator::from_system(self.system, tangent, sim.sample_rate, length)?
             }
             (Err(_), false, Start::Rest) => {
                 let rest = DVector::zeros(self.system.dim());
                 let tangent = self
                     .system
                     .tangent(rest.clone(), self.system.jacobian(&rest));
-                Simulator::from_system(self.system, tangent, sim.sample_rate, p.blade.length)?
+                Simulator::from_system(self.system, tangent, sim.sample_rate, length)?
             }
             (Err(e), _, _) => return Err(e),
         };

@@ -12,10 +12,11 @@ use crate::analysis::sweep::TrackedSweep;
 use crate::error::Result;
 use crate::preset::ValidPreset;
 
-/// One operating point, solved: the live section stiffnesses and the eigen-analysis.
+/// One operating point, solved: the live section stiffnesses (a uniform blade's) and the
+/// eigen-analysis.
 #[derive(Debug, Clone)]
 pub struct Solved {
-    pub section: SectionProps,
+    pub section: Option<SectionProps>,
     pub stability: Stability,
 }
 
@@ -70,7 +71,7 @@ impl Engine for Physics {
             Ok(solution) => {
                 let solved = cancel.check().and_then(|_| {
                     Ok(Solved {
-                        section: *solution.section(),
+                        section: solution.section().copied(),
                         stability: solution.stability()?,
                     })
                 });

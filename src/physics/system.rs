@@ -1,12 +1,14 @@
 //! The coupled aeroelastic system: structure + strip aerodynamics as one first-order ODE
 //! (docs/model.md §6), its static equilibrium and its linearisation.
 //!
-//! State `x = [q, q̇, z]`: Galerkin coordinates `q = [q_φ; q_u]` (2N), their rates (2N) and the
+//! State `x = [q, q̇, z]`: the structure's coordinates `q` (`n_q`: Galerkin coefficients of the
+//! paper's blade, modal coordinates of a tabulated one; [`Structure`]), their rates and the
 //! aerodynamic states `z` (station-major: `z[s·n_s + i]` is state `i` of station `s`).
 //!
-//! `(M − M_a) q̈ = Q(q, q̇, z) − (K_e + K_c) q − C_s q̇`, `ż = G(q, q̇, z)`, where `Q` is the
-//! Galerkin projection `Q_φ = Σ_s w_s m_φ Φ(x_s)`, `Q_u = Σ_s w_s f_u U(x_s)` of the strip loads
-//! and `M_a = Σ_s w_s Pᵀ M_a,s P` the apparent mass (P maps `q` to the strip's `[φ, u]`).
+//! `(M − M_a) q̈ = Q(q, q̇, z) − K q − C q̇`, `ż = G(q, q̇, z)`, where `Q` is the projection
+//! `Q = Σ_s w_s (m_φ e_φ(x_s) + f_u e_u(x_s))` of the strip loads on the structure's motion rows
+//! (`φ = e_φ·q`, `u = e_u·q` at the station, [`MotionRows`]) and `M_a = Σ_s w_s Pᵀ M_a,s P` the
+//! apparent mass (P maps `q` to the strip's `[φ, u]`).
 //!
 //! The system is written for any [`StripModel`], linear or not: [`System::rhs`] gives `ẋ`,
 //! [`System::jacobian`] its exact Jacobian (chain rule through the models' analytic partials),
@@ -20,8 +22,8 @@ use crate::error::{Error, Result};
 use crate::physics::aero::{
     model_for, Kinematics, NonlinearSupport, SteadyStates, StripEval, StripModel,
 };
-use crate::physics::inflow::{preset_stations, Station};
-use crate::physics::structure::{assemble, StructuralModel};
+use crate::physics::inflow::{stations, OperatingPoint, Station};
+use crate::physics::structure::{for_preset, Structure};
 use crate::preset::ValidPreset;
 use nalgebra::{DMatrix, DVector};
 use std::sync::Arc;
@@ -30,20 +32,17 @@ use std::sync::Arc;
 const NEWTON_MAX_ITERATIONS: usize = 60;
 
 pub struct System {
-    structure: Arc<StructuralModel>,
+    structure: Arc<dyn Structure>,
     stations: Vec<Station>,
     model: Box<dyn StripModel>,
-    /// Φ(x_s) and U(x_s) at every station (N each).
-    torsion_at: Vec<DVector<f64>>,
-    flap_at: Vec<DVector<f64>>,
-    /// The rows e_φ = [Φ(x_s); 0] and e_u = [0; U(x_s)] that map q to each strip's φ and u.
+    /// The rows e_φ and e_u that map q to each strip's φ and u.
     rows: Vec<[DVector<f64>; 2]>,
+    /// The same at the tip.
+    tip_rows: [DVector<f64>; 2],
     /// (M − M_a)⁻¹, factored once: every rhs and Jacobian needs it.
     mass_inv: DMatrix<f64>,
     stiffness: DMatrix<f64>,
     damping: DMatrix<f64>,
-    /// Galerkin functions per field (N).
-    n: usize,
     /// States per station.
     ns: usize,
 }
@@ -71,42 +70,40 @@ pub struct LinearSystem {
     /// Structural coordinates 2N (q); the state is `[q (2N), q̇ (2N), z (n_aero)]`.
     pub nq: usize,
     pub n_aero: usize,
-    /// Tip twist φ(L) = `tip_twist · q` and tip flap u(L) = `tip_flap · q` (2N each).
+    /// Tip twist φ(L) = `tip_twist · q` and tip flap u(L) = `tip_flap · q` (`n_q` each).
     pub tip_twist: DVector<f64>,
     pub tip_flap: DVector<f64>,
-    pub structure: Arc<StructuralModel>,
+    pub structure: Arc<dyn Structure>,
 }
 
 impl System {
-    /// Assemble structure, stations and the preset's aerodynamic model.
+    /// Assemble structure, stations (along the structure's span) and the preset's aerodynamic
+    /// model.
     pub fn new(p: &ValidPreset) -> Result<System> {
-        let structure = assemble(p)?;
+        let structure = for_preset(p)?;
         let model = model_for(p)?;
-        System::from_parts(structure, preset_stations(p), model)
+        let stations = stations(
+            structure.length(),
+            structure.hub_radius(),
+            &OperatingPoint::from_preset(p),
+            p.aero.stations,
+        );
+        System::from_parts(structure, stations, model)
     }
 
     /// Build from an assembled structure, stations and a model (tests and alternative models).
     pub fn from_parts(
-        structure: StructuralModel,
+        structure: Arc<dyn Structure>,
         stations: Vec<Station>,
         model: Box<dyn StripModel>,
     ) -> Result<System> {
-        let n = structure.n;
-        let nq = 2 * n;
-        let torsion_at: Vec<_> = stations
-            .iter()
-            .map(|s| structure.basis.torsion(s.x, 0))
-            .collect();
-        let flap_at: Vec<_> = stations
-            .iter()
-            .map(|s| structure.basis.bending(s.x, 0))
-            .collect();
-        let rows: Vec<[DVector<f64>; 2]> = torsion_at
-            .iter()
-            .zip(&flap_at)
-            .map(|(phi, uu)| [embed(phi, 0, nq), embed(uu, n, nq)])
-            .collect();
-        let mut mass = structure.mass.clone();
+        let twist_and_flap = |x: f64| {
+            let r = structure.motion_rows(x);
+            [r.twist, r.flap]
+        };
+        let rows: Vec<[DVector<f64>; 2]> = stations.iter().map(|s| twist_and_flap(s.x)).collect();
+        let tip_rows = twist_and_flap(structure.length());
+        let mut mass = structure.mass().clone();
         for (s, rows) in stations.iter().zip(&rows) {
             let ma = model.apparent_mass(s);
             for l in 0..2 {
@@ -125,37 +122,35 @@ impl System {
         check_finite("inverse mass matrix", &mass_inv)?;
         let stiffness = structure.stiffness();
         check_finite("stiffness matrix", &stiffness)?;
-        check_finite("damping matrix", &structure.damping)?;
-        let damping = structure.damping.clone();
+        let damping = structure.damping().clone();
+        check_finite("damping matrix", &damping)?;
         let ns = model.states_per_station();
         Ok(System {
-            structure: Arc::new(structure),
+            structure,
             stations,
             model,
-            torsion_at,
-            flap_at,
             rows,
+            tip_rows,
             mass_inv,
             stiffness,
             damping,
-            n,
             ns,
         })
     }
 
-    /// Length of the state vector: 4N + aero states.
+    /// Length of the state vector: 2 n_q + aero states.
     pub fn dim(&self) -> usize {
-        4 * self.n + self.n_aero()
+        2 * self.nq() + self.n_aero()
     }
-    /// Structural coordinates 2N.
+    /// Structural coordinates n_q.
     pub fn nq(&self) -> usize {
-        2 * self.n
+        self.structure.coordinates()
     }
     pub fn n_aero(&self) -> usize {
         self.ns * self.stations.len()
     }
-    pub fn structure(&self) -> &StructuralModel {
-        &self.structure
+    pub fn structure(&self) -> &dyn Structure {
+        self.structure.as_ref()
     }
     pub fn stations(&self) -> &[Station] {
         &self.stations
@@ -166,11 +161,8 @@ impl System {
 
     /// Tip twist φ(L) (rad) and tip flap u(L) (m) of a state.
     pub fn tip(&self, x: &DVector<f64>) -> (f64, f64) {
-        let n = self.n;
-        (
-            self.structure.tip_twist_row().dot(&x.rows(0, n)),
-            self.structure.tip_flap_row().dot(&x.rows(n, n)),
-        )
+        let q = x.rows(0, self.nq());
+        (self.tip_rows[0].dot(&q), self.tip_rows[1].dot(&q))
     }
 
     /// ẋ = f(x).
@@ -284,8 +276,8 @@ impl System {
             x_eq: x_ref,
             nq: self.nq(),
             n_aero: self.n_aero(),
-            tip_twist: embed(&self.structure.tip_twist_row(), 0, self.nq()),
-            tip_flap: embed(&self.structure.tip_flap_row(), self.n, self.nq()),
+            tip_twist: self.tip_rows[0].clone(),
+            tip_flap: self.tip_rows[1].clone(),
             structure: Arc::clone(&self.structure),
         }
     }
@@ -360,11 +352,8 @@ impl System {
 
     /// `[φ, u]` at station `si` for coordinates `q`.
     fn deflection_at(&self, si: usize, q: nalgebra::DVectorView<f64>) -> (f64, f64) {
-        let n = self.n;
-        (
-            self.torsion_at[si].dot(&q.rows(0, n)),
-            self.flap_at[si].dot(&q.rows(n, n)),
-        )
+        let [phi, u] = &self.rows[si];
+        (phi.dot(&q), u.dot(&q))
     }
 
     fn kinematic_rows(&self, si: usize) -> &[DVector<f64>; 2] {
@@ -519,7 +508,7 @@ impl System {
     /// [`System::splitting`] with the Jacobian at `x_ref` already known (`a`), as the
     /// linearisation that found the equilibrium has it.
     pub fn splitting_with(&self, x_ref: &DVector<f64>, a: DMatrix<f64>) -> Splitting {
-        let (n, nq, ns) = (self.n, self.nq(), self.ns);
+        let (nq, ns) = (self.nq(), self.ns);
         let dim = self.dim();
         let support = self.model.nonlinear_support();
         let (p, m) = (support.inputs.len(), support.outputs.len());
@@ -529,17 +518,17 @@ impl System {
         let mut scratch = self.remainder_scratch();
         let mut reference = Vec::with_capacity(stations);
         for (si, s) in self.stations.iter().enumerate() {
-            let (phi, u) = (&self.torsion_at[si], &self.flap_at[si]);
+            let [phi, u] = &self.rows[si];
             for (r, &input) in support.inputs.iter().enumerate() {
                 let mut row = c.row_mut(si * p + r);
                 match input {
-                    NonlinearSupport::TWIST => row.columns_mut(0, n).copy_from(&phi.transpose()),
-                    NonlinearSupport::FLAP => row.columns_mut(n, n).copy_from(&u.transpose()),
+                    NonlinearSupport::TWIST => row.columns_mut(0, nq).copy_from(&phi.transpose()),
+                    NonlinearSupport::FLAP => row.columns_mut(0, nq).copy_from(&u.transpose()),
                     NonlinearSupport::TWIST_RATE => {
-                        row.columns_mut(nq, n).copy_from(&phi.transpose())
+                        row.columns_mut(nq, nq).copy_from(&phi.transpose())
                     }
                     NonlinearSupport::FLAP_RATE => {
-                        row.columns_mut(nq + n, n).copy_from(&u.transpose())
+                        row.columns_mut(nq, nq).copy_from(&u.transpose())
                     }
                     state => row[2 * nq + si * ns + state - NonlinearSupport::FIRST_STATE] = 1.0,
                 }
@@ -704,13 +693,6 @@ impl LinearSystem {
         let q = x.rows(0, self.nq);
         (self.tip_twist.dot(&q), self.tip_flap.dot(&q))
     }
-}
-
-/// `v` placed at `offset` in a zero vector of length `len`.
-fn embed(v: &DVector<f64>, offset: usize, len: usize) -> DVector<f64> {
-    let mut out = DVector::zeros(len);
-    out.rows_mut(offset, v.len()).copy_from(v);
-    out
 }
 
 /// Every entry finite, or a numerical error naming the matrix.

@@ -268,10 +268,14 @@ fn still_air_structural_roots_are_the_structure_with_apparent_mass() {
         let o: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
         let still = check_still_air(name, &o);
         let model = Box::new(ApparentMassOnly(model_for(&p).unwrap()));
-        let loaded = System::from_parts(assemble(&p).unwrap(), preset_stations(&p), model)
-            .unwrap()
-            .linearise()
-            .unwrap();
+        let loaded = System::from_parts(
+            std::sync::Arc::new(assemble(&p).unwrap()),
+            preset_stations(&p),
+            model,
+        )
+        .unwrap()
+        .linearise()
+        .unwrap();
         let loaded = analyse_system(&loaded).unwrap();
         let sorted = |s: &Stability| {
             let mut l: Vec<(f64, f64)> = s.eigenvalues.iter().map(|m| (m.im, m.re)).collect();

@@ -131,7 +131,7 @@ impl TestEngine {
             ));
         }
         Ok(Solved {
-            section: SectionProps {
+            section: Some(SectionProps {
                 m: 0.06,
                 i: 2e-6,
                 ka2: 3e-5,
@@ -143,7 +143,7 @@ impl TestEngine {
                 c22: 0.9,
                 c23: -0.16,
                 c33: 0.46,
-            },
+            }),
             stability: test_stability(p),
         })
     }

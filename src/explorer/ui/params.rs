@@ -72,7 +72,7 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
             Span::styled(" N·m²", theme.dim()),
         ])
     };
-    let sec = state.solved.as_ref().map(|s| s.section);
+    let sec = state.solved.as_ref().and_then(|s| s.section);
     lines.push(stiff("C22", sec.map(|s| s.c22)));
     lines.push(stiff("C23", sec.map(|s| s.c23)));
     lines.push(stiff("C33", sec.map(|s| s.c33)));

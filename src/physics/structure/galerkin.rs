@@ -12,6 +12,8 @@ use crate::numeric::faer_evd::real_evd;
 use crate::physics::basis::{torsion_wavenumber, Basis, BendingMode};
 use crate::physics::section::{section_properties, SectionProps};
 use crate::preset::{Form, ValidPreset};
+
+use super::{MotionRows, NaturalMode, Shares, Structure};
 use nalgebra::{Complex, DMatrix, DVector};
 use std::sync::{Arc, OnceLock};
 
@@ -32,19 +34,8 @@ pub struct StructuralModel {
     pub damping: DMatrix<f64>,
     /// ω1 (rad/s), lowest natural frequency of (M, K_e + K_c).
     pub omega1: f64,
-}
-
-/// One undamped natural mode of (M, K_e + K_c).
-#[derive(Debug, Clone, serde::Serialize)]
-pub struct NaturalMode {
-    pub frequency_hz: f64,
-    /// `flap k` or `torsion k`.
-    pub label: String,
-    /// Share of the kinetic energy in the twist coordinates (0…1).
-    pub torsion_share: f64,
-    /// Galerkin coefficients q (2N), unit Euclidean norm, largest entry positive.
-    #[serde(skip)]
-    pub shape: DVector<f64>,
+    /// r_hub (m).
+    pub hub_radius: f64,
 }
 
 /// Assemble the structure of a preset: section from its source, N from `structure.modes`, form
@@ -356,6 +347,7 @@ fn assemble_section(section: SectionProps, spec: &BladeSpec) -> Result<Structura
         centrifugal,
         damping,
         omega1,
+        hub_radius: spec.hub_radius,
     })
 }
 
@@ -460,25 +452,15 @@ impl StructuralModel {
             true => self.symmetric_pairs(&k)?,
             false => self.general_pairs(&k)?,
         };
-        let shares: Vec<f64> = pairs
-            .iter()
-            .map(|(_, q)| {
-                let qc: Vec<Complex<f64>> = q.iter().map(|&v| Complex::new(v, 0.0)).collect();
-                self.torsion_share(&qc)
+        let named = pairs
+            .into_iter()
+            .map(|(lambda, shape)| {
+                let qc: Vec<Complex<f64>> = shape.iter().map(|&v| Complex::new(v, 0.0)).collect();
+                let frequency_hz = lambda.max(0.0).sqrt() / (2.0 * std::f64::consts::PI);
+                (frequency_hz, self.kinetic_shares(&qc), shape)
             })
             .collect();
-        let labels = mode_labels(&shares);
-        Ok(pairs
-            .into_iter()
-            .zip(shares)
-            .zip(labels)
-            .map(|(((lambda, shape), torsion_share), label)| NaturalMode {
-                frequency_hz: lambda.max(0.0).sqrt() / (2.0 * std::f64::consts::PI),
-                label,
-                torsion_share,
-                shape,
-            })
-            .collect())
+        Ok(NaturalMode::named(named))
     }
 
     /// (ω², q) pairs, ascending, of the symmetric problem.
@@ -533,6 +515,11 @@ impl StructuralModel {
     /// `q_φᴴM_φφq_φ / (q_φᴴM_φφq_φ + q_uᴴM_uuq_u)`: in [0, 1] for any complex eigenvector (the
     /// cg-offset coupling block is left out, as it carries no sign). Uses the first 2N entries.
     pub fn torsion_share(&self, q: &[Complex<f64>]) -> f64 {
+        self.kinetic_shares(q).twist
+    }
+
+    /// Flap and twist kinetic energies from the diagonal blocks of M (no edge motion).
+    fn kinetic_shares(&self, q: &[Complex<f64>]) -> Shares {
         let n = self.n;
         let quad = |offset: usize| -> f64 {
             let mut e = 0.0;
@@ -544,12 +531,57 @@ impl StructuralModel {
             }
             e.max(0.0)
         };
-        let (et, ef) = (quad(0), quad(n));
-        if et + ef > 0.0 {
-            et / (et + ef)
-        } else {
-            0.0
+        Shares::from_energies(quad(n), 0.0, quad(0))
+    }
+}
+
+impl Structure for StructuralModel {
+    fn coordinates(&self) -> usize {
+        2 * self.n
+    }
+    fn length(&self) -> f64 {
+        self.basis.length
+    }
+    fn hub_radius(&self) -> f64 {
+        self.hub_radius
+    }
+    fn mass(&self) -> &DMatrix<f64> {
+        &self.mass
+    }
+    fn stiffness(&self) -> DMatrix<f64> {
+        StructuralModel::stiffness(self)
+    }
+    fn damping(&self) -> &DMatrix<f64> {
+        &self.damping
+    }
+    /// `q = [q_φ; q_u]`: twist from the torsion functions, flap from the bending functions, no
+    /// edge motion (docs/model.md §4).
+    fn motion_rows(&self, x: f64) -> MotionRows {
+        let n = self.n;
+        let mut twist = DVector::zeros(2 * n);
+        let mut flap = DVector::zeros(2 * n);
+        twist.rows_mut(0, n).copy_from(&self.basis.torsion(x, 0));
+        flap.rows_mut(n, n).copy_from(&self.basis.bending(x, 0));
+        MotionRows {
+            twist,
+            flap,
+            edge: DVector::zeros(2 * n),
         }
+    }
+    fn natural_modes(&self) -> Result<Vec<NaturalMode>> {
+        StructuralModel::natural_modes(self)
+    }
+    fn shares(&self, q: &[Complex<f64>]) -> Shares {
+        self.kinetic_shares(q)
+    }
+    /// The first torsion and the first bending function.
+    fn kick_shapes(&self) -> [DVector<f64>; 2] {
+        let n = self.n;
+        let unit = |k: usize| DVector::from_fn(2 * n, |i, _| if i == k { 1.0 } else { 0.0 });
+        [unit(0), unit(n)]
+    }
+    fn uniform_section(&self) -> Option<&SectionProps> {
+        Some(&self.section)
     }
 }
 
@@ -582,24 +614,6 @@ fn normalise(mut v: DVector<f64>) -> DVector<f64> {
         v *= v[imax].signum() / norm;
     }
     v
-}
-
-/// Labels `flap k` / `torsion k` (share > 0.5 → torsion), k counting within its kind in the given
-/// (frequency) order.
-pub fn mode_labels(torsion_shares_in_frequency_order: &[f64]) -> Vec<String> {
-    let (mut flap, mut torsion) = (0, 0);
-    torsion_shares_in_frequency_order
-        .iter()
-        .map(|&share| {
-            if share > 0.5 {
-                torsion += 1;
-                format!("torsion {torsion}")
-            } else {
-                flap += 1;
-                format!("flap {flap}")
-            }
-        })
-        .collect()
 }
 
 /// The paper's "approximate calculation" (AC, Eq. 13) for the n-th row of Table 2 (Hz), as docs/model.md

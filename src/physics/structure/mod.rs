@@ -1,0 +1,199 @@
+//! The blade structure as the aeroelastic system sees it (docs/model.md §6): `n_q` structural
+//! coordinates `q` with mass, stiffness and damping matrices at the operating rotor speed, and,
+//! at any span position, the rows that turn `q` into the motion of the reference (pitch) axis:
+//! elastic twist `φ`, flap `u` (out of the rotor plane) and edge `v` (in it).
+//!
+//! Two structures provide it: the paper's uniform blade in Galerkin coordinates ([`galerkin`],
+//! §3–§4; no edge motion, its edge rows are zero) and a tabulated real blade in the coordinates
+//! of its rotating modes (§11.4). The system, the eigen-analysis and the time response work on
+//! [`Structure`] alone, so they never ask which one they have.
+
+pub mod galerkin;
+
+pub use galerkin::{ac_frequency_hz, assemble, StructuralModel};
+
+use crate::error::Result;
+use crate::physics::section::SectionProps;
+use crate::preset::ValidPreset;
+use nalgebra::{Complex, DMatrix, DVector};
+use std::sync::Arc;
+
+/// The structure a preset describes, at its rotor speed and pitch.
+pub fn for_preset(p: &ValidPreset) -> Result<Arc<dyn Structure>> {
+    Ok(Arc::new(assemble(p)?))
+}
+
+/// The motion families of a mode (docs/model.md §6.2, §11.4).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Family {
+    Flap,
+    Edge,
+    Torsion,
+}
+
+impl Family {
+    pub fn name(self) -> &'static str {
+        match self {
+            Family::Flap => "flap",
+            Family::Edge => "edge",
+            Family::Torsion => "torsion",
+        }
+    }
+
+    /// The family holding the largest share of `[flap, edge, twist]` motion; ties go to
+    /// bending, flap before edge (a mode with no twist at all is never called torsion).
+    pub fn of(shares: [f64; 3]) -> Family {
+        let [flap, edge, twist] = shares;
+        if twist > flap && twist > edge {
+            Family::Torsion
+        } else if edge > flap {
+            Family::Edge
+        } else {
+            Family::Flap
+        }
+    }
+}
+
+/// Shares of a motion's kinetic energy in flap, edge and twist (each in [0, 1], summing to 1
+/// unless the motion is zero).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Shares {
+    pub flap: f64,
+    pub edge: f64,
+    pub twist: f64,
+}
+
+impl Shares {
+    /// Normalised from the three (non-negative) kinetic energies.
+    pub fn from_energies(flap: f64, edge: f64, twist: f64) -> Shares {
+        let (flap, edge, twist) = (flap.max(0.0), edge.max(0.0), twist.max(0.0));
+        let total = flap + edge + twist;
+        if total > 0.0 {
+            Shares {
+                flap: flap / total,
+                edge: edge / total,
+                twist: twist / total,
+            }
+        } else {
+            Shares {
+                flap: 0.0,
+                edge: 0.0,
+                twist: 0.0,
+            }
+        }
+    }
+
+    pub fn array(self) -> [f64; 3] {
+        [self.flap, self.edge, self.twist]
+    }
+
+    pub fn family(self) -> Family {
+        Family::of(self.array())
+    }
+}
+
+/// One undamped natural mode of the structure at its rotor speed (in vacuo).
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct NaturalMode {
+    pub frequency_hz: f64,
+    /// `flap k`, `edge k` or `torsion k`: [`NaturalMode::family`] and [`NaturalMode::number`].
+    pub label: String,
+    pub family: Family,
+    /// Its number within the family, counting from 1 in frequency order.
+    pub number: usize,
+    /// Kinetic-energy shares of flap, edge and twist motion.
+    pub shares: Shares,
+    /// The twist share alone (`shares.twist`), kept for scripts that read it.
+    pub torsion_share: f64,
+    /// Structural coordinates q (`n_q`).
+    #[serde(skip)]
+    pub shape: DVector<f64>,
+}
+
+impl NaturalMode {
+    /// Modes from (frequency, shares, shape) in ascending frequency, named and numbered within
+    /// their families.
+    pub fn named(modes: Vec<(f64, Shares, DVector<f64>)>) -> Vec<NaturalMode> {
+        let families: Vec<Family> = modes.iter().map(|(_, s, _)| s.family()).collect();
+        let numbers = numbers_within_families(&families);
+        modes
+            .into_iter()
+            .zip(families.into_iter().zip(numbers))
+            .map(
+                |((frequency_hz, shares, shape), (family, number))| NaturalMode {
+                    frequency_hz,
+                    label: format!("{} {number}", family.name()),
+                    family,
+                    number,
+                    shares,
+                    torsion_share: shares.twist,
+                    shape,
+                },
+            )
+            .collect()
+    }
+}
+
+/// Each family's modes numbered 1, 2, … in the given (frequency) order.
+pub fn numbers_within_families(families: &[Family]) -> Vec<usize> {
+    let mut seen = [0usize; 3];
+    families
+        .iter()
+        .map(|f| {
+            let k = *f as usize;
+            seen[k] += 1;
+            seen[k]
+        })
+        .collect()
+}
+
+/// Labels `flap k` / `torsion k` of a flap–torsion blade from its twist shares (share > 0.5 →
+/// torsion), k counting within its kind in the given (frequency) order.
+pub fn mode_labels(torsion_shares_in_frequency_order: &[f64]) -> Vec<String> {
+    let families: Vec<Family> = torsion_shares_in_frequency_order
+        .iter()
+        .map(|&t| Family::of([1.0 - t, 0.0, t]))
+        .collect();
+    numbers_within_families(&families)
+        .into_iter()
+        .zip(families)
+        .map(|(k, f)| format!("{} {k}", f.name()))
+        .collect()
+}
+
+/// Rows mapping the structural coordinates `q` to the motion of the reference axis at one span
+/// position: `φ = twist·q` (rad), `u = flap·q`, `v = edge·q` (m).
+#[derive(Debug, Clone, PartialEq)]
+pub struct MotionRows {
+    pub twist: DVector<f64>,
+    pub flap: DVector<f64>,
+    pub edge: DVector<f64>,
+}
+
+/// A blade structure in some coordinates `q` (docs/model.md §6): what the aeroelastic system
+/// needs, and nothing about how the coordinates were made.
+pub trait Structure: Send + Sync {
+    /// `n_q`, the number of structural coordinates.
+    fn coordinates(&self) -> usize;
+    /// Span from the clamped root to the tip (m).
+    fn length(&self) -> f64;
+    /// Root radius (m): span position `x` sits at radius `hub_radius + x`.
+    fn hub_radius(&self) -> f64;
+    /// M (`n_q × n_q`).
+    fn mass(&self) -> &DMatrix<f64>;
+    /// K at the rotor speed: elastic plus centrifugal.
+    fn stiffness(&self) -> DMatrix<f64>;
+    /// Structural damping C.
+    fn damping(&self) -> &DMatrix<f64>;
+    /// Twist, flap and edge of the reference axis at span position `x` (m from the root).
+    fn motion_rows(&self, x: f64) -> MotionRows;
+    /// Undamped natural modes at the rotor speed, ascending, named by family.
+    fn natural_modes(&self) -> Result<Vec<NaturalMode>>;
+    /// Kinetic-energy shares of a (complex) motion's coordinates `q`.
+    fn shares(&self, q: &[Complex<f64>]) -> Shares;
+    /// Coordinates of the shapes a tip kick excites: the first torsion and the first flap shape.
+    fn kick_shapes(&self) -> [DVector<f64>; 2];
+    /// The uniform section, when the blade is the paper's uniform beam.
+    fn uniform_section(&self) -> Option<&SectionProps>;
+}
