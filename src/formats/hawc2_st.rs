@@ -16,6 +16,8 @@ use std::path::Path;
 /// A classic (19-column) st row, in the file's units.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ClassicRow {
+    /// 1-based line of the row in the file, for errors about its values.
+    pub line: usize,
     /// Curved length along the main body from its node 1, m.
     pub r: f64,
     /// Mass per unit length, kg/m.
@@ -53,6 +55,8 @@ pub struct ClassicRow {
 /// A fully populated (30-column) st row, in the file's units.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FpmRow {
+    /// 1-based line of the row in the file, for errors about its values.
+    pub line: usize,
     /// Curved length along the main body from its node 1, m.
     pub r: f64,
     /// Mass per unit length, kg/m.
@@ -311,6 +315,7 @@ fn classic(row: &Row) -> ClassicRow {
     let [r, m, x_cg, y_cg, ri_x, ri_y, x_sh, y_sh, e, g, i_x, i_y, i_p, k_x, k_y, a, pitch_deg, x_e, y_e] =
         array(&row.values);
     ClassicRow {
+        line: row.idx + 1,
         r,
         m,
         x_cg,
@@ -336,6 +341,7 @@ fn classic(row: &Row) -> ClassicRow {
 fn fpm(row: &Row) -> FpmRow {
     let [r, m, x_cg, y_cg, ri_x, ri_y, pitch_deg, x_e, y_e] = array(&row.values);
     FpmRow {
+        line: row.idx + 1,
         r,
         m,
         x_cg,

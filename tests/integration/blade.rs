@@ -21,6 +21,8 @@ fn uniform(length: f64, m: f64, ei_flap: f64, ei_edge: f64, gj: f64, ip: f64) ->
         flap_twist: 0.0,
         edge_twist: 0.0,
         twist: 0.0,
+        shear_centre: [0.0, 0.0],
+        tension_centre: [0.0, 0.0],
     };
     BladeTable::new(
         "uniform test blade",

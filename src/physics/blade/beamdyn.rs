@@ -1,22 +1,27 @@
 //! A blade from its BeamDyn files (docs/model.md §11.5): the key points give the span and the
 //! initial twist of the section frames, the blade file's 6×6 matrices the section properties.
 //!
-//! BeamDyn's section frame: `x1` normal to the chord (our ξ), `x2` along the chord (our η), `x3`
-//! along the reference axis; matrices in the order (shear 1, shear 2, extension, bending about x1,
-//! bending about x2, torsion). Bending about `x2` curves the blade along `x1`, so the flap
-//! stiffness is K55 and the edge stiffness K44 (in the NREL 5MW file K44 is ElastoDyn's EdgStff
-//! and K55 its FlpStff). With `κ1 = −w2''`, `κ2 = w1''`, `κ3 = φ'`, BeamDyn's `½κᵀKκ` gives
-//! `EI_ξη = −K45`, `g_ξ = −K56` and `g_η = K46` in §11.2's signs. Mass matrix: `m = M11`,
-//! centre of mass `ξ_c = M26/m`, `η_c = −M16/m`, mass moments `∫ρη² = M44`, `∫ρξ² = M55`,
-//! `∫ρξη = −M45`. The initial twist, positive toward feather as AeroDyn's twist, is linear
-//! between key points. The reference axis is taken straight along `kp_zr` (prebend and sweep in
-//! `kp_xr`, `kp_yr` are neglected, §11.2).
+//! BeamDyn's section frame (OpenFAST's BeamDyn input-file documentation: the IEC blade system,
+//! `X_r` toward the suction side, `Y_r` toward the trailing edge, `Z_r` along the blade) has `x1`
+//! normal to the chord (our ξ) and `x2` along it toward the trailing edge (our −η): a reflection
+//! of ours, so the twist sense reverses too. The 6×6 stiffness about the reference axis, in the
+//! order (shear 1, shear 2, extension, bending about x1, bending about x2, torsion), is reduced to
+//! the Euler–Bernoulli section by [`classical::reduce`](super::classical::reduce): its couplings
+//! K16, K26 place the shear centre, K34, K35 the tension centre. Bending about `x2` curves the
+//! blade along `x1`, so the flap stiffness comes from K55 and the edge stiffness from K44 (in the
+//! NREL 5MW file K55 equals ElastoDyn's FlpStff and K44 its EdgStff). Mass matrix
+//! `[[m I, −m c̃], [m c̃, J]]`: centre of mass `(x1, x2) = (M26, −M16)/m`, second moments
+//! `∫ρx2² = M44`, `∫ρx1² = M55`, `∫ρx1x2 = −M45`, then reflected. The initial twist, positive
+//! toward feather as AeroDyn's twist, is linear between key points. The reference axis is taken
+//! straight along `kp_zr` (prebend and sweep in `kp_xr`, `kp_yr` are neglected, §11.2).
 
+use super::classical::{reduce, FileFrame};
 use super::{BladeTable, Section};
 use crate::error::{Error, Result};
 use crate::formats::beamdyn::{BeamDynBlade, BeamDynPrimary};
 
-/// The blade of `primary` with the properties of `blade`, its root at `hub_radius` (m).
+/// The blade of `primary` with the properties of `blade`, its root at `hub_radius` (m), mapped
+/// into docs/model.md §11.1's frame as §11.5 describes.
 pub fn from_beamdyn(
     primary: &BeamDynPrimary,
     blade: &BeamDynBlade,
@@ -52,31 +57,45 @@ pub fn from_beamdyn(
         };
         (ta + (tb - ta) * t).to_radians()
     };
+    let frame = beamdyn_frame();
     let sections = blade
         .stations
         .iter()
-        .map(|s| {
-            let (k, m) = (&s.stiffness, &s.mass);
-            let mass = m[0][0];
+        .enumerate()
+        .map(|(k, s)| {
+            let (stiffness, m) = (&s.stiffness, &s.mass);
             let z = s.eta * length;
-            Section {
+            let section = reduce(stiffness, &frame).map_err(|message| Error::Invalid {
+                origin: origin.to_string(),
+                message: format!("station {} (eta = {}): {message}", k + 1, s.eta),
+            })?;
+            let mass = m[0][0];
+            let cg = if mass > 0.0 {
+                frame.position([m[1][5] / mass, -m[0][5] / mass])
+            } else {
+                [0.0, 0.0]
+            };
+            Ok(Section {
                 z,
                 mass,
-                cg: if mass > 0.0 {
-                    [m[1][5] / mass, -m[0][5] / mass]
-                } else {
-                    [0.0, 0.0]
-                },
-                inertia: [m[4][4], m[3][3], -m[3][4]],
-                ei_flap: k[4][4],
-                ei_edge: k[3][3],
-                ei_cross: -k[3][4],
-                gj: k[5][5],
-                flap_twist: -k[4][5],
-                edge_twist: k[3][5],
+                cg,
+                inertia: frame.second_moments([[m[4][4], -m[3][4]], [-m[3][4], m[3][3]]]),
+                ei_flap: section.ei_flap,
+                ei_edge: section.ei_edge,
+                ei_cross: section.ei_cross,
+                gj: section.gj,
+                flap_twist: section.flap_twist,
+                edge_twist: section.edge_twist,
                 twist: twist_at(z),
-            }
+                shear_centre: section.shear_centre,
+                tension_centre: section.tension_centre,
+            })
         })
-        .collect();
+        .collect::<Result<Vec<Section>>>()?;
     BladeTable::new(origin, hub_radius, sections)
+}
+
+/// BeamDyn's section axes in ours: `ξ = x1`, `η = −x2` (docs/model.md §11.5).
+fn beamdyn_frame() -> FileFrame {
+    FileFrame::new([[1.0, 0.0], [0.0, -1.0]]).expect("a reflection is orthogonal")
 }

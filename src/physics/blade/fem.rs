@@ -1,21 +1,27 @@
 //! Finite elements of a tabulated blade (docs/model.md §11.2–§11.3): a linear beam on the
 //! straight pitch axis, clamped at the root, with flap `u` (along x) and edge `v` (along y) on
-//! cubic Hermite elements and elastic twist `φ` on linear ones. Per node `[u, u', v, v', φ]`.
+//! cubic Hermite elements and elastic twist `φ` on linear ones. Per node `[u, u', v, v', φ]`,
+//! where `u`, `v` are the displacements of the shear centre (the elastic axis) and `φ` the
+//! rotation of the section about it.
 //!
 //! Strain energy `½∫ EI_ξ κ_ξ² + EI_η κ_η² + 2 EI_ξη κ_ξ κ_η + GJ φ'² − 2 g_ξ κ_ξ φ' − 2 g_η κ_η φ'`
-//! with the curvatures in the section frame `κ_ξ = u'' cos θ + v'' sin θ`,
-//! `κ_η = −u'' sin θ + v'' cos θ` (θ = structural twist + pitch). Kinetic energy
-//! `½∫ m(u̇² + v̇²) + I_p φ̇² − 2 m y_c u̇ φ̇ + 2 m x_c v̇ φ̇` (centre of mass at `(x_c, y_c)` in the
-//! rotor frame, `I_p` about the pitch axis). Rotation at Ω about the shaft (along x) adds
-//! `Ω² K_Ω`: the centrifugal tension `T(z) = Ω²∫_z^L m (r_hub + s) ds` on both bending slopes,
-//! the in-plane spin softening `−mΩ²` on v and its coupling `−m x_c Ω²` with φ, and the
-//! propeller moment `Ω²[(∫ρη² − ∫ρξ²) cos 2θ + 2∫ρξη sin 2θ]` on φ. So `K(Ω) = K₀ + Ω² K_Ω`
-//! exactly: both are assembled once, and a rotor-speed change costs no re-assembly.
+//! with the curvatures of the shear-centre line in the section frame
+//! `κ_ξ = u'' cos θ + v'' sin θ`, `κ_η = −u'' sin θ + v'' cos θ` (θ = structural twist + pitch).
+//! A point at `(x, y)` in the rotor frame moves by `(u − φ(y − y_s), v + φ(x − x_s))`, so the
+//! kinetic energy is `½∫ m(u̇² + v̇²) + I_s φ̇² − 2 m (y_c − y_s) u̇ φ̇ + 2 m (x_c − x_s) v̇ φ̇`
+//! (centre of mass `(x_c, y_c)`, shear centre `(x_s, y_s)`, `I_s` the polar mass moment about
+//! the shear centre). Rotation at Ω about the shaft (along x) adds `Ω² K_Ω`: the centrifugal
+//! tension `T(z) = Ω²∫_z^L m (r_hub + s) ds` on the slopes of the tension-centre line
+//! `u_e = u − φ(y_e − y_s)`, `v_e = v + φ(x_e − x_s)`, the in-plane spin softening `−mΩ²` on v and
+//! its coupling `−m (x_c − x_s) Ω²` with φ, and the propeller moment about the shear centre on φ.
+//! So `K(Ω) = K₀ + Ω² K_Ω` exactly: both are assembled once, and a rotor-speed change costs no
+//! re-assembly. With every offset zero the terms reduce exactly (bit for bit) to those of a blade
+//! whose shear and tension centres lie on the pitch axis.
 
-use super::BladeTable;
+use super::{BladeTable, Section};
 use crate::error::{Error, Result};
 use crate::physics::basis::gauss_legendre;
-use nalgebra::DMatrix;
+use nalgebra::{DMatrix, DVector};
 
 /// Degrees of freedom per node: `u, u', v, v', φ`.
 pub const NODE_DOFS: usize = 5;
@@ -66,6 +72,9 @@ impl Mesh {
 /// The assembled structure of one blade at one pitch: `M`, `K₀`, `K_Ω` (free dofs only).
 #[derive(Debug, Clone)]
 pub struct BladeMatrices {
+    /// The table the matrices came from: the offsets that carry a mode shape from the shear
+    /// centre to the reference axis ([`BladeMatrices::reference_axis_at`]).
+    pub table: BladeTable,
     pub mesh: Mesh,
     /// Pitch the section frames were turned by (rad).
     pub pitch: f64,
@@ -195,7 +204,60 @@ fn tension_at_nodes(table: &BladeTable, nodes: &[f64]) -> Vec<f64> {
         .collect()
 }
 
-/// Assemble `M`, `K₀` and `K_Ω` of `table` on `mesh` at `pitch` (rad), clamped at the root.
+/// The offsets of one section in the rotor frame (docs/model.md §11.2), turned from its section
+/// frame by `θ = twist + pitch`: centre of mass and shear centre from the reference axis, and
+/// the tension centre from the shear centre with its rate along the span.
+struct RotorOffsets {
+    cg: [f64; 2],
+    shear: [f64; 2],
+    /// Tension centre minus shear centre.
+    tension: [f64; 2],
+    /// Its derivative along the span: the section-frame offsets change and the frame turns.
+    tension_rate: [f64; 2],
+}
+
+/// `(ξ, η)` of a section frame turned by `theta` toward feather, in the rotor frame `(x, y)`.
+fn to_rotor(v: [f64; 2], theta: f64) -> [f64; 2] {
+    let (sn, cs) = theta.sin_cos();
+    [v[0] * cs - v[1] * sn, v[0] * sn + v[1] * cs]
+}
+
+/// The span derivative of `to_rotor(v(z), θ(z))`: `R v' + θ' J R v` (J turns a vector by +90°).
+fn to_rotor_rate(v: [f64; 2], v_rate: [f64; 2], theta: f64, theta_rate: f64) -> [f64; 2] {
+    let turned = to_rotor(v, theta);
+    let moved = to_rotor(v_rate, theta);
+    [
+        moved[0] - theta_rate * turned[1],
+        moved[1] + theta_rate * turned[0],
+    ]
+}
+
+impl RotorOffsets {
+    /// docs/model.md §11.2: the offsets of `sec` (with `rate` its span derivative) at `theta`.
+    fn of(sec: &Section, rate: &Section, theta: f64) -> RotorOffsets {
+        let relative = |a: [f64; 2], b: [f64; 2]| [a[0] - b[0], a[1] - b[1]];
+        let tension = relative(sec.tension_centre, sec.shear_centre);
+        let tension_rate = relative(rate.tension_centre, rate.shear_centre);
+        RotorOffsets {
+            cg: to_rotor(sec.cg, theta),
+            shear: to_rotor(sec.shear_centre, theta),
+            tension: to_rotor(tension, theta),
+            tension_rate: to_rotor_rate(tension, tension_rate, theta, rate.twist),
+        }
+    }
+}
+
+/// `ca a + cb b`, entry by entry: a row of one quantity over an element's dofs.
+fn mix(a: &[f64; 10], ca: f64, b: &[f64; 10], cb: f64) -> [f64; 10] {
+    let mut r = [0.0; 10];
+    for i in 0..10 {
+        r[i] = ca * a[i] + cb * b[i];
+    }
+    r
+}
+
+/// Assemble `M`, `K₀` and `K_Ω` of `table` on `mesh` at `pitch` (rad), clamped at the root
+/// (docs/model.md §11.2–§11.3).
 pub fn assemble(table: &BladeTable, mesh: &Mesh, pitch: f64) -> Result<BladeMatrices> {
     if mesh.nodes.len() < 2 {
         return Err(Error::numerical("blade mesh needs at least one element"));
@@ -218,15 +280,9 @@ pub fn assemble(table: &BladeTable, mesh: &Mesh, pitch: f64) -> Result<BladeMatr
             let sh = Shapes::at(s, h);
             let theta = sec.twist + pitch;
             let (sn, cs) = theta.sin_cos();
-            let row = |a: &[f64; 10], ca: f64, b: &[f64; 10], cb: f64| {
-                let mut r = [0.0; 10];
-                for i in 0..10 {
-                    r[i] = ca * a[i] + cb * b[i];
-                }
-                r
-            };
-            let k_xi = row(&sh.ddu, cs, &sh.ddv, sn);
-            let k_eta = row(&sh.ddu, -sn, &sh.ddv, cs);
+            // Curvatures of the shear-centre line in the section frame.
+            let k_xi = mix(&sh.ddu, cs, &sh.ddv, sn);
+            let k_eta = mix(&sh.ddu, -sn, &sh.ddv, cs);
             add_outer(&mut ke, w * sec.ei_flap, &k_xi);
             add_outer(&mut ke, w * sec.ei_edge, &k_eta);
             add_sym(&mut ke, w * sec.ei_cross, &k_xi, &k_eta);
@@ -234,27 +290,36 @@ pub fn assemble(table: &BladeTable, mesh: &Mesh, pitch: f64) -> Result<BladeMatr
             add_sym(&mut ke, -w * sec.flap_twist, &k_xi, &sh.dphi);
             add_sym(&mut ke, -w * sec.edge_twist, &k_eta, &sh.dphi);
 
-            // Centre of mass in the rotor frame.
-            let (c_xi, c_eta) = (sec.cg[0], sec.cg[1]);
-            let x_c = c_xi * cs - c_eta * sn;
-            let y_c = c_xi * sn + c_eta * cs;
-            let [i_xi, i_eta, i_xe] = sec.inertia;
+            // Mass about the shear centre, the axis the section turns about.
+            let at = RotorOffsets::of(&sec, &table.rate_at(z), theta);
+            let ([x_c, y_c], [x_s, y_s]) = (at.cg, at.shear);
+            let [i_xi, i_eta, _] = sec.inertia;
             let m = sec.mass;
+            let polar =
+                i_xi + i_eta - 2.0 * m * (x_c * x_s + y_c * y_s) + m * (x_s * x_s + y_s * y_s);
             add_outer(&mut me, w * m, &sh.u);
             add_outer(&mut me, w * m, &sh.v);
-            add_outer(&mut me, w * (i_xi + i_eta), &sh.phi);
-            add_sym(&mut me, -w * m * y_c, &sh.u, &sh.phi);
-            add_sym(&mut me, w * m * x_c, &sh.v, &sh.phi);
+            add_outer(&mut me, w * polar, &sh.phi);
+            add_sym(&mut me, -w * m * (y_c - y_s), &sh.u, &sh.phi);
+            add_sym(&mut me, w * m * (x_c - x_s), &sh.v, &sh.phi);
 
             // Per Ω²: the tension at the Gauss point, from the next node outboard (the mesh
-            // follows the stations, so [z, z_b] lies in one table interval).
+            // follows the stations, so [z, z_b] lies in one table interval), on the slopes of the
+            // tension-centre line, where it acts.
             let t = tension[e + 1] + tension_integral(table, z, zb);
-            add_outer(&mut kw, w * t, &sh.du);
-            add_outer(&mut kw, w * t, &sh.dv);
+            let [dx, dy] = at.tension;
+            let [dx_rate, dy_rate] = at.tension_rate;
+            let slope_u = mix(&mix(&sh.du, 1.0, &sh.dphi, -dy), 1.0, &sh.phi, -dy_rate);
+            let slope_v = mix(&mix(&sh.dv, 1.0, &sh.dphi, dx), 1.0, &sh.phi, dx_rate);
+            add_outer(&mut kw, w * t, &slope_u);
+            add_outer(&mut kw, w * t, &slope_v);
             add_outer(&mut kw, -w * m, &sh.v);
-            add_sym(&mut kw, -w * m * x_c, &sh.v, &sh.phi);
-            let propeller = (i_eta - i_xi) * (2.0 * theta).cos() + 2.0 * i_xe * (2.0 * theta).sin();
-            add_outer(&mut kw, w * propeller, &sh.phi);
+            add_sym(&mut kw, -w * m * (x_c - x_s), &sh.v, &sh.phi);
+            add_outer(
+                &mut kw,
+                w * propeller(sec.inertia, m, at.cg, at.shear, theta),
+                &sh.phi,
+            );
         }
         scatter(&mut mass, &me, e);
         scatter(&mut k0, &ke, e);
@@ -273,12 +338,24 @@ pub fn assemble(table: &BladeTable, mesh: &Mesh, pitch: f64) -> Result<BladeMatr
         }
     }
     Ok(BladeMatrices {
+        table: table.clone(),
         mesh: mesh.clone(),
         pitch,
         mass,
         k0,
         k_omega,
     })
+}
+
+/// The propeller (tennis-racket) stiffness per Ω² on the twist (docs/model.md §11.2): the
+/// quadratic part of `−½Ω²∫ρ y²` when the section turns by φ about the shear centre `(x_s, y_s)`,
+/// `∫ρ y(y − y_s) − ∫ρ(x − x_s)²`. About the pitch axis (`x_s = y_s = 0`) it is
+/// `(∫ρη² − ∫ρξ²) cos 2θ + 2∫ρξη sin 2θ`, which turns the chord toward the rotor plane.
+fn propeller(inertia: [f64; 3], m: f64, cg: [f64; 2], shear: [f64; 2], theta: f64) -> f64 {
+    let [i_xi, i_eta, i_xe] = inertia;
+    let ([x_c, y_c], [x_s, y_s]) = (cg, shear);
+    let about_pitch_axis = (i_eta - i_xi) * (2.0 * theta).cos() + 2.0 * i_xe * (2.0 * theta).sin();
+    about_pitch_axis + m * (2.0 * x_c * x_s - x_s * x_s - y_c * y_s)
 }
 
 /// Add an element matrix into the global one (the root node's dofs are clamped away).
@@ -293,5 +370,122 @@ fn scatter(global: &mut DMatrix<f64>, local: &[[f64; 10]; 10], element: usize) {
             let Some(gj) = index(j) else { continue };
             global[(gi, gj)] += value;
         }
+    }
+}
+
+/// The motion of one point of a section: displacements along x (flap) and y (edge), their span
+/// slopes, and the twist (docs/model.md §11.1 signs).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StationMotion {
+    pub flap: f64,
+    pub flap_slope: f64,
+    pub edge: f64,
+    pub edge_slope: f64,
+    pub twist: f64,
+}
+
+/// How the motion of one point of the section at one span follows from the free dofs: rows
+/// over the 10 dofs of the element holding it, for `[u, u', v, v', φ]` of that point.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StationMap {
+    /// Global free-dof index of each element dof (`None`: clamped at the root).
+    dofs: [Option<usize>; 2 * NODE_DOFS],
+    rows: [[f64; 2 * NODE_DOFS]; NODE_DOFS],
+}
+
+impl StationMap {
+    /// The point's motion for the free-dof vector `q` (a mode shape, a static solution).
+    pub fn motion(&self, q: &DVector<f64>) -> StationMotion {
+        let value = |row: &[f64; 10]| -> f64 {
+            self.dofs
+                .iter()
+                .zip(row)
+                .filter_map(|(d, c)| d.map(|i| c * q[i]))
+                .sum()
+        };
+        StationMotion {
+            flap: value(&self.rows[U]),
+            flap_slope: value(&self.rows[U + 1]),
+            edge: value(&self.rows[V]),
+            edge_slope: value(&self.rows[V + 1]),
+            twist: value(&self.rows[PHI]),
+        }
+    }
+
+    /// The generalised forces (length `dofs`) of a flap force, an edge force (N) and a twisting
+    /// moment (N·m, toward feather) applied at the point: by virtual work, the transposed rows.
+    /// A force at a point off the shear centre twists the section by the force times the offset.
+    pub fn point_load(
+        &self,
+        dofs: usize,
+        flap_force: f64,
+        edge_force: f64,
+        twist_moment: f64,
+    ) -> DVector<f64> {
+        let mut f = DVector::zeros(dofs);
+        for (k, d) in self.dofs.iter().enumerate() {
+            if let Some(i) = d {
+                f[*i] += flap_force * self.rows[U][k]
+                    + edge_force * self.rows[V][k]
+                    + twist_moment * self.rows[PHI][k];
+            }
+        }
+        f
+    }
+}
+
+impl BladeMatrices {
+    /// The motion of the reference (pitch) axis at span `z`, where the aerodynamic loads attach
+    /// (docs/model.md §11.2): the section turns about the shear centre `(x_s, y_s)`, so the
+    /// reference axis moves by `u + y_s φ`, `v − x_s φ` (slopes by differentiation, the offsets
+    /// changing along the span too).
+    pub fn reference_axis_at(&self, z: f64) -> Result<StationMap> {
+        let (element, s, h) = self.locate(z)?;
+        let sec = self.table.at(z);
+        let theta = sec.twist + self.pitch;
+        let [x_s, y_s] = to_rotor(sec.shear_centre, theta);
+        let rate = self.table.rate_at(z);
+        let [x_s_rate, y_s_rate] =
+            to_rotor_rate(sec.shear_centre, rate.shear_centre, theta, rate.twist);
+        let sh = Shapes::at(s, h);
+        let rows = [
+            mix(&sh.u, 1.0, &sh.phi, y_s),
+            mix(&mix(&sh.du, 1.0, &sh.dphi, y_s), 1.0, &sh.phi, y_s_rate),
+            mix(&sh.v, 1.0, &sh.phi, -x_s),
+            mix(&mix(&sh.dv, 1.0, &sh.dphi, -x_s), 1.0, &sh.phi, -x_s_rate),
+            sh.phi,
+        ];
+        Ok(self.station_map(element, rows))
+    }
+
+    /// The motion of the shear centre (the dofs themselves, interpolated) at span `z`.
+    pub fn shear_centre_at(&self, z: f64) -> Result<StationMap> {
+        let (element, s, h) = self.locate(z)?;
+        let sh = Shapes::at(s, h);
+        Ok(self.station_map(element, [sh.u, sh.du, sh.v, sh.dv, sh.phi]))
+    }
+
+    /// The element holding span `z`, the local coordinate in it and its length.
+    fn locate(&self, z: f64) -> Result<(usize, f64, f64)> {
+        let nodes = &self.mesh.nodes;
+        let (root, tip) = (nodes[0], nodes[nodes.len() - 1]);
+        if !(z >= root && z <= tip) {
+            return Err(Error::Invalid {
+                origin: self.table.origin.clone(),
+                message: format!("span {z} m is not on the blade ({root} m to {tip} m)"),
+            });
+        }
+        let e = nodes.partition_point(|&x| x <= z).clamp(1, nodes.len() - 1) - 1;
+        let h = nodes[e + 1] - nodes[e];
+        Ok((e, (z - nodes[e]) / h, h))
+    }
+
+    fn station_map(&self, element: usize, rows: [[f64; 10]; NODE_DOFS]) -> StationMap {
+        let mut dofs = [None; 2 * NODE_DOFS];
+        for (i, d) in dofs.iter_mut().enumerate() {
+            let node = element + i / NODE_DOFS;
+            *d = (node > 0).then(|| (node - 1) * NODE_DOFS + i % NODE_DOFS);
+        }
+        StationMap { dofs, rows }
     }
 }

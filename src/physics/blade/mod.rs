@@ -10,7 +10,9 @@
 //! the chord toward the leading edge.
 
 pub mod beamdyn;
+pub mod classical;
 pub mod fem;
+pub mod hawc2;
 pub mod modal;
 
 use crate::error::{Error, Result};
@@ -42,6 +44,12 @@ pub struct Section {
     pub edge_twist: f64,
     /// Structural twist of the section frame from the rotor plane (rad), toward feather.
     pub twist: f64,
+    /// Shear centre from the reference axis (m): `[ξ, η]`. The bending–torsion elastic axis: a
+    /// lateral force through it bends the section without twisting it (docs/model.md §11.2).
+    pub shear_centre: [f64; 2],
+    /// Elastic (tension) centre from the reference axis (m): `[ξ, η]`. The centrifugal tension
+    /// acts along it (docs/model.md §11.2).
+    pub tension_centre: [f64; 2],
 }
 
 impl Section {
@@ -64,6 +72,46 @@ impl Section {
             flap_twist: l(a.flap_twist, b.flap_twist),
             edge_twist: l(a.edge_twist, b.edge_twist),
             twist: l(a.twist, b.twist),
+            shear_centre: [
+                l(a.shear_centre[0], b.shear_centre[0]),
+                l(a.shear_centre[1], b.shear_centre[1]),
+            ],
+            tension_centre: [
+                l(a.tension_centre[0], b.tension_centre[0]),
+                l(a.tension_centre[1], b.tension_centre[1]),
+            ],
+        }
+    }
+
+    /// The per-metre rate of every property from `a` to `b` (the slope of the linear
+    /// interpolation; `z` is then 1).
+    fn rate(a: &Section, b: &Section) -> Section {
+        let h = b.z - a.z;
+        let d = |x: f64, y: f64| (y - x) / h;
+        Section {
+            z: 1.0,
+            mass: d(a.mass, b.mass),
+            cg: [d(a.cg[0], b.cg[0]), d(a.cg[1], b.cg[1])],
+            inertia: [
+                d(a.inertia[0], b.inertia[0]),
+                d(a.inertia[1], b.inertia[1]),
+                d(a.inertia[2], b.inertia[2]),
+            ],
+            ei_flap: d(a.ei_flap, b.ei_flap),
+            ei_edge: d(a.ei_edge, b.ei_edge),
+            ei_cross: d(a.ei_cross, b.ei_cross),
+            gj: d(a.gj, b.gj),
+            flap_twist: d(a.flap_twist, b.flap_twist),
+            edge_twist: d(a.edge_twist, b.edge_twist),
+            twist: d(a.twist, b.twist),
+            shear_centre: [
+                d(a.shear_centre[0], b.shear_centre[0]),
+                d(a.shear_centre[1], b.shear_centre[1]),
+            ],
+            tension_centre: [
+                d(a.tension_centre[0], b.tension_centre[0]),
+                d(a.tension_centre[1], b.tension_centre[1]),
+            ],
         }
     }
 
@@ -85,6 +133,10 @@ impl Section {
             ("flap–twist coupling", self.flap_twist),
             ("edge–twist coupling", self.edge_twist),
             ("structural twist", self.twist),
+            ("shear centre ξ", self.shear_centre[0]),
+            ("shear centre η", self.shear_centre[1]),
+            ("tension centre ξ", self.tension_centre[0]),
+            ("tension centre η", self.tension_centre[1]),
         ];
         let at = format!("station {} (z = {} m)", index + 1, self.z);
         let invalid = |message: String| Error::Invalid {
@@ -171,10 +223,22 @@ impl BladeTable {
 
     /// The section at span `z`, linear between the stations (clamped to the ends).
     pub fn at(&self, z: f64) -> Section {
-        let s = &self.sections;
-        let k = s.partition_point(|x| x.z <= z).clamp(1, s.len() - 1);
-        let (a, b) = (&s[k - 1], &s[k]);
+        let (a, b) = self.interval(z);
         let t = ((z - a.z) / (b.z - a.z)).clamp(0.0, 1.0);
         Section::lerp(a, b, t)
+    }
+
+    /// The rate of change along the span of every property at `z` (per metre): the slope of the
+    /// table interval holding `z` (at a station, the interval outboard of it).
+    pub fn rate_at(&self, z: f64) -> Section {
+        let (a, b) = self.interval(z);
+        Section::rate(a, b)
+    }
+
+    /// The two stations around `z` (the first or last interval beyond the ends).
+    fn interval(&self, z: f64) -> (&Section, &Section) {
+        let s = &self.sections;
+        let k = s.partition_point(|x| x.z <= z).clamp(1, s.len() - 1);
+        (&s[k - 1], &s[k])
     }
 }
