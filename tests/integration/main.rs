@@ -17,5 +17,6 @@ mod simulate;
 mod stability;
 mod structure;
 mod sweep;
+mod tabulated;
 mod tui_tmux;
 mod validation;

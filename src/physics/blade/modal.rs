@@ -16,14 +16,7 @@ const MAX_SWEEPS: usize = 10_000;
 /// orthogonalisation repeats earlier ones and is dropped.
 const DEPENDENT: f64 = 1e-8;
 
-/// The motion families of a mode (docs/model.md §11.4).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Family {
-    Flap,
-    Edge,
-    Torsion,
-}
+pub use crate::physics::structure::Family;
 
 /// One natural mode of the rotating blade.
 #[derive(Debug, Clone)]
@@ -40,14 +33,7 @@ pub struct BladeMode {
 impl BladeMode {
     /// The family with the largest share.
     pub fn family(&self) -> Family {
-        let [f, e, t] = self.shares;
-        if t >= f && t >= e {
-            Family::Torsion
-        } else if e > f {
-            Family::Edge
-        } else {
-            Family::Flap
-        }
+        Family::of(self.shares)
     }
 }
 

@@ -9,6 +9,7 @@
 //! [`Structure`] alone, so they never ask which one they have.
 
 pub mod galerkin;
+pub mod tabulated;
 
 pub use galerkin::{ac_frequency_hz, assemble, StructuralModel};
 

@@ -1,0 +1,175 @@
+//! A tabulated blade as the aeroelastic system sees it (docs/model.md §6, §11.4): the coordinates
+//! are the amplitudes of its first K rotating modes at the operating rotor speed, M-normalised,
+//! so `M = I`, `K = diag ω_k²` and `C = diag 2ζ_kω_k` with one modal damping ratio per mode. The
+//! motion rows are the mode shapes carried from the shear centre to the reference (pitch) axis,
+//! where the aerodynamics attach.
+
+use super::{Family, MotionRows, NaturalMode, Shares, Structure};
+use crate::error::{Error, Result};
+use crate::physics::blade::fem::{NODE_DOFS, PHI, U, V};
+use crate::physics::blade::modal::{BladeMode, ModalBlade};
+use crate::physics::section::SectionProps;
+use nalgebra::{Complex, DMatrix, DVector};
+use std::f64::consts::TAU;
+use std::sync::Arc;
+
+/// The first K rotating modes of a tabulated blade, as structural coordinates.
+pub struct TabulatedStructure {
+    blade: Arc<ModalBlade>,
+    modes: Vec<BladeMode>,
+    natural: Vec<NaturalMode>,
+    mass: DMatrix<f64>,
+    stiffness: DMatrix<f64>,
+    damping: DMatrix<f64>,
+    /// `Φᵀ M_b Φ` for the flap, edge and twist blocks `b` of the mass matrix: the kinetic energy
+    /// of each family in any combination of the modes.
+    family_energy: [DMatrix<f64>; 3],
+}
+
+impl TabulatedStructure {
+    /// The blade's `modes` (from [`ModalBlade::modes`] at the rotor speed) with their modal
+    /// damping ratios `ratios` (one per mode).
+    pub fn new(
+        blade: Arc<ModalBlade>,
+        modes: Vec<BladeMode>,
+        ratios: &[f64],
+    ) -> Result<TabulatedStructure> {
+        if modes.is_empty() || ratios.len() != modes.len() {
+            return Err(Error::numerical(format!(
+                "tabulated blade: {} modes with {} damping ratios",
+                modes.len(),
+                ratios.len()
+            )));
+        }
+        let k = modes.len();
+        let omega: Vec<f64> = modes.iter().map(|m| TAU * m.frequency_hz).collect();
+        let stiffness =
+            DMatrix::from_fn(k, k, |i, j| if i == j { omega[i] * omega[i] } else { 0.0 });
+        let damping = DMatrix::from_fn(k, k, |i, j| {
+            if i == j {
+                2.0 * ratios[i] * omega[i]
+            } else {
+                0.0
+            }
+        });
+        let shapes =
+            DMatrix::from_columns(&modes.iter().map(|m| m.shape.clone()).collect::<Vec<_>>());
+        let block = |offsets: &[usize]| {
+            let mass = &blade.matrices.mass;
+            let masked = DMatrix::from_fn(mass.nrows(), mass.ncols(), |i, j| {
+                let inside = |d: usize| offsets.contains(&(d % NODE_DOFS));
+                if inside(i) && inside(j) {
+                    mass[(i, j)]
+                } else {
+                    0.0
+                }
+            });
+            shapes.transpose() * masked * &shapes
+        };
+        let family_energy = [block(&[U, U + 1]), block(&[V, V + 1]), block(&[PHI])];
+        let natural = NaturalMode::named(
+            modes
+                .iter()
+                .enumerate()
+                .map(|(i, m)| {
+                    let [flap, edge, twist] = m.shares;
+                    let unit = DVector::from_fn(k, |r, _| if r == i { 1.0 } else { 0.0 });
+                    (
+                        m.frequency_hz,
+                        Shares::from_energies(flap, edge, twist),
+                        unit,
+                    )
+                })
+                .collect(),
+        );
+        Ok(TabulatedStructure {
+            blade,
+            modes,
+            natural,
+            mass: DMatrix::identity(k, k),
+            stiffness,
+            damping,
+            family_energy,
+        })
+    }
+
+    /// The modes the coordinates are amplitudes of.
+    pub fn modes(&self) -> &[BladeMode] {
+        &self.modes
+    }
+
+    /// The coordinate of the lowest mode of `family`, if the basis holds one.
+    fn first_of(&self, family: Family) -> Option<usize> {
+        self.natural.iter().position(|m| m.family == family)
+    }
+}
+
+impl Structure for TabulatedStructure {
+    fn coordinates(&self) -> usize {
+        self.modes.len()
+    }
+    fn length(&self) -> f64 {
+        self.blade.matrices.table.length()
+    }
+    fn hub_radius(&self) -> f64 {
+        self.blade.matrices.table.hub_radius
+    }
+    fn mass(&self) -> &DMatrix<f64> {
+        &self.mass
+    }
+    fn stiffness(&self) -> DMatrix<f64> {
+        self.stiffness.clone()
+    }
+    fn damping(&self) -> &DMatrix<f64> {
+        &self.damping
+    }
+    /// Each mode's twist, flap and edge at the reference axis (docs/model.md §11.2: a point off
+    /// the shear centre moves with the twist).
+    fn motion_rows(&self, x: f64) -> MotionRows {
+        let k = self.modes.len();
+        let mut rows = MotionRows {
+            twist: DVector::zeros(k),
+            flap: DVector::zeros(k),
+            edge: DVector::zeros(k),
+        };
+        let z = x.clamp(0.0, self.length());
+        // z is on the blade, so locating it cannot fail.
+        if let Ok(map) = self.blade.matrices.reference_axis_at(z) {
+            for (i, m) in self.modes.iter().enumerate() {
+                let motion = map.motion(&m.shape);
+                rows.twist[i] = motion.twist;
+                rows.flap[i] = motion.flap;
+                rows.edge[i] = motion.edge;
+            }
+        }
+        rows
+    }
+    fn natural_modes(&self) -> Result<Vec<NaturalMode>> {
+        Ok(self.natural.clone())
+    }
+    fn shares(&self, q: &[Complex<f64>]) -> Shares {
+        let energy = |e: &DMatrix<f64>| -> f64 {
+            let mut sum = 0.0;
+            for (j, qj) in q.iter().enumerate().take(e.ncols()) {
+                for (i, qi) in q.iter().enumerate().take(e.nrows()) {
+                    sum += e[(i, j)] * (qi.conj() * qj).re;
+                }
+            }
+            sum
+        };
+        let [f, e, t] = &self.family_energy;
+        Shares::from_energies(energy(f), energy(e), energy(t))
+    }
+    /// The lowest torsion and the lowest flap mode (the first mode where the basis has none).
+    fn kick_shapes(&self) -> [DVector<f64>; 2] {
+        let k = self.modes.len();
+        let unit = |i: usize| DVector::from_fn(k, |r, _| if r == i { 1.0 } else { 0.0 });
+        [
+            unit(self.first_of(Family::Torsion).unwrap_or(0)),
+            unit(self.first_of(Family::Flap).unwrap_or(0)),
+        ]
+    }
+    fn uniform_section(&self) -> Option<&SectionProps> {
+        None
+    }
+}

@@ -1,0 +1,190 @@
+//! A tabulated blade in the aeroelastic system (docs/model.md §6, §11.4): the paper's uniform blade
+//! written as a table gives the Galerkin model's frequencies, and a real blade's modal
+//! coordinates carry its modes, damping and names through the eigen-analysis.
+
+use flutterscope::analysis::eigen::analyse_system;
+use flutterscope::physics::aero::NoAero;
+use flutterscope::physics::blade::fem::{assemble as assemble_blade, Mesh};
+use flutterscope::physics::blade::modal::ModalBlade;
+use flutterscope::physics::blade::{BladeTable, Section};
+use flutterscope::physics::inflow::{stations, OperatingPoint};
+use flutterscope::physics::structure::tabulated::TabulatedStructure;
+use flutterscope::physics::structure::{assemble, Family, Structure};
+use flutterscope::physics::system::System;
+use flutterscope::preset::{Inflow, Preset, ValidPreset};
+use std::sync::Arc;
+
+fn rel(a: f64, b: f64) -> f64 {
+    (a - b).abs() / b.abs()
+}
+
+/// The paper's section (§2) as a uniform table (§11.1): `C33` is the flap stiffness, `C22` the
+/// torsional one, `C23 = −g_ξ`; the centre of mass `d` aft of the elastic axis is `η_c = −d`; the
+/// mass moments reproduce both the polar inertia `I` and the propeller moment
+/// `m(K_m2² − K_m1²)`. There is no edge motion in the paper's model, so the edge stiffness only
+/// has to keep the (uncoupled) edge modes apart.
+fn paper_blade_as_table(p: &ValidPreset) -> BladeTable {
+    let s = assemble(p).unwrap().section;
+    let propeller = s.m * (s.km2_2 - s.km1_2);
+    let section = |z: f64| Section {
+        z,
+        mass: s.m,
+        cg: [0.0, -s.cg_offset],
+        inertia: [0.5 * (s.i - propeller), 0.5 * (s.i + propeller), 0.0],
+        ei_flap: s.c33,
+        ei_edge: 1e3 * s.c33,
+        ei_cross: 0.0,
+        gj: s.c22,
+        flap_twist: -s.c23,
+        edge_twist: 0.0,
+        twist: 0.0,
+        shear_centre: [0.0, 0.0],
+        tension_centre: [0.0, 0.0],
+    };
+    BladeTable::new(
+        "the paper's blade as a table",
+        p.blade.hub_radius,
+        vec![section(0.0), section(p.blade.length)],
+    )
+    .unwrap()
+}
+
+/// Issue 16's validation: "a uniform tabulated blade equals the existing Galerkin model of the
+/// paper's blade to 0.1 %", for the first three flap and first two torsion modes, still and at the
+/// preset's rotor speed. The Galerkin model's tension term on twist (`F_c K_A² φ'²`, §3) has no
+/// counterpart in the files of real blades (§11.2), so it is set to zero for the comparison. Under
+/// rotation the clamped–free functions converge slowly (flap 1 at 60 rpm: 1.0121, 1.0078, 1.0064
+/// Hz for N = 10, 20, 40; the table gives 1.0062), so the Galerkin side uses N = 40.
+#[test]
+fn the_papers_blade_as_a_table_matches_the_galerkin_model() {
+    for rpm in [0.0, 60.0] {
+        let p = Preset::load(
+            "liu2017",
+            &[
+                "structure.modes=40".to_string(),
+                "section.ka2=0".to_string(),
+                format!("operating.rotor_speed={rpm}"),
+            ],
+        )
+        .unwrap();
+        let galerkin = assemble(&p).unwrap().natural_modes().unwrap();
+        let table = paper_blade_as_table(&p);
+        let omega = p.omega();
+        let matrices = assemble_blade(&table, &Mesh::following(&table, 50), 0.0).unwrap();
+        let blade = ModalBlade::new(matrices, &[0.0, omega], 60).unwrap();
+        let fe: Vec<_> = blade
+            .modes(omega, 60)
+            .unwrap()
+            .into_iter()
+            .filter(|m| m.family() != Family::Edge)
+            .collect();
+        for family in [Family::Flap, Family::Torsion] {
+            let count = if family == Family::Flap { 3 } else { 2 };
+            let ours: Vec<f64> = fe
+                .iter()
+                .filter(|m| m.family() == family)
+                .take(count)
+                .map(|m| m.frequency_hz)
+                .collect();
+            let paper: Vec<f64> = galerkin
+                .iter()
+                .filter(|m| m.family == family)
+                .take(count)
+                .map(|m| m.frequency_hz)
+                .collect();
+            assert_eq!(ours.len(), count, "{family:?} at {rpm} rpm: {ours:?}");
+            for (k, (a, b)) in ours.iter().zip(&paper).enumerate() {
+                assert!(
+                    rel(*a, *b) < 1e-3,
+                    "{family:?} {} at {rpm} rpm: table {a:.6} Hz, Galerkin {b:.6} Hz",
+                    k + 1
+                );
+            }
+        }
+    }
+}
+
+/// The NREL 5MW blade from its BeamDyn files, built into the system with no aerodynamics: its
+/// roots are its modes, damped by their modal damping ratios, and named by their families.
+#[test]
+fn a_tabulated_blade_in_the_system_has_its_modes_as_roots() {
+    use flutterscope::formats::beamdyn::{read_blade, read_primary};
+    use flutterscope::physics::blade::beamdyn::from_beamdyn;
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("presets/blades/nrel5mw");
+    let primary_path = dir.join("NRELOffshrBsline5MW_BeamDyn.dat");
+    let primary = read_primary(&primary_path).unwrap();
+    let file = read_blade(&primary.blade_file_path(&primary_path)).unwrap();
+    let table = from_beamdyn(&primary, &file, "NREL 5MW", 1.5).unwrap();
+    let omega = 12.1 * std::f64::consts::PI / 30.0;
+    let matrices = assemble_blade(&table, &Mesh::following(&table, 60), 0.0).unwrap();
+    let blade = Arc::new(ModalBlade::new(matrices, &[0.0, omega], 16).unwrap());
+    let modes = blade.modes(omega, 8).unwrap();
+    let ratios: Vec<f64> = (0..modes.len()).map(|k| 0.005 * (k + 1) as f64).collect();
+    let structure = TabulatedStructure::new(blade, modes.clone(), &ratios).unwrap();
+    let op = OperatingPoint {
+        wind: 0.0,
+        induction: 0.0,
+        omega,
+        tunnel: 0.0,
+        pitch: 0.0,
+        twist_root: 0.0,
+        twist_tip: 0.0,
+        inflow: Inflow::Local,
+    };
+    let at = stations(structure.length(), structure.hub_radius(), &op, 8);
+    assert!((structure.length() - 61.5).abs() < 0.01);
+    let system = System::from_parts(Arc::new(structure), at, Box::new(NoAero)).unwrap();
+    let stability = analyse_system(&system.linearise().unwrap()).unwrap();
+    assert!(stability.stable);
+    assert_eq!(stability.eigenvalues.len(), modes.len());
+    for (k, (mode, ratio)) in modes.iter().zip(&ratios).enumerate() {
+        let root = stability
+            .eigenvalues
+            .iter()
+            .find(|r| (r.damping_ratio - ratio).abs() < 1e-9)
+            .unwrap_or_else(|| panic!("no root with ζ = {ratio}"));
+        let damped = mode.frequency_hz * (1.0 - ratio * ratio).sqrt();
+        assert!(rel(root.frequency_hz, damped) < 1e-9, "mode {}", k + 1);
+        let family = mode.family();
+        let number = modes[..=k].iter().filter(|m| m.family() == family).count();
+        let name = match family {
+            Family::Flap => "flap",
+            Family::Edge => "edge",
+            Family::Torsion => "torsion",
+        };
+        assert_eq!(root.label, format!("{name} {number}"), "mode {}", k + 1);
+    }
+    let names: Vec<&str> = ["flap 1", "edge 1", "flap 2", "edge 2", "flap 3"].to_vec();
+    for name in names {
+        assert!(
+            stability.eigenvalues.iter().any(|r| r.label == name),
+            "{name} missing"
+        );
+    }
+}
+
+/// The tip of a tabulated blade: a downwind (flap) kick moves the tip downwind, read through the
+/// system's tip rows at the reference axis.
+#[test]
+fn tip_rows_of_a_tabulated_blade_read_its_mode_shapes_at_the_tip() {
+    let p = Preset::load("liu2017", &[]).unwrap();
+    let table = paper_blade_as_table(&p);
+    let matrices = assemble_blade(&table, &Mesh::following(&table, 40), 0.0).unwrap();
+    let blade = Arc::new(ModalBlade::new(matrices, &[0.0], 12).unwrap());
+    let modes = blade.modes(0.0, 6).unwrap();
+    let structure = TabulatedStructure::new(blade.clone(), modes.clone(), &[0.01; 6]).unwrap();
+    let tip = structure.motion_rows(structure.length());
+    let map = blade
+        .matrices
+        .reference_axis_at(blade.matrices.table.length())
+        .unwrap();
+    for (k, m) in modes.iter().enumerate() {
+        let motion = map.motion(&m.shape);
+        assert_eq!(tip.flap[k], motion.flap);
+        assert_eq!(tip.twist[k], motion.twist);
+        assert_eq!(tip.edge[k], motion.edge);
+    }
+    let natural = structure.natural_modes().unwrap();
+    assert_eq!(natural[0].family, Family::Flap);
+    assert_eq!(natural[0].label, "flap 1");
+}
