@@ -4,7 +4,7 @@
 //! A subset's column count decides its kind: 19 columns are the classic isotropic beam (E, G,
 //! area moments, shear factors), 30 the fully populated 6×6 stiffness (FPM). Positions are in
 //! HAWC2's cross-section frame, relative to the half-chord reference line (`c2_def`); `pitch`
-//! is the structural twist of the principal axes.
+//! is the angle of the principal bending axes from the chord (docs/model.md §11.6).
 //!
 //! The file's first line conventionally gives the number of sets, but HAWC2 finds sets by their
 //! `#N` marks and so does this reader (the IEA 15MW noFPM file says 1 and holds 2).
@@ -45,7 +45,8 @@ pub struct ClassicRow {
     pub k_y: f64,
     /// Cross-section area, m².
     pub a: f64,
-    /// Structural twist of the principal axes, degrees.
+    /// Structural pitch: the angle about `z_c2` from `x_c2` to the principal bending axis `x_e`,
+    /// degrees.
     pub pitch_deg: f64,
     /// Elastic centre, m.
     pub x_e: f64,
@@ -64,15 +65,17 @@ pub struct FpmRow {
     /// Centre of gravity, m.
     pub x_cg: f64,
     pub y_cg: f64,
-    /// Radii of gyration, m.
+    /// Radii of gyration about the elastic centre, m.
     pub ri_x: f64,
     pub ri_y: f64,
-    /// Structural twist, degrees.
+    /// Structural pitch: the angle about `z_c2` from `x_c2` to the principal axis `x_e` along
+    /// which the stiffness matrix is given, degrees.
     pub pitch_deg: f64,
     /// Elastic centre, m.
     pub x_e: f64,
     pub y_e: f64,
-    /// Upper triangle of the symmetric sectional stiffness matrix, row by row as in the file:
+    /// Upper triangle of the symmetric sectional stiffness matrix at the elastic centre along the
+    /// principal axes, row by row as in the file:
     /// K11 K12 K13 K14 K15 K16 K22 … K26 K33 … K66 (N, N·m, N·m² by block).
     pub k: [f64; 21],
 }

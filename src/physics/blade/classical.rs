@@ -60,14 +60,14 @@ impl FileFrame {
         }
     }
 
-    /// A file position (vector in the section plane) in our frame.
+    /// A file position (a vector in the section plane) in our frame (docs/model.md §11.5–§11.6).
     pub fn position(&self, file: [f64; 2]) -> [f64; 2] {
         let p = self.a * nalgebra::Vector2::new(file[0], file[1]);
         [p[0], p[1]]
     }
 
     /// The second moments `[∫ρξ², ∫ρη², ∫ρξη]` of a mass given as the file's symmetric
-    /// `[[∫ρx₁², ∫ρx₁x₂], [∫ρx₁x₂, ∫ρx₂²]]`: `A J Aᵀ`.
+    /// `[[∫ρx₁², ∫ρx₁x₂], [∫ρx₁x₂, ∫ρx₂²]]`: `A J Aᵀ` (docs/model.md §11.5–§11.6).
     pub fn second_moments(&self, file: [[f64; 2]; 2]) -> [f64; 3] {
         let j = Matrix2::new(file[0][0], file[0][1], file[1][0], file[1][1]);
         let o = self.a * j * self.a.transpose();

@@ -216,13 +216,15 @@ struct RotorOffsets {
     tension_rate: [f64; 2],
 }
 
-/// `(ξ, η)` of a section frame turned by `theta` toward feather, in the rotor frame `(x, y)`.
+/// `(ξ, η)` of a section frame turned by `theta` toward feather, in the rotor frame `(x, y)`
+/// (docs/model.md §11.1).
 fn to_rotor(v: [f64; 2], theta: f64) -> [f64; 2] {
     let (sn, cs) = theta.sin_cos();
     [v[0] * cs - v[1] * sn, v[0] * sn + v[1] * cs]
 }
 
-/// The span derivative of `to_rotor(v(z), θ(z))`: `R v' + θ' J R v` (J turns a vector by +90°).
+/// The span derivative of `to_rotor(v(z), θ(z))`: `R v' + θ' J R v` (J turns a vector by +90°;
+/// docs/model.md §11.2).
 fn to_rotor_rate(v: [f64; 2], v_rate: [f64; 2], theta: f64, theta_rate: f64) -> [f64; 2] {
     let turned = to_rotor(v, theta);
     let moved = to_rotor(v_rate, theta);
@@ -458,7 +460,8 @@ impl BladeMatrices {
         Ok(self.station_map(element, rows))
     }
 
-    /// The motion of the shear centre (the dofs themselves, interpolated) at span `z`.
+    /// The motion of the shear centre at span `z`: the dofs themselves, interpolated by the shape
+    /// functions (docs/model.md §11.3).
     pub fn shear_centre_at(&self, z: f64) -> Result<StationMap> {
         let (element, s, h) = self.locate(z)?;
         let sh = Shapes::at(s, h);

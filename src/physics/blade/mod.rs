@@ -229,7 +229,8 @@ impl BladeTable {
     }
 
     /// The rate of change along the span of every property at `z` (per metre): the slope of the
-    /// table interval holding `z` (at a station, the interval outboard of it).
+    /// table interval holding `z` (at a station, the interval outboard of it), as the offsets'
+    /// rates in the tension-centre slopes need (docs/model.md §11.2).
     pub fn rate_at(&self, z: f64) -> Section {
         let (a, b) = self.interval(z);
         Section::rate(a, b)
