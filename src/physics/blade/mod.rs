@@ -12,6 +12,7 @@
 pub mod beamdyn;
 pub mod fem;
 pub mod modal;
+pub mod source;
 
 use crate::error::{Error, Result};
 
