@@ -203,14 +203,15 @@ fn tabulated(p: &ValidPreset, s: &BladeStructure) -> Result<(Report, String)> {
             shape: Some(tabulated_shape(p, m, label.family)),
         })
         .collect();
+    let kind = s.blade.source.title();
     let heading = format!(
-        "{}: {} blade modes at {} rpm, pitch {} deg; {} blade from {}, {} m from r = {} m, {} \
-         elements",
+        "{}: {} blade mode{} at {} rpm, pitch {} deg; {kind} blade from {}, {} m from r = {} m, \
+         {} elements",
         p.display_name(),
         s.count,
+        if s.count == 1 { "" } else { "s" },
         p.operating.rotor_speed,
         p.operating.pitch,
-        s.blade.source.name(),
         s.blade.files.join(" + "),
         s.table.length(),
         p.blade.hub_radius,
@@ -252,7 +253,8 @@ fn shape(
         .copied()
         .fold(0.0, |a: f64, x| if x.abs() > a.abs() { x } else { a });
     let k = if peak != 0.0 { 1.0 / peak } else { 1.0 };
-    let scale = |xs: Vec<f64>| xs.into_iter().map(|x| x * k).collect();
+    // `+ 0.0` turns the −0 of a zero scaled by a negative factor (the clamped root) into 0.
+    let scale = |xs: Vec<f64>| xs.into_iter().map(|x| x * k + 0.0).collect();
     Shape {
         scaled_by,
         r: z.iter().map(|x| p.blade.hub_radius + x).collect(),

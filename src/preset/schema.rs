@@ -61,6 +61,15 @@ impl BladeSource {
         }
     }
 
+    /// The name as the source's program spells it, for reports.
+    pub fn title(self) -> &'static str {
+        match self {
+            BladeSource::Uniform => "uniform",
+            BladeSource::Beamdyn => "BeamDyn",
+            BladeSource::Hawc2 => "HAWC2",
+        }
+    }
+
     /// A blade described by tables of sections along the span (docs/model.md §11).
     pub fn is_tabulated(self) -> bool {
         self != BladeSource::Uniform
