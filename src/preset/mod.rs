@@ -4,7 +4,10 @@
 //! the explorer vary), [`rules`] the rules across keys.
 //!
 //! A preset is checked once, when it is loaded or changed, into a [`ValidPreset`]; the physics
-//! and analysis layers take only that type, so they never re-check an input.
+//! and analysis layers take only that type, so they never re-check an input. Checking a preset
+//! whose `blade.source` is a tabulated blade reads the blade's files too ([`files`] says where
+//! they resolve; `physics::blade::source` reads them), so a checked preset holds its blade and
+//! a missing or broken file fails at load, naming the preset, the key and the file's line.
 //!
 //! Units at this edge: degrees for angles, rpm for rotor speed, SI otherwise. The physics layers
 //! receive SI through the accessors at the bottom of this file.
@@ -45,8 +48,9 @@ pub fn builtin_names() -> Vec<&'static str> {
     BUILTIN.iter().map(|(n, _)| *n).collect()
 }
 
-/// A preset that passed every key range and every rule across keys ([`Preset::validate`]). The
-/// only way to make one is to validate, so whatever takes a `&ValidPreset` can rely on it.
+/// A preset that passed every key range and every rule across keys, its blade files read
+/// ([`Preset::validate`]). The only way to make one is to validate, so whatever takes a
+/// `&ValidPreset` can rely on it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ValidPreset(Preset);
 

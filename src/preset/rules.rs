@@ -1,5 +1,5 @@
 //! Rules across keys: values each allowed on their own that together describe nothing physical
-//! or nothing the program can hold. Checked with the key ranges by [`super::Preset::validate`], for
+//! or nothing the program can hold (or, for the blade keys, a blade other than the one computed). Checked with the key ranges by [`super::Preset::validate`], for
 //! every preset whatever its `section.source` (`flutterscope section` evaluates the layup of any
 //! preset).
 
@@ -86,7 +86,7 @@ fn length_is_the_files(p: &Preset) -> std::result::Result<(), String> {
     }
     Err(format!(
         "blade.length = {} m does not apply to blade.source = \"{}\": the blade is {from_file} m \
-         long as blade.file = \"{}\" describes it; leave blade.length out",
+         long as blade.file = \"{}\" describes it; leave blade.length out or give the file's",
         p.blade.length,
         t.source.name(),
         t.file

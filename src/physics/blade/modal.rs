@@ -82,9 +82,9 @@ pub fn labels(families: impl IntoIterator<Item = Family>) -> Vec<ModeLabel> {
         .collect()
 }
 
-/// A mode's motion at one span position: flap `u` and edge `v` displacements of the pitch axis
-/// with their slopes in z, and the elastic twist `φ` (docs/model.md §11.1 signs: u downwind, v
-/// toward the leading edge, φ toward feather), in the units of the mode's scaling.
+/// A mode's motion at one span position: the flap `u` and edge `v` displacements the elements
+/// carry (docs/model.md §11.3) with their slopes in z, and the elastic twist `φ` (§11.1 signs:
+/// u downwind, v toward the leading edge, φ toward feather), in the units of the mode's scaling.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct ModeValue {
     pub u: f64,
