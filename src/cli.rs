@@ -92,13 +92,20 @@ pub struct DisplayArgs {
 pub enum Command {
     /// Open the interactive explorer (the default in a terminal).
     Tui(TuiArgs),
-    /// Coupled natural frequencies of the blade structure (no aerodynamics).
+    /// Natural modes of the blade structure (no aerodynamics): frequency, family, shares,
+    /// damping ratio.
     Modes {
         #[command(flatten)]
         preset: PresetArgs,
         /// Machine-readable output.
         #[arg(long)]
         json: bool,
+        /// Also give each mode's shape along the span (flap, edge, twist).
+        #[arg(long)]
+        shapes: bool,
+        /// Plot the mode shapes (SVG or PNG by extension).
+        #[arg(long, value_name = "FILE")]
+        plot: Option<std::path::PathBuf>,
     },
     /// Eigenvalues of the linearised aeroelastic system and the stability verdict.
     Eigen {

@@ -18,7 +18,12 @@ pub mod tui;
 pub fn run(command: Command) -> Result<()> {
     match command {
         Command::Tui(args) => tui::run(&args),
-        Command::Modes { preset, json } => modes::run(&preset.load()?, json),
+        Command::Modes {
+            preset,
+            json,
+            shapes,
+            plot,
+        } => modes::run(&preset.load()?, json, shapes, plot.as_deref()),
         Command::Eigen { preset, json } => eigen::run(&preset.load()?, json),
         Command::Flutter {
             preset,

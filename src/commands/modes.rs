@@ -1,11 +1,82 @@
-//! `flutterscope modes`: coupled natural frequencies of the blade structure (docs/model.md §3–§4), no
-//! aerodynamics, at the preset's rotor speed.
+//! `flutterscope modes`: natural modes of the blade structure at the preset's rotor speed, no
+//! aerodynamics: the uniform blade's Galerkin model (docs/model.md §3–§4) or a tabulated
+//! blade's finite elements (§11). Both report the same fields per mode: label, family and
+//! number in the family, frequency, flap/edge/twist shares and damping ratio, and with
+//! `--shapes` the mode shapes along the span.
+//!
+//! Shape scaling (also in the README): each mode is scaled by one factor so that its own
+//! family's component peaks at +1 — the flap displacement `u` of a flap mode, the edge
+//! displacement `v` of an edge mode (both then in m per m of that peak), the twist `φ` of a
+//! torsion mode (rad per rad). The other components keep their proportion: a flap mode's `φ`
+//! reads in rad per m of peak flap displacement, a torsion mode's `u` and `v` in m per rad.
 
 use crate::error::Result;
-use crate::physics::structure::{assemble, NaturalMode};
+use crate::physics::blade::modal::{labels, BladeMode, Family};
+use crate::physics::blade::source::{blade_structure, BladeStructure};
+use crate::physics::structure::{assemble, NaturalMode, StructuralModel};
+use crate::plot::{Figure, Panel, Series, PALETTE};
 use crate::preset::{Form, ValidPreset};
+use serde::Serialize;
+use std::path::Path;
 
-pub fn run(p: &ValidPreset, json: bool) -> Result<()> {
+/// Points along the span at which the uniform blade's shapes are sampled (its Galerkin functions
+/// are smooth; a tabulated blade's are given at its mesh nodes).
+const UNIFORM_SHAPE_POINTS: usize = 41;
+
+/// What `modes` reports about one mode.
+#[derive(Debug, Serialize)]
+struct ModeRow {
+    /// `flap 1`, `edge 2`, `torsion 1`.
+    label: String,
+    family: Family,
+    /// Number within the family, in frequency order.
+    number: usize,
+    frequency_hz: f64,
+    shares: Shares,
+    /// The twist share again, under the name scripts used before issue 16.
+    torsion_share: f64,
+    /// Modal damping ratio ζ; `null` for a mode at zero frequency, which has none.
+    damping_ratio: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    shape: Option<Shape>,
+}
+
+/// Shares of a mode's kinetic energy in flap, edge and twist motion (they add up to 1).
+#[derive(Debug, Serialize)]
+struct Shares {
+    flap: f64,
+    edge: f64,
+    twist: f64,
+}
+
+/// A mode shape sampled along the span, scaled as the module documentation says.
+#[derive(Debug, Serialize)]
+struct Shape {
+    /// The component scaled to peak at +1: `flap`, `edge` or `twist`.
+    scaled_by: &'static str,
+    /// Span position from the root (m) and radius `r = r_hub + z` (m).
+    z: Vec<f64>,
+    r: Vec<f64>,
+    /// Flap displacement u (downwind), edge displacement v (toward the leading edge), twist φ
+    /// (toward feather).
+    flap: Vec<f64>,
+    edge: Vec<f64>,
+    twist: Vec<f64>,
+}
+
+/// The report: which blade, at which rotor speed, and its modes.
+#[derive(Debug, Serialize)]
+struct Report {
+    preset: String,
+    source: &'static str,
+    rotor_speed_rpm: f64,
+    modes: Vec<ModeRow>,
+}
+
+pub fn run(p: &ValidPreset, json: bool, shapes: bool, plot: Option<&Path>) -> Result<()> {
+    if let Some(path) = plot {
+        crate::plot::format_for(path)?;
+    }
     // The structure alone depends on the rotor speed only, of the operating point.
     let at = || {
         format!(
@@ -14,42 +85,286 @@ pub fn run(p: &ValidPreset, json: bool) -> Result<()> {
             p.operating.rotor_speed
         )
     };
-    let modes = assemble(p)
-        .and_then(|model| model.natural_modes())
-        .map_err(|e| e.at(at()))?;
-    if json {
-        return super::print_json(&serde_json::json!({ "modes": modes }));
+    let (mut report, heading) = match blade_structure(p).map_err(|e| e.at(at()))? {
+        Some(s) => tabulated(p, &s).map_err(|e| e.at(at()))?,
+        None => uniform(p).map_err(|e| e.at(at()))?,
+    };
+    if let Some(path) = plot {
+        crate::plot::write(&shapes_figure(p, &report), path)?;
     }
-    super::print_text(&render(p, &modes))
+    if !shapes {
+        for m in &mut report.modes {
+            m.shape = None;
+        }
+    }
+    if json {
+        super::print_json(&report)?;
+    } else {
+        super::print_text(&render(&heading, &report))?;
+    }
+    if let Some(path) = plot {
+        eprintln!("plot written to {}", path.display());
+    }
+    Ok(())
 }
 
-/// The human-readable table.
-fn render(p: &ValidPreset, modes: &[NaturalMode]) -> String {
+/// The uniform blade: its Galerkin modes, flap or torsion by the torsion share (no edge motion),
+/// damped by the paper's `C_s = (η1/ω1) K_e`.
+fn uniform(p: &ValidPreset) -> Result<(Report, String)> {
+    let model = assemble(p)?;
+    let modes = model.natural_modes()?;
+    let families: Vec<Family> = modes
+        .iter()
+        .map(|m| match m.torsion_share > 0.5 {
+            true => Family::Torsion,
+            false => Family::Flap,
+        })
+        .collect();
+    let rows = modes
+        .iter()
+        .zip(labels(families))
+        .map(|(m, label)| ModeRow {
+            label: label.to_string(),
+            family: label.family,
+            number: label.number,
+            frequency_hz: m.frequency_hz,
+            shares: Shares {
+                flap: 1.0 - m.torsion_share,
+                edge: 0.0,
+                twist: m.torsion_share,
+            },
+            torsion_share: m.torsion_share,
+            damping_ratio: uniform_damping_ratio(&model, m),
+            shape: Some(uniform_shape(p, &model, m, label.family)),
+        })
+        .collect();
     let form = match p.structure.form {
         Form::Weak => "weak",
         Form::Strong => "strong",
     };
-    let mut out = format!(
-        "{}: natural modes at {} rpm, N = {} per field, {} form\n\n",
+    let heading = format!(
+        "{}: natural modes at {} rpm, N = {} per field, {} form (uniform blade)",
         p.display_name(),
         p.operating.rotor_speed,
         p.structure.modes,
         form
     );
+    Ok((report(p, rows), heading))
+}
+
+/// `qᵀC_s q / (2ω qᵀMq)`: the mode's share of the structural damping, as a ratio.
+fn uniform_damping_ratio(model: &StructuralModel, m: &NaturalMode) -> Option<f64> {
+    let omega = m.frequency_hz * std::f64::consts::TAU;
+    let q = &m.shape;
+    let mass = q.dot(&(&model.mass * q));
+    (omega > 0.0 && mass > 0.0).then(|| q.dot(&(&model.damping * q)) / (2.0 * omega * mass))
+}
+
+/// The uniform blade's shape at evenly spaced points: `u = Σ U_j q_u,j`, `φ = Σ Φ_j q_φ,j`
+/// (the coordinates are `[q_φ, q_u]`).
+fn uniform_shape(p: &ValidPreset, model: &StructuralModel, m: &NaturalMode, f: Family) -> Shape {
+    let n = model.n;
+    let length = model.basis.length;
+    let z: Vec<f64> = (0..UNIFORM_SHAPE_POINTS)
+        .map(|i| length * i as f64 / (UNIFORM_SHAPE_POINTS - 1) as f64)
+        .collect();
+    let (q_phi, q_u) = (m.shape.rows(0, n), m.shape.rows(n, n));
+    let flap = z.iter().map(|&x| model.basis.bending(x, 0).dot(&q_u));
+    let twist = z.iter().map(|&x| model.basis.torsion(x, 0).dot(&q_phi));
+    shape(
+        p,
+        f,
+        z.clone(),
+        flap.collect(),
+        vec![0.0; z.len()],
+        twist.collect(),
+    )
+}
+
+/// A tabulated blade: its first K finite-element modes at the rotor speed.
+fn tabulated(p: &ValidPreset, s: &BladeStructure) -> Result<(Report, String)> {
+    let modes = s.modes(p.omega())?;
+    let names = labels(modes.iter().map(BladeMode::family));
+    let rows = modes
+        .iter()
+        .zip(names)
+        .map(|(m, label)| ModeRow {
+            label: label.to_string(),
+            family: label.family,
+            number: label.number,
+            frequency_hz: m.frequency_hz,
+            shares: Shares {
+                flap: m.shares[0],
+                edge: m.shares[1],
+                twist: m.shares[2],
+            },
+            torsion_share: m.shares[2],
+            damping_ratio: Some(m.damping_ratio),
+            shape: Some(tabulated_shape(p, m, label.family)),
+        })
+        .collect();
+    let kind = s.blade.source.title();
+    let heading = format!(
+        "{}: {} blade mode{} at {} rpm, pitch {} deg; {kind} blade from {}, {} m from r = {} m, \
+         {} elements",
+        p.display_name(),
+        s.count,
+        if s.count == 1 { "" } else { "s" },
+        p.operating.rotor_speed,
+        p.operating.pitch,
+        s.blade.files.join(" + "),
+        s.table.length(),
+        p.blade.hub_radius,
+        s.elements()
+    );
+    Ok((report(p, rows), heading))
+}
+
+/// A finite-element mode at its mesh nodes.
+fn tabulated_shape(p: &ValidPreset, m: &BladeMode, f: Family) -> Shape {
+    let z = m.nodes.to_vec();
+    let values: Vec<_> = z.iter().map(|&x| m.at(x)).collect();
+    shape(
+        p,
+        f,
+        z,
+        values.iter().map(|v| v.u).collect(),
+        values.iter().map(|v| v.v).collect(),
+        values.iter().map(|v| v.phi).collect(),
+    )
+}
+
+/// The samples scaled by one factor so that the family's own component peaks at +1.
+fn shape(
+    p: &ValidPreset,
+    f: Family,
+    z: Vec<f64>,
+    u: Vec<f64>,
+    v: Vec<f64>,
+    phi: Vec<f64>,
+) -> Shape {
+    let (scaled_by, own) = match f {
+        Family::Flap => ("flap", &u),
+        Family::Edge => ("edge", &v),
+        Family::Torsion => ("twist", &phi),
+    };
+    let peak = own
+        .iter()
+        .copied()
+        .fold(0.0, |a: f64, x| if x.abs() > a.abs() { x } else { a });
+    let k = if peak != 0.0 { 1.0 / peak } else { 1.0 };
+    // `+ 0.0` turns the −0 of a zero scaled by a negative factor (the clamped root) into 0.
+    let scale = |xs: Vec<f64>| xs.into_iter().map(|x| x * k + 0.0).collect();
+    Shape {
+        scaled_by,
+        r: z.iter().map(|x| p.blade.hub_radius + x).collect(),
+        z,
+        flap: scale(u),
+        edge: scale(v),
+        twist: scale(phi),
+    }
+}
+
+fn report(p: &ValidPreset, modes: Vec<ModeRow>) -> Report {
+    Report {
+        preset: p.display_name().to_string(),
+        source: p.blade.source.name(),
+        rotor_speed_rpm: p.operating.rotor_speed,
+        modes,
+    }
+}
+
+/// The human-readable table, and each mode's shape after it when asked for.
+fn render(heading: &str, r: &Report) -> String {
+    let mut out = format!("{heading}\n\n");
     out.push_str(&format!(
-        "{:>4}  {:<12} {:>14}  {:>13}\n",
-        "#", "mode", "frequency (Hz)", "torsion share"
+        "{:>4}  {:<12} {:>14}  {:>6}  {:>6}  {:>6}  {:>9}\n",
+        "#", "mode", "frequency (Hz)", "flap", "edge", "twist", "damping ζ"
     ));
-    for (k, m) in modes.iter().enumerate() {
+    for (k, m) in r.modes.iter().enumerate() {
+        let zeta = m
+            .damping_ratio
+            .map_or_else(|| "—".to_string(), |z| format!("{z:.5}"));
         out.push_str(&format!(
-            "{:>4}  {:<12} {:>14}  {:>13.4}\n",
+            "{:>4}  {:<12} {:>14}  {:>6.3}  {:>6.3}  {:>6.3}  {zeta:>9}\n",
             k + 1,
             m.label,
             format_hz(m.frequency_hz),
-            m.torsion_share
+            m.shares.flap,
+            m.shares.edge,
+            m.shares.twist,
+        ));
+    }
+    for m in &r.modes {
+        if let Some(s) = &m.shape {
+            out.push_str(&render_shape(m, s));
+        }
+    }
+    out
+}
+
+fn render_shape(m: &ModeRow, s: &Shape) -> String {
+    let units = match s.scaled_by {
+        "twist" => "twist φ peaks at +1 rad; u and v in m per rad",
+        "edge" => "edge v peaks at +1 m; u in m per m, φ in rad per m",
+        _ => "flap u peaks at +1 m; v in m per m, φ in rad per m",
+    };
+    let mut out = format!(
+        "\n{} at {} Hz ({units})\n{:>9}  {:>9}  {:>12}  {:>12}  {:>12}\n",
+        m.label,
+        format_hz(m.frequency_hz),
+        "z (m)",
+        "r (m)",
+        "flap u",
+        "edge v",
+        "twist φ"
+    );
+    for i in 0..s.z.len() {
+        out.push_str(&format!(
+            "{:>9.4}  {:>9.4}  {:>12.5e}  {:>12.5e}  {:>12.5e}\n",
+            s.z[i], s.r[i], s.flap[i], s.edge[i], s.twist[i]
         ));
     }
     out
+}
+
+/// Flap, edge and twist of every mode against the radius, one colour per mode in each panel
+/// (edge left out for the uniform blade, which has none).
+fn shapes_figure(p: &ValidPreset, r: &Report) -> Figure {
+    let tabulated = p.blade.source.is_tabulated();
+    let mut panels = vec![
+        Panel::new("radius r (m)", "flap u (scaled)").titled("(a) flap, downwind"),
+        Panel::new("radius r (m)", "edge v (scaled)").titled("(b) edge, toward the leading edge"),
+        Panel::new("radius r (m)", "twist φ (scaled)").titled("(c) twist, toward feather"),
+    ];
+    for (i, m) in r.modes.iter().enumerate() {
+        let Some(s) = &m.shape else { continue };
+        let color = PALETTE[i % PALETTE.len()];
+        let name = format!("{} ({} Hz)", m.label, format_hz(m.frequency_hz));
+        for (panel, values) in panels.iter_mut().zip([&s.flap, &s.edge, &s.twist]) {
+            panel.series.push(
+                Series::from_xy(&name, &s.r, values, crate::plot::Mark::Line).with_color(color),
+            );
+        }
+    }
+    for panel in panels.iter_mut().skip(1) {
+        panel.legend = false;
+    }
+    panels[0].notes.push(
+        "each mode scaled so that its own family's component peaks at +1 (u, v in m, φ in rad)"
+            .into(),
+    );
+    if !tabulated {
+        panels.remove(1);
+    }
+    panels.into_iter().fold(
+        Figure::new(format!(
+            "Mode shapes — {}, {} rpm",
+            p.display_name(),
+            p.operating.rotor_speed
+        )),
+        Figure::with_panel,
+    )
 }
 
 /// Frequencies span 1e-2 to 1e4 Hz on the paper's blade: fixed decimals where they read well,

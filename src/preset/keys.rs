@@ -5,6 +5,10 @@
 use super::Preset;
 use crate::error::{Error, Result};
 
+/// Most finite elements `structure.min_elements` may ask for: the modes come from a dense
+/// eigensolution of 5 dofs per element, about a second at 400 elements.
+pub const MAX_ELEMENTS: usize = 400;
+
 /// One numeric preset key: its dotted name, unit, allowed range and accessors.
 pub struct KeySpec {
     pub key: &'static str,
@@ -98,12 +102,31 @@ macro_rules! int {
     };
 }
 
+/// A key that may be left unset (`Option<f64>`: unset, a value from elsewhere applies, e.g. the
+/// blade file's damping). It reads 0 while unset, and setting it sets it.
+macro_rules! optional {
+    ($key:literal, $unit:literal, $min:expr, $max:expr, $($f:ident).+) => {
+        KeySpec {
+            key: $key,
+            unit: $unit,
+            min: $min,
+            max: $max,
+            min_open: false,
+            integer: false,
+            get: |p| p.$($f).+.unwrap_or(0.0),
+            set: |p, v| p.$($f).+ = Some(v),
+        }
+    };
+}
+
 /// Every numeric key with its allowed range, one per line. Enumerated keys (`section.source`,
 /// `aero.model`, …) are checked by serde against their variants.
 #[rustfmt::skip]
 pub static KEYS: &[KeySpec] = &[
     real!("blade.length", "m", 0.0, 500.0, open = true, blade.length),
     real!("blade.hub_radius", "m", 0.0, 100.0, open = false, blade.hub_radius),
+    int!("blade.st_set", 1, 1000, blade.st_set),
+    int!("blade.st_subset", 1, 1000, blade.st_subset),
     real!("section.ply_angle", "deg", 0.0, 90.0, open = false, section.ply_angle),
     real!("section.mass_per_length", "kg/m", 0.0, 1e5, open = true, section.mass_per_length),
     real!("section.polar_inertia", "kg·m", 0.0, 1e5, open = true, section.polar_inertia),
@@ -139,6 +162,10 @@ pub static KEYS: &[KeySpec] = &[
     real!("operating.twist_tip", "deg", -90.0, 90.0, open = false, operating.twist_tip),
     int!("structure.modes", 1, 40, structure.modes),
     real!("structure.loss_factor", "", 0.0, 1.0, open = false, structure.loss_factor),
+    int!("structure.min_elements", 1, MAX_ELEMENTS, structure.min_elements),
+    optional!("structure.damping_flap", "", 0.0, 1.0, structure.damping_flap),
+    optional!("structure.damping_edge", "", 0.0, 1.0, structure.damping_edge),
+    optional!("structure.damping_torsion", "", 0.0, 1.0, structure.damping_torsion),
     real!("aero.lift_slope", "1/rad", 0.0, 20.0, open = false, aero.lift_slope),
     int!("aero.stations", 1, 64, aero.stations),
     real!("aero.drag_coefficient", "", 0.0, 2.0, open = false, aero.drag_coefficient),

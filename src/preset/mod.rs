@@ -4,22 +4,29 @@
 //! the explorer vary), [`rules`] the rules across keys.
 //!
 //! A preset is checked once, when it is loaded or changed, into a [`ValidPreset`]; the physics
-//! and analysis layers take only that type, so they never re-check an input.
+//! and analysis layers take only that type, so they never re-check an input. Checking a preset
+//! whose `blade.source` is a tabulated blade reads the blade's files too ([`files`] says where
+//! they resolve; `physics::blade::source` reads them), so a checked preset holds its blade and
+//! a missing or broken file fails at load, naming the preset, the key and the file's line.
 //!
 //! Units at this edge: degrees for angles, rpm for rotor speed, SI otherwise. The physics layers
 //! receive SI through the accessors at the bottom of this file.
 
+pub mod files;
 pub mod keys;
 pub mod rules;
 pub mod schema;
 
+pub use files::{BladeFile, FileBase, BUILTIN_FILES};
 pub use keys::{key_spec, KeySpec, KEYS};
 pub use rules::MAX_SAMPLES;
 pub use schema::*;
 
 use crate::error::{Error, Result};
+use crate::physics::blade::source::{read_blade, TabulatedBlade};
 use serde::Deserialize;
 use std::path::Path;
+use std::sync::Arc;
 
 /// Presets shipped in `presets/` and embedded so the binary runs from anywhere.
 pub static BUILTIN: &[(&str, &str)] = &[
@@ -30,6 +37,7 @@ pub static BUILTIN: &[(&str, &str)] = &[
     ),
     ("goland", include_str!("../../presets/goland.toml")),
     ("demo-blade", include_str!("../../presets/demo-blade.toml")),
+    ("nrel5mw", include_str!("../../presets/nrel5mw.toml")),
 ];
 
 /// The preset the explorer opens with no arguments.
@@ -40,8 +48,9 @@ pub fn builtin_names() -> Vec<&'static str> {
     BUILTIN.iter().map(|(n, _)| *n).collect()
 }
 
-/// A preset that passed every key range and every rule across keys ([`Preset::validate`]). The
-/// only way to make one is to validate, so whatever takes a `&ValidPreset` can rely on it.
+/// A preset that passed every key range and every rule across keys, its blade files read
+/// ([`Preset::validate`]). The only way to make one is to validate, so whatever takes a
+/// `&ValidPreset` can rely on it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ValidPreset(Preset);
 
@@ -85,7 +94,8 @@ impl Preset {
     /// or ending in `.toml`), then apply `--set` overrides and validate.
     pub fn load(name_or_path: &str, overrides: &[String]) -> Result<ValidPreset> {
         if let Some((name, text)) = BUILTIN.iter().find(|(n, _)| *n == name_or_path) {
-            return Preset::from_toml(text, &format!("built-in preset '{name}'"), overrides);
+            let origin = format!("built-in preset '{name}'");
+            return Preset::from_toml_in(text, &origin, FileBase::Builtin, overrides);
         }
         let path = Path::new(name_or_path);
         let looks_like_path = name_or_path.ends_with(".toml")
@@ -103,7 +113,8 @@ impl Preset {
                     other => other.to_string(),
                 },
             })?;
-            return Preset::from_toml(&text, name_or_path, overrides);
+            let dir = path.parent().unwrap_or_else(|| Path::new("")).to_path_buf();
+            return Preset::from_toml_in(&text, name_or_path, FileBase::Dir(dir), overrides);
         }
         Err(Error::usage(format!(
             "no preset named '{name_or_path}'; built-in presets: {} (or give a path to a .toml file)",
@@ -112,8 +123,19 @@ impl Preset {
     }
 
     /// Parse TOML text, apply overrides (`key=value`, value in TOML syntax or a bare word) and
-    /// validate. `origin` names the source in every error.
+    /// validate. `origin` names the source in every error; a relative `blade.file` resolves
+    /// against the working directory.
     pub fn from_toml(text: &str, origin: &str, overrides: &[String]) -> Result<ValidPreset> {
+        Preset::from_toml_in(text, origin, FileBase::WorkingDir, overrides)
+    }
+
+    /// [`Preset::from_toml`] with relative file names resolved against `base`.
+    pub fn from_toml_in(
+        text: &str,
+        origin: &str,
+        base: FileBase,
+        overrides: &[String],
+    ) -> Result<ValidPreset> {
         let preset_err = |message: String| Error::Preset {
             origin: origin.to_string(),
             message,
@@ -122,29 +144,93 @@ impl Preset {
         // The file alone, deserialized from its text so that every error in it (syntax, unknown
         // field, wrong type) carries the line and a caret.
         let mut preset: Preset = toml::from_str(text).map_err(file_err)?;
+        // The keys as written (after the overrides): which ones the text leaves to defaults.
+        let mut table: toml::Table = text.parse().map_err(file_err)?;
         if !overrides.is_empty() {
             // Overrides edit the parsed table; its errors have no spans and read "…\nin
             // `table`", kept on one line and blamed on the --set.
-            let mut table: toml::Table = text.parse().map_err(file_err)?;
             for ov in overrides {
                 apply_override(&mut table, ov)?;
             }
-            preset = Preset::deserialize(table).map_err(|e| {
+            preset = Preset::deserialize(table.clone()).map_err(|e| {
                 let msg = e.to_string().trim_end().replace('\n', " ");
                 preset_err(format!("{msg} (after --set {})", overrides.join(" --set ")))
             })?;
         }
         preset.origin = origin.to_string();
+        preset.base = base;
+        preset.check_ranges()?;
+        rules::check_blade_keys(&preset)?;
+        preset.read_tabulated()?;
+        preset.source_defaults(&table);
         preset.validate()
     }
 
-    /// Range-check every numeric key, then the rules across keys ([`rules`]).
-    pub fn validate(self) -> Result<ValidPreset> {
-        for spec in KEYS {
-            spec.check(&self.origin, (spec.get)(&self))?;
-        }
+    /// Range-check every numeric key, read a tabulated blade's files (unless this preset already
+    /// holds what they say), then the rules across keys ([`rules`]).
+    pub fn validate(mut self) -> Result<ValidPreset> {
+        self.check_ranges()?;
+        rules::check_blade_keys(&self)?;
+        self.read_tabulated()?;
         rules::check(&self)?;
         Ok(ValidPreset(self))
+    }
+
+    fn check_ranges(&self) -> Result<()> {
+        KEYS.iter()
+            .try_for_each(|spec| spec.check(&self.origin, (spec.get)(self)))
+    }
+
+    /// Read the blade `blade.source` and `blade.file` name, once: a preset edited in other keys
+    /// keeps the blade it holds. File errors keep the file's own path and line, after the
+    /// preset and the key that led to the file.
+    fn read_tabulated(&mut self) -> Result<()> {
+        let b = &self.blade;
+        if !b.source.is_tabulated() {
+            self.tabulated = None;
+            return Ok(());
+        }
+        if self.tabulated.as_ref().is_some_and(|t| t.read_from(b)) {
+            return Ok(());
+        }
+        let file = self.base.resolve(&b.file);
+        let blade =
+            read_blade(b.source, &file, b.st_set, b.st_subset).map_err(|e| Error::Invalid {
+                origin: self.origin.clone(),
+                message: format!("blade.file = \"{}\": {e}", b.file),
+            })?;
+        self.tabulated = Some(Tabulated {
+            source: b.source,
+            file: b.file.clone(),
+            st_set: b.st_set,
+            st_subset: b.st_subset,
+            blade: Arc::new(blade),
+        });
+        Ok(())
+    }
+
+    /// Defaults that depend on `blade.source`, for the keys `written` (the preset's keys as
+    /// written, overrides applied) leaves out: a tabulated blade is as long as its file says,
+    /// and keeps [`TABULATED_MODES`] modes.
+    fn source_defaults(&mut self, written: &toml::Table) {
+        let Some(t) = &self.tabulated else { return };
+        let given = |table: &str, key: &str| {
+            written
+                .get(table)
+                .and_then(|t| t.as_table())
+                .is_some_and(|t| t.contains_key(key))
+        };
+        if !given("blade", "length") {
+            self.blade.length = t.blade.length();
+        }
+        if !given("structure", "modes") {
+            self.structure.modes = TABULATED_MODES;
+        }
+    }
+
+    /// The tabulated blade this checked preset holds (`None` for the uniform blade).
+    pub fn tabulated_blade(&self) -> Option<&Arc<TabulatedBlade>> {
+        self.tabulated.as_ref().map(|t| &t.blade)
     }
 
     /// Value of a numeric key.

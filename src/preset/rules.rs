@@ -1,14 +1,42 @@
 //! Rules across keys: values each allowed on their own that together describe nothing physical
-//! or nothing the program can hold. Checked with the key ranges by [`super::Preset::validate`], for
+//! or nothing the program can hold (or, for the blade keys, a blade other than the one computed). Checked with the key ranges by [`super::Preset::validate`], for
 //! every preset whatever its `section.source` (`flutterscope section` evaluates the layup of any
 //! preset).
 
-use super::{ContourShape, Preset, SectionSource};
+use super::{BladeSource, ContourShape, Preset, SectionSource};
 use crate::error::{Error, Result};
 
 /// Most samples one time response may hold (`simulation.duration × simulation.sample_rate`):
 /// 2e6 samples is 10⁴ s at 200/s; time, tip twist and flap take 48 MB.
 pub const MAX_SAMPLES: f64 = 2e6;
+
+/// `blade.source` and `blade.file` agree: a tabulated blade names its file, the uniform blade
+/// names none (a file given without its source would otherwise be ignored). Checked before the
+/// file is read.
+pub fn check_blade_keys(p: &Preset) -> Result<()> {
+    let b = &p.blade;
+    let message = match (b.source, b.file.trim().is_empty()) {
+        (BladeSource::Uniform, false) => format!(
+            "blade.file = \"{}\" does not apply to blade.source = \"uniform\" (the paper's \
+             uniform blade, from blade.length and section.*); set blade.source = \"beamdyn\" for \
+             a BeamDyn primary file or \"hawc2\" for a HAWC2 st file",
+            b.file
+        ),
+        (source @ (BladeSource::Beamdyn | BladeSource::Hawc2), true) => format!(
+            "blade.source = \"{}\" needs blade.file: the {}, relative to the preset file",
+            source.name(),
+            match source {
+                BladeSource::Beamdyn => "BeamDyn primary file (it names its blade file)",
+                _ => "HAWC2 st file (blade.st_set and blade.st_subset choose the subset)",
+            }
+        ),
+        _ => return Ok(()),
+    };
+    Err(Error::Invalid {
+        origin: p.origin.clone(),
+        message,
+    })
+}
 
 /// Every rule, in the order a user would fix them; the first broken one is the error.
 pub fn check(p: &Preset) -> Result<()> {
@@ -16,6 +44,7 @@ pub fn check(p: &Preset) -> Result<()> {
         origin: p.origin.clone(),
         message,
     };
+    length_is_the_files(p).map_err(invalid)?;
     let o = &p.aero.onera;
     if o.alpha2 <= o.alpha1 {
         return Err(invalid(format!(
@@ -42,6 +71,26 @@ pub fn check(p: &Preset) -> Result<()> {
     stiffness_is_definite(p).map_err(invalid)?;
     ply_is_physical(p).map_err(invalid)?;
     walls_do_not_overlap(p).map_err(invalid)
+}
+
+/// A tabulated blade is as long as its file says: `blade.length` either left out (it is then
+/// filled in from the file) or equal to it, so a preset cannot describe one blade and compute
+/// another.
+fn length_is_the_files(p: &Preset) -> std::result::Result<(), String> {
+    let Some(t) = &p.tabulated else {
+        return Ok(());
+    };
+    let from_file = t.blade.length();
+    if (p.blade.length - from_file).abs() <= 1e-9 * from_file {
+        return Ok(());
+    }
+    Err(format!(
+        "blade.length = {} m does not apply to blade.source = \"{}\": the blade is {from_file} m \
+         long as blade.file = \"{}\" describes it; leave blade.length out or give the file's",
+        p.blade.length,
+        t.source.name(),
+        t.file
+    ))
 }
 
 /// For the sections whose mass properties the preset gives (`direct`, `table`), the polar inertia

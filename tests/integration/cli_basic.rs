@@ -558,3 +558,44 @@ fn propeller_moment_divergence_names_its_keys() {
         ],
     );
 }
+
+/// Issue 16's blade keys through the binary: ranges and the rules across them name the keys,
+/// exit 1, and never panic.
+#[test]
+fn blade_keys_name_themselves_in_errors() {
+    for (sets, needles) in [
+        (
+            &["structure.min_elements=0"][..],
+            &["structure.min_elements = 0", "integer in [1, 400]"][..],
+        ),
+        (
+            &["structure.damping_flap=2"],
+            &["structure.damping_flap = 2", "[0, 1]"],
+        ),
+        (
+            &["blade.st_subset=0"],
+            &["blade.st_subset = 0", "[1, 1000]"],
+        ),
+        (
+            &["blade.length=60"],
+            &[
+                "blade.length = 60 m does not apply",
+                "blade.source",
+                "blade.file",
+            ],
+        ),
+        (&["blade.file="], &["needs blade.file"]),
+        (
+            &["blade.source=uniform"],
+            &["does not apply to blade.source = \"uniform\""],
+        ),
+    ] {
+        let mut args = vec!["modes", "--preset", "nrel5mw"];
+        for s in sets {
+            args.extend(["--set", s]);
+        }
+        let r = run(&args);
+        assert_fails_naming(&r, &[&["built-in preset 'nrel5mw'"], needles].concat());
+        assert_eq!(r.code, Some(1), "{}", r.stderr);
+    }
+}

@@ -8,6 +8,7 @@ mod explorer;
 mod formats;
 mod hostile;
 mod laminate;
+mod modes;
 mod onera;
 mod paper_figures;
 mod plot;

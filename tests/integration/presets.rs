@@ -1,10 +1,15 @@
 //! Presets (issue 2 item 4): the shipped paper preset, the key table, `--set` overrides, and the
-//! section sources behind `section.source`.
+//! section sources behind `section.source`; the blade sources behind `blade.source` and their
+//! keys (issue 16 item 5).
 
 use flutterscope::error::Error;
+use flutterscope::physics::blade::source::blade_structure;
 use flutterscope::physics::section::{section_properties, table1_si, TABLE1_ANGLES};
 use flutterscope::physics::structure::assemble;
-use flutterscope::preset::{builtin_names, Form, Inflow, Preset, SectionSource, KEYS};
+use flutterscope::preset::{
+    builtin_names, BladeSource, FileBase, Form, Inflow, Preset, SectionSource, KEYS,
+};
+use std::sync::Arc;
 
 #[test]
 fn liu2017_is_the_papers_blade() {
@@ -31,8 +36,245 @@ fn liu2017_is_the_papers_blade() {
 fn every_builtin_preset_assembles() {
     for name in builtin_names() {
         let p = Preset::load(name, &[]).unwrap();
-        let s = assemble(&p).unwrap_or_else(|e| panic!("{name}: {e}"));
-        assert!(s.omega1 > 0.0, "{name}");
+        if p.blade.source.is_tabulated() {
+            // A quick mesh: the stations alone.
+            let p = p.with("structure.min_elements", 1.0).unwrap();
+            let s = blade_structure(&p)
+                .unwrap_or_else(|e| panic!("{name}: {e}"))
+                .unwrap();
+            let modes = s.modes(p.omega()).unwrap();
+            assert_eq!(modes.len(), p.structure.modes, "{name}");
+            assert!(modes[0].frequency_hz > 0.0, "{name}");
+        } else {
+            let s = assemble(&p).unwrap_or_else(|e| panic!("{name}: {e}"));
+            assert!(s.omega1 > 0.0, "{name}");
+        }
+    }
+}
+
+/// Issue 16 item 6: the NREL 5MW preset is the blade of its BeamDyn files, at rated speed.
+#[test]
+fn nrel5mw_is_the_5mw_blade_from_its_beamdyn_files() {
+    let p = Preset::load("nrel5mw", &[]).unwrap();
+    assert_eq!(p.blade.source, BladeSource::Beamdyn);
+    assert_eq!(
+        p.blade.file,
+        "blades/nrel5mw/NRELOffshrBsline5MW_BeamDyn.dat"
+    );
+    assert_eq!(p.blade.length, 61.5, "the length is the file's");
+    assert_eq!(p.blade.hub_radius, 1.5);
+    assert_eq!(p.operating.rotor_speed, 12.1);
+    assert_eq!(p.operating.pitch, 0.0);
+    assert_eq!(p.aero.model, flutterscope::preset::AeroModel::None);
+    assert_eq!(p.structure.modes, 12);
+    let blade = p
+        .tabulated_blade()
+        .expect("a tabulated preset holds its blade");
+    assert_eq!(blade.table.sections.len(), 49);
+    assert_eq!(
+        blade.files,
+        [
+            "presets/blades/nrel5mw/NRELOffshrBsline5MW_BeamDyn.dat",
+            "presets/blades/nrel5mw/NRELOffshrBsline5MW_BeamDyn_Blade.dat"
+        ]
+    );
+    // Uniform presets hold none.
+    assert!(Preset::load("liu2017", &[])
+        .unwrap()
+        .tabulated_blade()
+        .is_none());
+}
+
+/// The files are read once, when the preset is checked: a preset changed in other keys keeps
+/// the blade it holds; shown as TOML it loads back as the same preset.
+#[test]
+fn a_tabulated_blade_is_read_once_and_round_trips() {
+    let p = Preset::load("nrel5mw", &[]).unwrap();
+    let q = p.with("operating.rotor_speed", 5.0).unwrap();
+    assert!(Arc::ptr_eq(
+        p.tabulated_blade().unwrap(),
+        q.tabulated_blade().unwrap()
+    ));
+    let again = Preset::from_toml_in(&p.to_toml(), &p.origin, FileBase::Builtin, &[]).unwrap();
+    assert_eq!(p, again);
+}
+
+/// `structure.modes` means K retained blade modes for a tabulated blade, 12 unless the preset
+/// says otherwise; `blade.length` comes from the file and may only repeat it.
+#[test]
+fn source_dependent_defaults_and_the_length_rule() {
+    let set = |sets: &[&str]| {
+        let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+        Preset::load("liu2017", &sets)
+    };
+    let file = format!(
+        "blade.file={}/presets/blades/nrel5mw/NRELOffshrBsline5MW_BeamDyn.dat",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    // liu2017 states modes = 5 and its length: the length must go, the modes stay.
+    let e = set(&["blade.source=beamdyn", &file])
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("blade.length = 8.4455 m does not apply to blade.source = \"beamdyn\"")
+            && e.contains("61.5 m")
+            && e.contains("blade.file"),
+        "{e}"
+    );
+    let text = format!(
+        "[blade]\nsource = \"beamdyn\"\nfile = \"{}\"\n",
+        &file["blade.file=".len()..]
+    );
+    let p = Preset::from_toml(&text, "mine.toml", &[]).unwrap();
+    assert_eq!((p.blade.length, p.structure.modes), (61.5, 12));
+    let p = Preset::from_toml(&text, "mine.toml", &["structure.modes=5".into()]).unwrap();
+    assert_eq!(p.structure.modes, 5);
+    assert!(Preset::from_toml(&text, "mine.toml", &["blade.length=61.5".into()]).is_ok());
+    let e = Preset::from_toml(&text, "mine.toml", &["blade.length=60".into()]).unwrap_err();
+    assert!(
+        matches!(&e, Error::Invalid { origin, .. } if origin == "mine.toml"),
+        "{e:?}"
+    );
+    // Through `with` (sweeps, the explorer) the same rule holds.
+    let e = p.with("blade.length", 30.0).unwrap_err().to_string();
+    assert!(e.contains("blade.length = 30 m does not apply"), "{e}");
+}
+
+/// `blade.source` and `blade.file` go together: a tabulated source needs its file, and a file
+/// under the uniform source would be silently ignored, so both are errors naming the keys.
+#[test]
+fn blade_source_and_file_rules_name_their_keys() {
+    let e = Preset::load("nrel5mw", &["blade.file=".into()]).unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("blade.source = \"beamdyn\" needs blade.file"),
+        "{e}"
+    );
+    let e = Preset::load(
+        "nrel5mw",
+        &["blade.source=hawc2".into(), "blade.file=".into()],
+    )
+    .unwrap_err();
+    assert!(
+        e.to_string().contains("blade.st_set and blade.st_subset"),
+        "{e}"
+    );
+    let e = Preset::load("liu2017", &["blade.file=my.dat".into()]).unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("blade.file = \"my.dat\" does not apply to blade.source = \"uniform\""),
+        "{e}"
+    );
+    let e = Preset::load("liu2017", &["blade.source=elastodyn".into()]).unwrap_err();
+    assert!(
+        e.to_string().contains("uniform") && e.to_string().contains("beamdyn"),
+        "the variants are listed: {e}"
+    );
+}
+
+/// The new numeric keys have ranges like every other; out of range, the error names the key,
+/// the value and the allowed range (NaN included).
+#[test]
+fn new_keys_are_range_checked() {
+    for (set, key, allowed) in [
+        ("blade.st_set=0", "blade.st_set", "integer in [1, 1000]"),
+        (
+            "blade.st_subset=1001",
+            "blade.st_subset",
+            "integer in [1, 1000]",
+        ),
+        (
+            "structure.min_elements=0",
+            "structure.min_elements",
+            "integer in [1, 400]",
+        ),
+        (
+            "structure.min_elements=401",
+            "structure.min_elements",
+            "integer in [1, 400]",
+        ),
+        (
+            "structure.damping_flap=-0.01",
+            "structure.damping_flap",
+            "[0, 1]",
+        ),
+        (
+            "structure.damping_edge=1.5",
+            "structure.damping_edge",
+            "[0, 1]",
+        ),
+        (
+            "structure.damping_torsion=nan",
+            "structure.damping_torsion",
+            "[0, 1]",
+        ),
+    ] {
+        match Preset::load("nrel5mw", &[set.to_string()]) {
+            Err(Error::Range {
+                key: k, allowed: a, ..
+            }) => assert_eq!((k.as_str(), a.as_str()), (key, allowed), "{set}"),
+            other => panic!("{set}: {other:?}"),
+        }
+    }
+}
+
+/// `--set` reaches the new keys: damping ratios (unset: the file's, read as 0), the mesh, and
+/// the HAWC2 set and subset.
+#[test]
+fn set_reaches_the_new_keys() {
+    let p = Preset::load("nrel5mw", &[]).unwrap();
+    assert_eq!(p.structure.damping_flap, None);
+    assert_eq!(p.get("structure.damping_flap").unwrap(), 0.0);
+    let p = Preset::load(
+        "nrel5mw",
+        &[
+            "structure.damping_flap=0.005".into(),
+            "structure.damping_edge=0".into(),
+            "structure.min_elements=200".into(),
+        ],
+    )
+    .unwrap();
+    assert_eq!(p.structure.damping_flap, Some(0.005));
+    assert_eq!(p.structure.damping_edge, Some(0.0));
+    assert_eq!(p.structure.damping_torsion, None);
+    assert_eq!(p.structure.min_elements, 200);
+    // Shown, set keys appear and unset ones do not (the file's damping applies).
+    let shown = p.to_toml();
+    assert!(shown.contains("damping_flap = 0.005") && !shown.contains("damping_torsion"));
+    let q = p.with("structure.damping_torsion", 0.02).unwrap();
+    assert_eq!(q.structure.damping_torsion, Some(0.02));
+    let st = format!(
+        "blade.file={}/presets/blades/iea15mw/IEA_15MW_RWT_Blade_st_noFPM.st",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let e = Preset::load(
+        "nrel5mw",
+        &[
+            "blade.source=hawc2".into(),
+            st.clone(),
+            "blade.st_set=3".into(),
+            "blade.st_subset=2".into(),
+        ],
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("IEA_15MW_RWT_Blade_st_noFPM.st: no subset $2 in set #3; the file has sets #1"),
+        "{e}"
+    );
+}
+
+/// `structure.min_elements` sets the mesh: the stations alone below their count, halved
+/// elements above it.
+#[test]
+fn min_elements_refines_the_mesh_that_follows_the_stations() {
+    for (min, elements) in [(1.0, 48), (48.0, 48), (60.0, 60), (97.0, 97)] {
+        let p = Preset::load("nrel5mw", &[])
+            .unwrap()
+            .with_all(&[("structure.min_elements", min), ("structure.modes", 2.0)])
+            .unwrap();
+        let s = blade_structure(&p).unwrap().unwrap();
+        assert_eq!(s.elements(), elements, "min_elements = {min}");
     }
 }
 

@@ -14,6 +14,7 @@ pub mod classical;
 pub mod fem;
 pub mod hawc2;
 pub mod modal;
+pub mod source;
 
 use crate::error::{Error, Result};
 

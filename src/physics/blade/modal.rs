@@ -1,12 +1,16 @@
 //! The rotating structural modes of a tabulated blade (docs/model.md §11.4), from a reduced
 //! basis: the assembled `M`, `K₀`, `K_Ω` are projected once onto the lowest modes at the
 //! reference rotor speeds, so the modes at any rotor speed are a small dense eigenproblem
-//! (microseconds), not a re-assembly or a full-size solve.
+//! (microseconds), not a re-assembly or a full-size solve. Each mode carries its family, its
+//! modal damping ratio (docs/model.md §11.4) and its shape, which [`BladeMode::at`] evaluates at
+//! any span position with the elements' own shape functions.
 
-use super::fem::{BladeMatrices, NODE_DOFS, PHI, U, V};
+use super::fem::{assemble, hermite, BladeMatrices, Mesh, NODE_DOFS, PHI, U, V};
+use super::{BladeTable, Section};
 use crate::error::{Error, Result};
 use crate::numeric::cholesky::{cholesky_reduce, symmetrised};
 use nalgebra::{DMatrix, DVector, SymmetricEigen};
+use std::sync::Arc;
 
 /// Iteration cap of the symmetric eigensolver (nalgebra's implicit QR): far beyond what these
 /// sizes need, so reaching it means broken input, reported as an error.
@@ -18,6 +22,48 @@ const DEPENDENT: f64 = 1e-8;
 
 pub use crate::physics::structure::Family;
 
+/// A mode's name: its family and its number within the family in frequency order (`flap 2`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ModeLabel {
+    pub family: Family,
+    /// 1 for the family's lowest mode.
+    pub number: usize,
+}
+
+impl std::fmt::Display for ModeLabel {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{} {}", self.family.name(), self.number)
+    }
+}
+
+/// The labels of `families` listed in ascending frequency: each family numbered from 1, so no
+/// label repeats and each family's numbers are consecutive.
+pub fn labels(families: impl IntoIterator<Item = Family>) -> Vec<ModeLabel> {
+    let mut count = [0usize; 3];
+    families
+        .into_iter()
+        .map(|family| {
+            count[family.index()] += 1;
+            ModeLabel {
+                family,
+                number: count[family.index()],
+            }
+        })
+        .collect()
+}
+
+/// A mode's motion at one span position: the flap `u` and edge `v` displacements the elements
+/// carry (docs/model.md §11.3) with their slopes in z, and the elastic twist `φ` (§11.1 signs:
+/// u downwind, v toward the leading edge, φ toward feather), in the units of the mode's scaling.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct ModeValue {
+    pub u: f64,
+    pub du: f64,
+    pub v: f64,
+    pub dv: f64,
+    pub phi: f64,
+}
+
 /// One natural mode of the rotating blade.
 #[derive(Debug, Clone)]
 pub struct BladeMode {
@@ -26,15 +72,105 @@ pub struct BladeMode {
     /// `qᵤᵀMᵤᵤqᵤ`, `qᵥᵀMᵥᵥqᵥ`, `q_φᵀM_φφq_φ` over their sum (the cross terms, from the centre
     /// of mass offset, left out so that the shares add up to 1).
     pub shares: [f64; 3],
+    /// Modal damping ratio ζ: `φᵀCφ / 2ω` of the structural damping matrix the basis carries
+    /// ([`ModalBlade::with_damping`]), 0 without one (docs/model.md §11.4).
+    pub damping_ratio: f64,
     /// Free-dof vector (`[u, u', v, v', φ]` per node after the root), M-normalised.
     pub shape: DVector<f64>,
+    /// The mesh nodes the shape lives on (m from the root), shared by every mode of a blade.
+    pub nodes: Arc<[f64]>,
 }
 
 impl BladeMode {
+    /// The mode at span position `z` (m from the root, clamped to the blade): `u`, `v` and their
+    /// slopes from the cubic Hermite functions of the element holding `z`, `φ` linear in it —
+    /// the shape functions the element matrices were built with (`fem`), so these are the
+    /// values the structural model means, not a re-interpolation. Zero at the clamped root.
+    pub fn at(&self, z: f64) -> ModeValue {
+        let nodes = &self.nodes;
+        let last = nodes.len() - 1;
+        let z = z.clamp(nodes[0], nodes[last]);
+        let e = nodes.partition_point(|&x| x <= z).clamp(1, last) - 1;
+        let (za, zb) = (nodes[e], nodes[e + 1]);
+        let h = zb - za;
+        let s = ((z - za) / h).clamp(0.0, 1.0);
+        // Node k's dofs, zero at the clamped root (node 0).
+        let dof = |node: usize, offset: usize| -> f64 {
+            if node == 0 {
+                0.0
+            } else {
+                self.shape[(node - 1) * NODE_DOFS + offset]
+            }
+        };
+        let (n, dn, _) = hermite(s, h);
+        let field = |offset: usize, w: &[f64; 4]| {
+            w[0] * dof(e, offset)
+                + w[1] * dof(e, offset + 1)
+                + w[2] * dof(e + 1, offset)
+                + w[3] * dof(e + 1, offset + 1)
+        };
+        ModeValue {
+            u: field(U, &n),
+            du: field(U, &dn),
+            v: field(V, &n),
+            dv: field(V, &dn),
+            phi: (1.0 - s) * dof(e, PHI) + s * dof(e + 1, PHI),
+        }
+    }
+
     /// The family with the largest share.
     pub fn family(&self) -> Family {
         Family::of(self.shares)
     }
+}
+
+/// Stiffness-proportional damping factors per strain of the section (s): the damping matrix is
+/// the elastic stiffness `K₀` assembled with each term scaled by its factor (BeamDyn's `mu`,
+/// docs/model.md §11.4).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StiffnessFactors {
+    /// On the flap bending stiffness `EI_ξ` (BeamDyn `mu5`).
+    pub flap: f64,
+    /// On the edge bending stiffness `EI_η` (BeamDyn `mu4`).
+    pub edge: f64,
+    /// On the torsional stiffness `GJ` (BeamDyn `mu6`).
+    pub torsion: f64,
+}
+
+/// The damping matrix `C` of stiffness-proportional damping: `K₀` of `table` on `mesh` at `pitch`
+/// with every stiffness scaled by its factor, a coupling term by the mean of its two strains'
+/// factors (the symmetric part of BeamDyn's `μK`, which is what a mode's `φᵀCφ` sees). The
+/// centrifugal stiffness `K_Ω` is not damped: it is a load, not a material.
+///
+/// Built by assembling a copy of the table with scaled stiffnesses, so the damping follows the
+/// elements' stiffness term by term (whatever `fem::assemble` includes) without a second
+/// assembly routine; the copy skips [`BladeTable::new`]'s checks because a zero factor
+/// legitimately zeroes a stiffness.
+pub fn stiffness_damping(
+    table: &BladeTable,
+    mesh: &Mesh,
+    pitch: f64,
+    f: StiffnessFactors,
+) -> Result<DMatrix<f64>> {
+    let mean = |a: f64, b: f64| 0.5 * (a + b);
+    let scaled = BladeTable {
+        origin: table.origin.clone(),
+        hub_radius: table.hub_radius,
+        sections: table
+            .sections
+            .iter()
+            .map(|s| Section {
+                ei_flap: f.flap * s.ei_flap,
+                ei_edge: f.edge * s.ei_edge,
+                ei_cross: mean(f.flap, f.edge) * s.ei_cross,
+                gj: f.torsion * s.gj,
+                flap_twist: mean(f.flap, f.torsion) * s.flap_twist,
+                edge_twist: mean(f.edge, f.torsion) * s.edge_twist,
+                ..*s
+            })
+            .collect(),
+    };
+    Ok(assemble(&scaled, mesh, pitch)?.k0)
 }
 
 /// A blade's structure reduced onto a basis of its modes.
@@ -45,6 +181,9 @@ pub struct ModalBlade {
     basis: DMatrix<f64>,
     reduced_k0: DMatrix<f64>,
     reduced_k_omega: DMatrix<f64>,
+    /// `ΦᵀCΦ` of the structural damping matrix, when there is one.
+    reduced_damping: Option<DMatrix<f64>>,
+    nodes: Arc<[f64]>,
 }
 
 impl ModalBlade {
@@ -70,12 +209,22 @@ impl ModalBlade {
         }
         let reduced_k0 = symmetrised(basis.transpose() * &matrices.k0 * &basis);
         let reduced_k_omega = symmetrised(basis.transpose() * &matrices.k_omega * &basis);
+        let nodes = matrices.mesh.nodes.clone().into();
         Ok(ModalBlade {
             matrices,
             basis,
             reduced_k0,
             reduced_k_omega,
+            reduced_damping: None,
+            nodes,
         })
+    }
+
+    /// This basis with the structural damping matrix `damping` (free dofs, e.g. from
+    /// [`stiffness_damping`]): each mode's [`BladeMode::damping_ratio`] is then its projection.
+    pub fn with_damping(mut self, damping: &DMatrix<f64>) -> ModalBlade {
+        self.reduced_damping = Some(symmetrised(self.basis.transpose() * damping * &self.basis));
+        self
     }
 
     /// Size of the reduced basis.
@@ -102,11 +251,20 @@ impl ModalBlade {
                          rotating blade has no stiffness against this shape (rotor speed too high?)"
                     )));
                 }
-                let shape = &self.basis * eig.eigenvectors.column(j);
+                let y = eig.eigenvectors.column(j);
+                let shape = &self.basis * y;
+                let omega_k = lambda.sqrt();
+                // ζ = φᵀCφ / 2ω for an M-normalised φ = Φy (Φ M-orthonormal, |y| = 1).
+                let damping_ratio = self
+                    .reduced_damping
+                    .as_ref()
+                    .map_or(0.0, |c| y.dot(&(c * y)) / (2.0 * omega_k));
                 Ok(BladeMode {
-                    frequency_hz: lambda.sqrt() / std::f64::consts::TAU,
+                    frequency_hz: omega_k / std::f64::consts::TAU,
                     shares: self.shares(&shape),
+                    damping_ratio,
                     shape,
+                    nodes: self.nodes.clone(),
                 })
             })
             .collect()

@@ -34,6 +34,15 @@ pub enum Family {
 }
 
 impl Family {
+    /// In the order of every `[flap, edge, twist]` share array.
+    pub const ALL: [Family; 3] = [Family::Flap, Family::Edge, Family::Torsion];
+
+    /// Position in [`Family::ALL`] (and in share arrays).
+    pub fn index(self) -> usize {
+        self as usize
+    }
+
+    /// `flap`, `edge`, `torsion`: the first word of a mode's label.
     pub fn name(self) -> &'static str {
         match self {
             Family::Flap => "flap",
@@ -142,7 +151,7 @@ pub fn numbers_within_families(families: &[Family]) -> Vec<usize> {
     families
         .iter()
         .map(|f| {
-            let k = *f as usize;
+            let k = f.index();
             seen[k] += 1;
             seen[k]
         })

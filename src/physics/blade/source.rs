@@ -1,0 +1,288 @@
+//! A tabulated blade from the files a preset names, and its structure (docs/model.md §11): the
+//! files are read and mapped to a [`BladeTable`] with the damping they state
+//! ([`read_blade`], once, when the preset is checked); [`blade_structure`] then builds the
+//! finite elements at the preset's pitch, the modal basis and each mode's damping.
+//!
+//! Damping (docs/model.md §11.4): `structure.damping_flap`, `…_edge`, `…_torsion` set a modal
+//! damping ratio for every mode of that family; a family the preset leaves unset takes what the
+//! files state: BeamDyn's stiffness-proportional `mu` projected on each mode, or a ratio per
+//! family ([`SourceDamping::PerFamily`]); a file that states none leaves the mode undamped.
+
+use super::beamdyn::from_beamdyn;
+use super::fem::{assemble, Mesh};
+use super::modal::{stiffness_damping, BladeMode, ModalBlade, StiffnessFactors};
+use super::BladeTable;
+use crate::error::{Error, Result};
+use crate::formats::{beamdyn, elastodyn, hawc2_st};
+use crate::preset::{BladeFile, BladeSource, ValidPreset};
+use std::sync::Arc;
+
+/// Damping as a blade's files state it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum SourceDamping {
+    /// The files state none.
+    None,
+    /// Stiffness-proportional damping (BeamDyn `damp_type = 1`), projected on each mode.
+    StiffnessProportional(StiffnessFactors),
+    /// A damping ratio per family, in [`Family::ALL`](super::modal::Family::ALL) order (a
+    /// source that states its damping per mode family, e.g. tuned HAWC2 log decrements).
+    PerFamily([f64; 3]),
+}
+
+/// A blade as its files describe it: the sections (root at the hub radius 0: the preset's
+/// `blade.hub_radius` places it) and the damping they state.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TabulatedBlade {
+    pub source: BladeSource,
+    pub table: BladeTable,
+    pub damping: SourceDamping,
+    /// The files read, as errors name them (a BeamDyn blade: the primary file, then its blade
+    /// file).
+    pub files: Vec<String>,
+}
+
+impl TabulatedBlade {
+    /// Blade length (m): the span of the last station.
+    pub fn length(&self) -> f64 {
+        self.table.length()
+    }
+}
+
+/// Read the blade `file` describes as a `source` blade (a HAWC2 st file: subset `st_subset` of
+/// set `st_set`). Errors name the file and line; a file of another known kind says which kind
+/// it is and what to do instead.
+pub fn read_blade(
+    source: BladeSource,
+    file: &BladeFile,
+    st_set: usize,
+    st_subset: usize,
+) -> Result<TabulatedBlade> {
+    match source {
+        BladeSource::Beamdyn => read_beamdyn(file),
+        BladeSource::Hawc2 => read_hawc2(file, st_set, st_subset),
+        BladeSource::Uniform => Err(Error::Invalid {
+            origin: file.display(),
+            message: "blade.source = \"uniform\" describes its blade by blade.length and \
+                      section.*, not by a file"
+                .into(),
+        }),
+    }
+}
+
+/// The BeamDyn primary file, then the blade file its `BldFile` names (relative to it, as
+/// BeamDyn resolves it).
+fn read_beamdyn(file: &BladeFile) -> Result<TabulatedBlade> {
+    let name = file.display();
+    let text = file.read()?;
+    let primary = beamdyn::parse_primary(&text, &name)
+        .map_err(|e| misread(&text, &name, BladeSource::Beamdyn).unwrap_or(e))?;
+    let blade_file = file.sibling(&primary.blade_file);
+    let blade_name = blade_file.display();
+    let blade_text = blade_file.read()?;
+    let blade = beamdyn::parse_blade(&blade_text, &blade_name)?;
+    let table = from_beamdyn(&primary, &blade, &name, 0.0)?;
+    // BeamDyn's mu follow its strain order (shear 1, shear 2, extension, bending about x1 =
+    // edge, bending about x2 = flap, torsion); the beam here has no shear or axial dofs, so
+    // mu1–mu3 have nothing to damp.
+    let damping = match blade.damp_type {
+        1 => SourceDamping::StiffnessProportional(StiffnessFactors {
+            flap: blade.mu[4],
+            edge: blade.mu[3],
+            torsion: blade.mu[5],
+        }),
+        _ => SourceDamping::None,
+    };
+    Ok(TabulatedBlade {
+        source: BladeSource::Beamdyn,
+        table,
+        damping,
+        files: vec![name, blade_name],
+    })
+}
+
+/// Subset `st_subset` of set `st_set` of a HAWC2 st file.
+fn read_hawc2(file: &BladeFile, st_set: usize, st_subset: usize) -> Result<TabulatedBlade> {
+    let name = file.display();
+    let text = file.read()?;
+    let st = hawc2_st::parse_st(&text, &name)
+        .map_err(|e| misread(&text, &name, BladeSource::Hawc2).unwrap_or(e))?;
+    let subset = st.subset(st_set, st_subset)?;
+    // The mapping of st sections to §11's section frame (elastic and shear centres, principal
+    // axes) is physics/blade/hawc2.rs, issue 16's HAWC2 step; until it is merged the subset is
+    // read and checked, and the blade is refused by name rather than approximated.
+    Err(Error::Invalid {
+        origin: name,
+        message: format!(
+            "set #{st_set} subset ${st_subset} read ({} stations), but this build cannot map \
+             HAWC2 st sections to the blade model yet; use the blade's BeamDyn files \
+             (blade.source = \"beamdyn\")",
+            subset.rows.len()
+        ),
+    })
+}
+
+/// When a file does not parse as what `expected` needs, whether it is another kind of blade
+/// file this program knows, as an error that says so: an ElastoDyn blade file above all, which
+/// has no torsional stiffness and so cannot describe a blade for flutter.
+fn misread(text: &str, name: &str, expected: BladeSource) -> Option<Error> {
+    let is = |message: String| Some(Error::format(name, 0, message));
+    if elastodyn::parse_blade(text, name).is_ok() {
+        return is(
+            "this is an ElastoDyn blade file (NBlInpSt, FlpStff, EdgStff): ElastoDyn blade files \
+             carry no torsional stiffness, which flutter needs; use the blade's BeamDyn files \
+             (blade.source = \"beamdyn\", blade.file = the primary file) or a HAWC2 st file \
+             (blade.source = \"hawc2\"), which do"
+                .into(),
+        );
+    }
+    match expected {
+        BladeSource::Beamdyn if beamdyn::parse_blade(text, name).is_ok() => is(
+            "this is a BeamDyn blade file; blade.file names the BeamDyn primary file, which \
+             names this one in its BldFile line"
+                .into(),
+        ),
+        BladeSource::Beamdyn
+            if hawc2_st::parse_st(text, name).is_ok_and(|s| !s.sets.is_empty()) =>
+        {
+            is("this is a HAWC2 st file: set blade.source = \"hawc2\"".into())
+        }
+        BladeSource::Hawc2 if beamdyn::parse_primary(text, name).is_ok() => {
+            is("this is a BeamDyn primary file: set blade.source = \"beamdyn\"".into())
+        }
+        _ => None,
+    }
+}
+
+/// Reduced-basis modes per reference rotor speed beyond the K retained (docs/model.md §11.4).
+/// On the NREL 5MW blade the 12 retained modes anywhere between the 0 and 20 rpm references are
+/// within 1.5e-10 of the exact ones even without a margin; a blade whose modes change more with
+/// the rotor speed (a light, fast one, as the paper's) needs the extra vectors, which cost little
+/// (the reduced problem has at most 3(K + 8) dofs).
+const BASIS_MARGIN: usize = 8;
+
+/// A tabulated blade's structure at a preset's pitch: the modal basis the analyses work on, and
+/// how its modes are damped.
+#[derive(Debug, Clone)]
+pub struct BladeStructure {
+    pub blade: Arc<TabulatedBlade>,
+    /// The blade as the elements see it: the file's sections at the preset's hub radius.
+    pub table: BladeTable,
+    pub modal: ModalBlade,
+    /// K, the modes retained (`structure.modes`).
+    pub count: usize,
+    /// Per family, the damping ratio the preset sets (`structure.damping_*`) or the source
+    /// states per family; `None`: the projected ratio of each mode (0 without damping).
+    ratios: [Option<f64>; 3],
+}
+
+/// The structure of the tabulated blade `p` holds (`None` for the uniform blade): elements at
+/// `structure.min_elements`, pitch `operating.pitch`, a basis good from rest to
+/// `view.rotor_speed_max` and exact at `operating.rotor_speed`.
+pub fn blade_structure(p: &ValidPreset) -> Result<Option<BladeStructure>> {
+    match p.tabulated_blade() {
+        Some(blade) => build(p, blade.clone()).map(Some),
+        None => Ok(None),
+    }
+}
+
+fn build(p: &ValidPreset, blade: Arc<TabulatedBlade>) -> Result<BladeStructure> {
+    let table = BladeTable::new(
+        &blade.table.origin,
+        p.blade.hub_radius,
+        blade.table.sections.clone(),
+    )?;
+    let mesh = Mesh::following(&table, p.structure.min_elements);
+    let pitch = p.pitch_rad();
+    let matrices = assemble(&table, &mesh, pitch)?;
+    let count = p.structure.modes;
+    let mut modal = ModalBlade::new(matrices, &reference_speeds(p), count + BASIS_MARGIN)?;
+    if let SourceDamping::StiffnessProportional(f) = blade.damping {
+        modal = modal.with_damping(&stiffness_damping(&table, &mesh, pitch, f)?);
+    }
+    let ratios = family_ratios(p, blade.damping);
+    Ok(BladeStructure {
+        blade,
+        table,
+        modal,
+        count,
+        ratios,
+    })
+}
+
+/// Rest, the operating speed and the top of the explorer's range (rad/s): the modes at the
+/// operating speed are then in the basis, exact there rather than approximated.
+fn reference_speeds(p: &ValidPreset) -> Vec<f64> {
+    let top = p.view.rotor_speed_max * std::f64::consts::PI / 30.0;
+    let mut speeds = vec![0.0, p.omega(), top];
+    speeds.sort_by(f64::total_cmp);
+    speeds.dedup();
+    speeds
+}
+
+/// Per family, the ratio that replaces a mode's projected damping: `structure.damping_*` when
+/// the preset sets it, else the source's per-family ratio if it states one.
+fn family_ratios(p: &ValidPreset, damping: SourceDamping) -> [Option<f64>; 3] {
+    let s = &p.structure;
+    let set = [s.damping_flap, s.damping_edge, s.damping_torsion];
+    let stated = match damping {
+        SourceDamping::PerFamily(r) => r.map(Some),
+        _ => [None; 3],
+    };
+    [0, 1, 2].map(|k| set[k].or(stated[k]))
+}
+
+impl BladeStructure {
+    /// The first K modes at rotor speed `omega` (rad/s), ascending, each with its damping
+    /// ratio: the family's when the preset or the source sets one, else its projection.
+    pub fn modes(&self, omega: f64) -> Result<Vec<BladeMode>> {
+        let mut modes = self.modal.modes(omega, self.count)?;
+        for m in &mut modes {
+            if let Some(ratio) = self.ratios[m.family().index()] {
+                m.damping_ratio = ratio;
+            }
+        }
+        Ok(modes)
+    }
+
+    /// Finite elements along the span.
+    pub fn elements(&self) -> usize {
+        self.modal.matrices.mesh.elements()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::preset::Preset;
+
+    /// A preset's `structure.damping_*` wins over a source's per-family ratio, family by family;
+    /// without either a family keeps each mode's projection (`None`).
+    #[test]
+    fn family_ratios_take_the_preset_then_the_source() {
+        let p = Preset::load("nrel5mw", &["structure.damping_edge=0.05".into()]).unwrap();
+        let stated = SourceDamping::PerFamily([0.01, 0.02, 0.03]);
+        assert_eq!(
+            family_ratios(&p, stated),
+            [Some(0.01), Some(0.05), Some(0.03)]
+        );
+        let mu = SourceDamping::StiffnessProportional(StiffnessFactors {
+            flap: 1e-3,
+            edge: 1e-3,
+            torsion: 1e-3,
+        });
+        assert_eq!(family_ratios(&p, mu), [None, Some(0.05), None]);
+        assert_eq!(
+            family_ratios(&p, SourceDamping::None),
+            [None, Some(0.05), None]
+        );
+    }
+
+    #[test]
+    fn reference_speeds_are_rest_the_operating_speed_and_the_top_once_each() {
+        let rad = |rpm: f64| rpm * std::f64::consts::PI / 30.0;
+        let p = Preset::load("nrel5mw", &[]).unwrap();
+        assert_eq!(reference_speeds(&p), [0.0, rad(12.1), rad(20.0)]);
+        let p = p.with("operating.rotor_speed", 0.0).unwrap();
+        assert_eq!(reference_speeds(&p), [0.0, rad(20.0)]);
+    }
+}
