@@ -11,17 +11,12 @@
 //! reads in rad per m of peak flap displacement, a torsion mode's `u` and `v` in m per rad.
 
 use crate::error::Result;
-use crate::physics::blade::modal::{labels, BladeMode, Family};
-use crate::physics::blade::source::{blade_structure, BladeStructure};
-use crate::physics::structure::{assemble, NaturalMode, StructuralModel};
+use crate::physics::structure::{damping_ratio, for_preset, Family, MotionRows, Shares, Structure};
 use crate::plot::{Figure, Panel, Series, PALETTE};
 use crate::preset::{Form, ValidPreset};
+use nalgebra::DVector;
 use serde::Serialize;
 use std::path::Path;
-
-/// Points along the span at which the uniform blade's shapes are sampled (its Galerkin functions
-/// are smooth; a tabulated blade's are given at its mesh nodes).
-const UNIFORM_SHAPE_POINTS: usize = 41;
 
 /// What `modes` reports about one mode.
 #[derive(Debug, Serialize)]
@@ -39,14 +34,6 @@ struct ModeRow {
     damping_ratio: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     shape: Option<Shape>,
-}
-
-/// Shares of a mode's kinetic energy in flap, edge and twist motion (they add up to 1).
-#[derive(Debug, Serialize)]
-struct Shares {
-    flap: f64,
-    edge: f64,
-    twist: f64,
 }
 
 /// A mode shape sampled along the span, scaled as the module documentation says.
@@ -85,10 +72,9 @@ pub fn run(p: &ValidPreset, json: bool, shapes: bool, plot: Option<&Path>) -> Re
             p.operating.rotor_speed
         )
     };
-    let (mut report, heading) = match blade_structure(p).map_err(|e| e.at(at()))? {
-        Some(s) => tabulated(p, &s).map_err(|e| e.at(at()))?,
-        None => uniform(p).map_err(|e| e.at(at()))?,
-    };
+    let structure = for_preset(p).map_err(|e| e.at(at()))?;
+    let mut report = report(p, mode_rows(p, structure.as_ref()).map_err(|e| e.at(at()))?);
+    let heading = heading(p, structure.as_ref());
     if let Some(path) = plot {
         crate::plot::write(&shapes_figure(p, &report), path)?;
     }
@@ -108,130 +94,71 @@ pub fn run(p: &ValidPreset, json: bool, shapes: bool, plot: Option<&Path>) -> Re
     Ok(())
 }
 
-/// The uniform blade: its Galerkin modes, flap or torsion by the torsion share (no edge motion),
-/// damped by the paper's `C_s = (η1/ω1) K_e`.
-fn uniform(p: &ValidPreset) -> Result<(Report, String)> {
-    let model = assemble(p)?;
-    let modes = model.natural_modes()?;
-    let families: Vec<Family> = modes
-        .iter()
-        .map(|m| match m.torsion_share > 0.5 {
-            true => Family::Torsion,
-            false => Family::Flap,
+/// Every natural mode of the structure with its name, shares, damping and shape (sampled at the
+/// structure's own span points, at the reference axis).
+fn mode_rows(p: &ValidPreset, structure: &dyn Structure) -> Result<Vec<ModeRow>> {
+    let points = structure.span_points();
+    let rows: Vec<_> = points.iter().map(|&z| structure.motion_rows(z)).collect();
+    Ok(structure
+        .natural_modes()?
+        .into_iter()
+        .map(|m| {
+            let along = |pick: fn(&MotionRows) -> &DVector<f64>| -> Vec<f64> {
+                rows.iter().map(|r| pick(r).dot(&m.shape)).collect()
+            };
+            let shape = shape(
+                p,
+                m.family,
+                points.clone(),
+                along(|r| &r.flap),
+                along(|r| &r.edge),
+                along(|r| &r.twist),
+            );
+            ModeRow {
+                damping_ratio: damping_ratio(structure, &m),
+                label: m.label,
+                family: m.family,
+                number: m.number,
+                frequency_hz: m.frequency_hz,
+                shares: m.shares,
+                torsion_share: m.torsion_share,
+                shape: Some(shape),
+            }
         })
-        .collect();
-    let rows = modes
-        .iter()
-        .zip(labels(families))
-        .map(|(m, label)| ModeRow {
-            label: label.to_string(),
-            family: label.family,
-            number: label.number,
-            frequency_hz: m.frequency_hz,
-            shares: Shares {
-                flap: 1.0 - m.torsion_share,
-                edge: 0.0,
-                twist: m.torsion_share,
-            },
-            torsion_share: m.torsion_share,
-            damping_ratio: uniform_damping_ratio(&model, m),
-            shape: Some(uniform_shape(p, &model, m, label.family)),
-        })
-        .collect();
-    let form = match p.structure.form {
-        Form::Weak => "weak",
-        Form::Strong => "strong",
-    };
-    let heading = format!(
-        "{}: natural modes at {} rpm, N = {} per field, {} form (uniform blade)",
-        p.display_name(),
-        p.operating.rotor_speed,
-        p.structure.modes,
-        form
-    );
-    Ok((report(p, rows), heading))
+        .collect())
 }
 
-/// `qᵀC_s q / (2ω qᵀMq)`: the mode's share of the structural damping, as a ratio.
-fn uniform_damping_ratio(model: &StructuralModel, m: &NaturalMode) -> Option<f64> {
-    let omega = m.frequency_hz * std::f64::consts::TAU;
-    let q = &m.shape;
-    let mass = q.dot(&(&model.mass * q));
-    (omega > 0.0 && mass > 0.0).then(|| q.dot(&(&model.damping * q)) / (2.0 * omega * mass))
-}
-
-/// The uniform blade's shape at evenly spaced points: `u = Σ U_j q_u,j`, `φ = Σ Φ_j q_φ,j`
-/// (the coordinates are `[q_φ, q_u]`).
-fn uniform_shape(p: &ValidPreset, model: &StructuralModel, m: &NaturalMode, f: Family) -> Shape {
-    let n = model.n;
-    let length = model.basis.length;
-    let z: Vec<f64> = (0..UNIFORM_SHAPE_POINTS)
-        .map(|i| length * i as f64 / (UNIFORM_SHAPE_POINTS - 1) as f64)
-        .collect();
-    let (q_phi, q_u) = (m.shape.rows(0, n), m.shape.rows(n, n));
-    let flap = z.iter().map(|&x| model.basis.bending(x, 0).dot(&q_u));
-    let twist = z.iter().map(|&x| model.basis.torsion(x, 0).dot(&q_phi));
-    shape(
-        p,
-        f,
-        z.clone(),
-        flap.collect(),
-        vec![0.0; z.len()],
-        twist.collect(),
-    )
-}
-
-/// A tabulated blade: its first K finite-element modes at the rotor speed.
-fn tabulated(p: &ValidPreset, s: &BladeStructure) -> Result<(Report, String)> {
-    let modes = s.modes(p.omega())?;
-    let names = labels(modes.iter().map(BladeMode::family));
-    let rows = modes
-        .iter()
-        .zip(names)
-        .map(|(m, label)| ModeRow {
-            label: label.to_string(),
-            family: label.family,
-            number: label.number,
-            frequency_hz: m.frequency_hz,
-            shares: Shares {
-                flap: m.shares[0],
-                edge: m.shares[1],
-                twist: m.shares[2],
-            },
-            torsion_share: m.shares[2],
-            damping_ratio: Some(m.damping_ratio),
-            shape: Some(tabulated_shape(p, m, label.family)),
-        })
-        .collect();
-    let kind = s.blade.source.title();
-    let heading = format!(
-        "{}: {} blade mode{} at {} rpm, pitch {} deg; {kind} blade from {}, {} m from r = {} m, \
-         {} elements",
-        p.display_name(),
-        s.count,
-        if s.count == 1 { "" } else { "s" },
-        p.operating.rotor_speed,
-        p.operating.pitch,
-        s.blade.files.join(" + "),
-        s.table.length(),
-        p.blade.hub_radius,
-        s.elements()
-    );
-    Ok((report(p, rows), heading))
-}
-
-/// A finite-element mode at its mesh nodes.
-fn tabulated_shape(p: &ValidPreset, m: &BladeMode, f: Family) -> Shape {
-    let z = m.nodes.to_vec();
-    let values: Vec<_> = z.iter().map(|&x| m.at(x)).collect();
-    shape(
-        p,
-        f,
-        z,
-        values.iter().map(|v| v.u).collect(),
-        values.iter().map(|v| v.v).collect(),
-        values.iter().map(|v| v.phi).collect(),
-    )
+/// What the modes are of: the uniform blade's Galerkin size and form, or the tabulated blade's
+/// files, span and mesh.
+fn heading(p: &ValidPreset, structure: &dyn Structure) -> String {
+    let name = p.display_name();
+    let rpm = p.operating.rotor_speed;
+    match p.tabulated_blade() {
+        None => {
+            let form = match p.structure.form {
+                Form::Weak => "weak",
+                Form::Strong => "strong",
+            };
+            format!(
+                "{name}: natural modes at {rpm} rpm, N = {} per field, {form} form (uniform blade)",
+                p.structure.modes
+            )
+        }
+        Some(blade) => {
+            let count = structure.coordinates();
+            format!(
+                "{name}: {count} blade mode{} at {rpm} rpm, pitch {} deg; {} blade from {}, {} m \
+                 from r = {} m, {} elements",
+                if count == 1 { "" } else { "s" },
+                p.operating.pitch,
+                blade.source.title(),
+                blade.files.join(" + "),
+                structure.length(),
+                structure.hub_radius(),
+                structure.span_points().len() - 1
+            )
+        }
+    }
 }
 
 /// The samples scaled by one factor so that the family's own component peaks at +1.

@@ -13,7 +13,14 @@ use std::path::Path;
 /// The header line's note: this command evaluates the layup even when the model does not.
 fn source_note(p: &ValidPreset) -> String {
     let source = source_name(p.section.source);
-    if p.section.source == SectionSource::Layup {
+    if p.tabulated_blade().is_some() {
+        format!(
+            "always evaluated from the layup; the model uses the {} blade of blade.file = \"{}\", \
+             not these",
+            p.blade.source.name(),
+            p.blade.file
+        )
+    } else if p.section.source == SectionSource::Layup {
         "section.source = \"layup\": these are the properties the model uses".into()
     } else {
         format!(

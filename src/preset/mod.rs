@@ -211,7 +211,7 @@ impl Preset {
 
     /// Defaults that depend on `blade.source`, for the keys `written` (the preset's keys as
     /// written, overrides applied) leaves out: a tabulated blade is as long as its file says,
-    /// and keeps [`TABULATED_MODES`] modes.
+    /// keeps [`TABULATED_MODES`] modes and, until its aerodynamics can be described, has none.
     fn source_defaults(&mut self, written: &toml::Table) {
         let Some(t) = &self.tabulated else { return };
         let given = |table: &str, key: &str| {
@@ -225,6 +225,9 @@ impl Preset {
         }
         if !given("structure", "modes") {
             self.structure.modes = TABULATED_MODES;
+        }
+        if !given("aero", "model") {
+            self.aero.model = AeroModel::None;
         }
     }
 

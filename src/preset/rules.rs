@@ -3,7 +3,7 @@
 //! every preset whatever its `section.source` (`flutterscope section` evaluates the layup of any
 //! preset).
 
-use super::{BladeSource, ContourShape, Preset, SectionSource};
+use super::{AeroModel, BladeSource, ContourShape, Preset, SectionSource};
 use crate::error::{Error, Result};
 
 /// Most samples one time response may hold (`simulation.duration × simulation.sample_rate`):
@@ -45,6 +45,16 @@ pub fn check(p: &Preset) -> Result<()> {
         message,
     };
     length_is_the_files(p).map_err(invalid)?;
+    if p.blade.source.is_tabulated() && p.aero.model != AeroModel::None {
+        return Err(invalid(format!(
+            "aero.model = \"{}\" with blade.source = \"{}\": strip aerodynamics on a tabulated \
+             blade needs the blade's own aerodynamic description (chord, twist and airfoil polars \
+             along the span), which a preset cannot give yet; set aero.model = \"none\" for the \
+             blade's structural modes and damping",
+            p.aero.model.name(),
+            p.blade.source.name()
+        )));
+    }
     let o = &p.aero.onera;
     if o.alpha2 <= o.alpha1 {
         return Err(invalid(format!(

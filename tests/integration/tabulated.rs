@@ -118,9 +118,12 @@ fn a_tabulated_blade_in_the_system_has_its_modes_as_roots() {
     let omega = 12.1 * std::f64::consts::PI / 30.0;
     let matrices = assemble_blade(&table, &Mesh::following(&table, 60), 0.0).unwrap();
     let blade = Arc::new(ModalBlade::new(matrices, &[0.0, omega], 16).unwrap());
-    let modes = blade.modes(omega, 8).unwrap();
+    let mut modes = blade.modes(omega, 8).unwrap();
     let ratios: Vec<f64> = (0..modes.len()).map(|k| 0.005 * (k + 1) as f64).collect();
-    let structure = TabulatedStructure::new(blade, modes.clone(), &ratios).unwrap();
+    for (m, r) in modes.iter_mut().zip(&ratios) {
+        m.damping_ratio = *r;
+    }
+    let structure = TabulatedStructure::new(blade, modes.clone()).unwrap();
     let op = OperatingPoint {
         wind: 0.0,
         induction: 0.0,
@@ -172,7 +175,7 @@ fn tip_rows_of_a_tabulated_blade_read_its_mode_shapes_at_the_tip() {
     let matrices = assemble_blade(&table, &Mesh::following(&table, 40), 0.0).unwrap();
     let blade = Arc::new(ModalBlade::new(matrices, &[0.0], 12).unwrap());
     let modes = blade.modes(0.0, 6).unwrap();
-    let structure = TabulatedStructure::new(blade.clone(), modes.clone(), &[0.01; 6]).unwrap();
+    let structure = TabulatedStructure::new(blade.clone(), modes.clone()).unwrap();
     let tip = structure.motion_rows(structure.length());
     let map = blade
         .matrices

@@ -98,7 +98,7 @@ struct Shapes {
 }
 
 /// Hermite cubics (values, first and second z-derivatives) for `[w_a, w'_a, w_b, w'_b]`.
-pub(crate) fn hermite(s: f64, h: f64) -> ([f64; 4], [f64; 4], [f64; 4]) {
+fn hermite(s: f64, h: f64) -> ([f64; 4], [f64; 4], [f64; 4]) {
     let (s2, s3) = (s * s, s * s * s);
     (
         [

@@ -2,15 +2,14 @@
 //! basis: the assembled `M`, `K₀`, `K_Ω` are projected once onto the lowest modes at the
 //! reference rotor speeds, so the modes at any rotor speed are a small dense eigenproblem
 //! (microseconds), not a re-assembly or a full-size solve. Each mode carries its family, its
-//! modal damping ratio (docs/model.md §11.4) and its shape, which [`BladeMode::at`] evaluates at
-//! any span position with the elements' own shape functions.
+//! modal damping ratio (docs/model.md §11.4) and its shape on the element dofs, which
+//! [`BladeMatrices::reference_axis_at`] evaluates at any span position.
 
-use super::fem::{assemble, hermite, BladeMatrices, Mesh, NODE_DOFS, PHI, U, V};
+use super::fem::{assemble, BladeMatrices, Mesh, NODE_DOFS, PHI, U, V};
 use super::{BladeTable, Section};
 use crate::error::{Error, Result};
 use crate::numeric::cholesky::{cholesky_reduce, symmetrised};
 use nalgebra::{DMatrix, DVector, SymmetricEigen};
-use std::sync::Arc;
 
 /// Iteration cap of the symmetric eigensolver (nalgebra's implicit QR): far beyond what these
 /// sizes need, so reaching it means broken input, reported as an error.
@@ -21,48 +20,6 @@ const MAX_SWEEPS: usize = 10_000;
 const DEPENDENT: f64 = 1e-8;
 
 pub use crate::physics::structure::Family;
-
-/// A mode's name: its family and its number within the family in frequency order (`flap 2`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct ModeLabel {
-    pub family: Family,
-    /// 1 for the family's lowest mode.
-    pub number: usize,
-}
-
-impl std::fmt::Display for ModeLabel {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{} {}", self.family.name(), self.number)
-    }
-}
-
-/// The labels of `families` listed in ascending frequency: each family numbered from 1, so no
-/// label repeats and each family's numbers are consecutive.
-pub fn labels(families: impl IntoIterator<Item = Family>) -> Vec<ModeLabel> {
-    let mut count = [0usize; 3];
-    families
-        .into_iter()
-        .map(|family| {
-            count[family.index()] += 1;
-            ModeLabel {
-                family,
-                number: count[family.index()],
-            }
-        })
-        .collect()
-}
-
-/// A mode's motion at one span position: the flap `u` and edge `v` displacements the elements
-/// carry (docs/model.md §11.3) with their slopes in z, and the elastic twist `φ` (§11.1 signs:
-/// u downwind, v toward the leading edge, φ toward feather), in the units of the mode's scaling.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
-pub struct ModeValue {
-    pub u: f64,
-    pub du: f64,
-    pub v: f64,
-    pub dv: f64,
-    pub phi: f64,
-}
 
 /// One natural mode of the rotating blade.
 #[derive(Debug, Clone)]
@@ -77,47 +34,9 @@ pub struct BladeMode {
     pub damping_ratio: f64,
     /// Free-dof vector (`[u, u', v, v', φ]` per node after the root), M-normalised.
     pub shape: DVector<f64>,
-    /// The mesh nodes the shape lives on (m from the root), shared by every mode of a blade.
-    pub nodes: Arc<[f64]>,
 }
 
 impl BladeMode {
-    /// The mode at span position `z` (m from the root, clamped to the blade): `u`, `v` and their
-    /// slopes from the cubic Hermite functions of the element holding `z`, `φ` linear in it —
-    /// the shape functions the element matrices were built with (`fem`), so these are the
-    /// values the structural model means, not a re-interpolation. Zero at the clamped root.
-    pub fn at(&self, z: f64) -> ModeValue {
-        let nodes = &self.nodes;
-        let last = nodes.len() - 1;
-        let z = z.clamp(nodes[0], nodes[last]);
-        let e = nodes.partition_point(|&x| x <= z).clamp(1, last) - 1;
-        let (za, zb) = (nodes[e], nodes[e + 1]);
-        let h = zb - za;
-        let s = ((z - za) / h).clamp(0.0, 1.0);
-        // Node k's dofs, zero at the clamped root (node 0).
-        let dof = |node: usize, offset: usize| -> f64 {
-            if node == 0 {
-                0.0
-            } else {
-                self.shape[(node - 1) * NODE_DOFS + offset]
-            }
-        };
-        let (n, dn, _) = hermite(s, h);
-        let field = |offset: usize, w: &[f64; 4]| {
-            w[0] * dof(e, offset)
-                + w[1] * dof(e, offset + 1)
-                + w[2] * dof(e + 1, offset)
-                + w[3] * dof(e + 1, offset + 1)
-        };
-        ModeValue {
-            u: field(U, &n),
-            du: field(U, &dn),
-            v: field(V, &n),
-            dv: field(V, &dn),
-            phi: (1.0 - s) * dof(e, PHI) + s * dof(e + 1, PHI),
-        }
-    }
-
     /// The family with the largest share.
     pub fn family(&self) -> Family {
         Family::of(self.shares)
@@ -183,7 +102,6 @@ pub struct ModalBlade {
     reduced_k_omega: DMatrix<f64>,
     /// `ΦᵀCΦ` of the structural damping matrix, when there is one.
     reduced_damping: Option<DMatrix<f64>>,
-    nodes: Arc<[f64]>,
 }
 
 impl ModalBlade {
@@ -209,14 +127,12 @@ impl ModalBlade {
         }
         let reduced_k0 = symmetrised(basis.transpose() * &matrices.k0 * &basis);
         let reduced_k_omega = symmetrised(basis.transpose() * &matrices.k_omega * &basis);
-        let nodes = matrices.mesh.nodes.clone().into();
         Ok(ModalBlade {
             matrices,
             basis,
             reduced_k0,
             reduced_k_omega,
             reduced_damping: None,
-            nodes,
         })
     }
 
@@ -264,7 +180,6 @@ impl ModalBlade {
                     shares: self.shares(&shape),
                     damping_ratio,
                     shape,
-                    nodes: self.nodes.clone(),
                 })
             })
             .collect()

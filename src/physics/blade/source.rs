@@ -167,7 +167,7 @@ pub struct BladeStructure {
     pub blade: Arc<TabulatedBlade>,
     /// The blade as the elements see it: the file's sections at the preset's hub radius.
     pub table: BladeTable,
-    pub modal: ModalBlade,
+    pub modal: Arc<ModalBlade>,
     /// K, the modes retained (`structure.modes`).
     pub count: usize,
     /// Per family, the damping ratio the preset sets (`structure.damping_*`) or the source
@@ -177,11 +177,64 @@ pub struct BladeStructure {
 
 /// The structure of the tabulated blade `p` holds (`None` for the uniform blade): elements at
 /// `structure.min_elements`, pitch `operating.pitch`, a basis good from rest to
-/// `view.rotor_speed_max` and exact at `operating.rotor_speed`.
-pub fn blade_structure(p: &ValidPreset) -> Result<Option<BladeStructure>> {
-    match p.tabulated_blade() {
-        Some(blade) => build(p, blade.clone()).map(Some),
-        None => Ok(None),
+/// `view.rotor_speed_max` (or the operating speed, if higher).
+///
+/// Built once per blade, hub radius, pitch, mesh, K, damping and basis range, and kept for the
+/// next call ([`BUILT`] of them): a change of rotor speed, wind or anything aerodynamic then
+/// costs the reduced eigenproblem only (docs/model.md §11.4), not a re-assembly.
+pub fn blade_structure(p: &ValidPreset) -> Result<Option<Arc<BladeStructure>>> {
+    let Some(blade) = p.tabulated_blade() else {
+        return Ok(None);
+    };
+    let key = BuildKey::of(p, blade);
+    let cache = BUILT_CACHE.get_or_init(Default::default);
+    if let Some(hit) = lock(cache).iter().find(|(k, _)| *k == key) {
+        return Ok(Some(hit.1.clone()));
+    }
+    let built = Arc::new(build(p, blade.clone())?);
+    let mut kept = lock(cache);
+    if kept.len() >= BUILT {
+        kept.remove(0);
+    }
+    kept.push((key, built.clone()));
+    Ok(Some(built))
+}
+
+/// Builds kept: the explorer's current blade and a few it was just at (a pitch dragged back).
+const BUILT: usize = 4;
+
+type Built = std::sync::Mutex<Vec<(BuildKey, Arc<BladeStructure>)>>;
+
+static BUILT_CACHE: std::sync::OnceLock<Built> = std::sync::OnceLock::new();
+
+/// A poisoned lock only means another thread panicked mid-push; the list is still whole.
+fn lock(cache: &Built) -> std::sync::MutexGuard<'_, Vec<(BuildKey, Arc<BladeStructure>)>> {
+    cache.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// Everything [`build`] reads from a preset.
+#[derive(Debug, Clone, PartialEq)]
+struct BuildKey {
+    blade: Arc<TabulatedBlade>,
+    hub_radius: f64,
+    pitch: f64,
+    min_elements: usize,
+    count: usize,
+    speeds: Vec<f64>,
+    ratios: [Option<f64>; 3],
+}
+
+impl BuildKey {
+    fn of(p: &ValidPreset, blade: &Arc<TabulatedBlade>) -> BuildKey {
+        BuildKey {
+            blade: blade.clone(),
+            hub_radius: p.blade.hub_radius,
+            pitch: p.pitch_rad(),
+            min_elements: p.structure.min_elements,
+            count: p.structure.modes,
+            speeds: reference_speeds(p),
+            ratios: family_ratios(p, blade.damping),
+        }
     }
 }
 
@@ -203,20 +256,18 @@ fn build(p: &ValidPreset, blade: Arc<TabulatedBlade>) -> Result<BladeStructure> 
     Ok(BladeStructure {
         blade,
         table,
-        modal,
+        modal: Arc::new(modal),
         count,
         ratios,
     })
 }
 
-/// Rest, the operating speed and the top of the explorer's range (rad/s): the modes at the
-/// operating speed are then in the basis, exact there rather than approximated.
+/// Rest and the top of the explorer's range, or the operating speed above it (rad/s): the
+/// basis then holds the modes across the range (on the NREL 5MW blade within 1.5e-10 between
+/// the references), so the build does not depend on the operating speed inside it.
 fn reference_speeds(p: &ValidPreset) -> Vec<f64> {
     let top = p.view.rotor_speed_max * std::f64::consts::PI / 30.0;
-    let mut speeds = vec![0.0, p.omega(), top];
-    speeds.sort_by(f64::total_cmp);
-    speeds.dedup();
-    speeds
+    vec![0.0, top.max(p.omega())]
 }
 
 /// Per family, the ratio that replaces a mode's projected damping: `structure.damping_*` when
@@ -278,11 +329,27 @@ mod tests {
     }
 
     #[test]
-    fn reference_speeds_are_rest_the_operating_speed_and_the_top_once_each() {
+    fn reference_speeds_are_rest_and_the_top_of_the_range_or_the_operating_speed() {
         let rad = |rpm: f64| rpm * std::f64::consts::PI / 30.0;
         let p = Preset::load("nrel5mw", &[]).unwrap();
-        assert_eq!(reference_speeds(&p), [0.0, rad(12.1), rad(20.0)]);
+        assert_eq!(reference_speeds(&p), [0.0, rad(20.0)]);
         let p = p.with("operating.rotor_speed", 0.0).unwrap();
         assert_eq!(reference_speeds(&p), [0.0, rad(20.0)]);
+        let p = p.with("operating.rotor_speed", 30.0).unwrap();
+        assert_eq!(reference_speeds(&p), [0.0, rad(30.0)]);
+    }
+
+    /// A second call with the same blade, pitch and mesh reuses the first build; another
+    /// rotor speed inside the range does too; another pitch builds anew.
+    #[test]
+    fn builds_are_kept_across_rotor_speeds_and_redone_for_a_new_pitch() {
+        let p = Preset::load("nrel5mw", &[]).unwrap();
+        let first = blade_structure(&p).unwrap().unwrap();
+        let faster = p.with("operating.rotor_speed", 15.0).unwrap();
+        let again = blade_structure(&faster).unwrap().unwrap();
+        assert!(Arc::ptr_eq(&first, &again));
+        let pitched = p.with("operating.pitch", 5.0).unwrap();
+        let other = blade_structure(&pitched).unwrap().unwrap();
+        assert!(!Arc::ptr_eq(&first, &other));
     }
 }

@@ -583,6 +583,14 @@ impl Structure for StructuralModel {
     fn uniform_section(&self) -> Option<&SectionProps> {
         Some(&self.section)
     }
+    /// 41 evenly spaced points: the Galerkin functions are smooth.
+    fn span_points(&self) -> Vec<f64> {
+        const POINTS: usize = 41;
+        let length = self.basis.length;
+        (0..POINTS)
+            .map(|i| length * i as f64 / (POINTS - 1) as f64)
+            .collect()
+    }
 }
 
 /// Whether K is symmetric to round-off. Only the strong form's tip term breaks symmetry, and it

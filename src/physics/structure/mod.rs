@@ -14,14 +14,36 @@ pub mod tabulated;
 pub use galerkin::{ac_frequency_hz, assemble, StructuralModel};
 
 use crate::error::Result;
+use crate::physics::blade::source::blade_structure;
 use crate::physics::section::SectionProps;
 use crate::preset::ValidPreset;
 use nalgebra::{Complex, DMatrix, DVector};
 use std::sync::Arc;
+use tabulated::TabulatedStructure;
 
-/// The structure a preset describes, at its rotor speed and pitch.
+/// The structure a preset describes, at its rotor speed and pitch: the paper's uniform blade
+/// (§3–§4), or the first K modes of the tabulated blade its files describe (§11), from a build
+/// kept across rotor-speed changes ([`blade_structure`]).
 pub fn for_preset(p: &ValidPreset) -> Result<Arc<dyn Structure>> {
-    Ok(Arc::new(assemble(p)?))
+    match blade_structure(p)? {
+        None => Ok(Arc::new(assemble(p)?)),
+        Some(built) => {
+            let modes = built.modes(p.omega())?;
+            Ok(Arc::new(TabulatedStructure::new(
+                built.modal.clone(),
+                modes,
+            )?))
+        }
+    }
+}
+
+/// A natural mode's modal damping ratio `qᵀCq / (2ω qᵀMq)` in `structure` (none at zero
+/// frequency).
+pub fn damping_ratio(structure: &dyn Structure, m: &NaturalMode) -> Option<f64> {
+    let omega = m.frequency_hz * std::f64::consts::TAU;
+    let q = &m.shape;
+    let mass = q.dot(&(structure.mass() * q));
+    (omega > 0.0 && mass > 0.0).then(|| q.dot(&(structure.damping() * q)) / (2.0 * omega * mass))
 }
 
 /// The motion families of a mode (docs/model.md §6.2, §11.4).
@@ -206,4 +228,6 @@ pub trait Structure: Send + Sync {
     fn kick_shapes(&self) -> [DVector<f64>; 2];
     /// The uniform section, when the blade is the paper's uniform beam.
     fn uniform_section(&self) -> Option<&SectionProps>;
+    /// Span positions (m from the root) at which to show its mode shapes.
+    fn span_points(&self) -> Vec<f64>;
 }

@@ -27,20 +27,13 @@ pub struct TabulatedStructure {
 }
 
 impl TabulatedStructure {
-    /// The blade's `modes` (from [`ModalBlade::modes`] at the rotor speed) with their modal
-    /// damping ratios `ratios` (one per mode).
-    pub fn new(
-        blade: Arc<ModalBlade>,
-        modes: Vec<BladeMode>,
-        ratios: &[f64],
-    ) -> Result<TabulatedStructure> {
-        if modes.is_empty() || ratios.len() != modes.len() {
-            return Err(Error::numerical(format!(
-                "tabulated blade: {} modes with {} damping ratios",
-                modes.len(),
-                ratios.len()
-            )));
+    /// The blade's `modes` (from [`ModalBlade::modes`] at the rotor speed), each damped by its
+    /// own [`BladeMode::damping_ratio`].
+    pub fn new(blade: Arc<ModalBlade>, modes: Vec<BladeMode>) -> Result<TabulatedStructure> {
+        if modes.is_empty() {
+            return Err(Error::numerical("tabulated blade: no modes retained"));
         }
+        let ratios: Vec<f64> = modes.iter().map(|m| m.damping_ratio).collect();
         let k = modes.len();
         let omega: Vec<f64> = modes.iter().map(|m| TAU * m.frequency_hz).collect();
         let stiffness =
@@ -171,5 +164,9 @@ impl Structure for TabulatedStructure {
     }
     fn uniform_section(&self) -> Option<&SectionProps> {
         None
+    }
+    /// The mesh nodes, which follow the input stations.
+    fn span_points(&self) -> Vec<f64> {
+        self.blade.matrices.mesh.nodes.clone()
     }
 }
