@@ -147,7 +147,7 @@ fn heading(p: &ValidPreset, structure: &dyn Structure) -> String {
         Some(blade) => {
             let count = structure.coordinates();
             format!(
-                "{name}: {count} blade mode{} at {rpm} rpm, pitch {} deg; {} blade from {}, {} m \
+                "{name}: {count} blade mode{} at {rpm} rpm, pitch {} deg; {} blade from {}, {:.3} m \
                  from r = {} m, {} elements",
                 if count == 1 { "" } else { "s" },
                 p.operating.pitch,

@@ -17,6 +17,18 @@ pub static BUILTIN_FILES: &[(&str, &str)] = &[
         "blades/nrel5mw/NRELOffshrBsline5MW_BeamDyn_Blade.dat",
         include_str!("../../presets/blades/nrel5mw/NRELOffshrBsline5MW_BeamDyn_Blade.dat"),
     ),
+    (
+        "blades/iea15mw/IEA_15MW_RWT_Blade_st_noFPM.st",
+        include_str!("../../presets/blades/iea15mw/IEA_15MW_RWT_Blade_st_noFPM.st"),
+    ),
+    (
+        "blades/iea15mw/IEA_15MW_RWT_BTC8deg_Blade_st.dat",
+        include_str!("../../presets/blades/iea15mw/IEA_15MW_RWT_BTC8deg_Blade_st.dat"),
+    ),
+    (
+        "blades/iea15mw/IEA-15-240-RWT_AeroDyn15_blade.dat",
+        include_str!("../../presets/blades/iea15mw/IEA-15-240-RWT_AeroDyn15_blade.dat"),
+    ),
 ];
 
 /// Where a preset's relative file names resolve.

@@ -23,7 +23,7 @@ pub use rules::MAX_SAMPLES;
 pub use schema::*;
 
 use crate::error::{Error, Result};
-use crate::physics::blade::source::{read_blade, TabulatedBlade};
+use crate::physics::blade::source::{read_blade, read_twist, TabulatedBlade};
 use serde::Deserialize;
 use std::path::Path;
 use std::sync::Arc;
@@ -38,6 +38,11 @@ pub static BUILTIN: &[(&str, &str)] = &[
     ("goland", include_str!("../../presets/goland.toml")),
     ("demo-blade", include_str!("../../presets/demo-blade.toml")),
     ("nrel5mw", include_str!("../../presets/nrel5mw.toml")),
+    ("iea15mw", include_str!("../../presets/iea15mw.toml")),
+    (
+        "iea15mw-btc",
+        include_str!("../../presets/iea15mw-btc.toml"),
+    ),
 ];
 
 /// The preset the explorer opens with no arguments.
@@ -194,14 +199,33 @@ impl Preset {
             return Ok(());
         }
         let file = self.base.resolve(&b.file);
+        let twist = match b.source {
+            BladeSource::Hawc2 => Some(read_twist(&self.base.resolve(&b.twist_file)).map_err(
+                |e| Error::Invalid {
+                    origin: self.origin.clone(),
+                    message: format!("blade.twist_file = \"{}\": {e}", b.twist_file),
+                },
+            )?),
+            _ => None,
+        };
+        let subset = match b.source {
+            BladeSource::Hawc2 => format!(
+                " (blade.st_set = {}, blade.st_subset = {})",
+                b.st_set, b.st_subset
+            ),
+            _ => String::new(),
+        };
         let blade =
-            read_blade(b.source, &file, b.st_set, b.st_subset).map_err(|e| Error::Invalid {
-                origin: self.origin.clone(),
-                message: format!("blade.file = \"{}\": {e}", b.file),
+            read_blade(b.source, &file, twist.as_ref(), b.st_set, b.st_subset).map_err(|e| {
+                Error::Invalid {
+                    origin: self.origin.clone(),
+                    message: format!("blade.file = \"{}\"{subset}: {e}", b.file),
+                }
             })?;
         self.tabulated = Some(Tabulated {
             source: b.source,
             file: b.file.clone(),
+            twist_file: b.twist_file.clone(),
             st_set: b.st_set,
             st_subset: b.st_subset,
             blade: Arc::new(blade),

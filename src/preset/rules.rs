@@ -30,7 +30,19 @@ pub fn check_blade_keys(p: &Preset) -> Result<()> {
                 _ => "HAWC2 st file (blade.st_set and blade.st_subset choose the subset)",
             }
         ),
-        _ => return Ok(()),
+        _ => match (b.source, b.twist_file.trim().is_empty()) {
+            (BladeSource::Hawc2, true) => "blade.source = \"hawc2\" needs blade.twist_file: an \
+                 AeroDyn 15 blade file whose BlTwist turns the sections (a HAWC2 st file carries \
+                 no twist; HAWC2 takes it from the htc's c2_def), relative to the preset file"
+                .to_string(),
+            (BladeSource::Uniform | BladeSource::Beamdyn, false) => format!(
+                "blade.twist_file = \"{}\" does not apply to blade.source = \"{}\" (only a \
+                 HAWC2 st file takes its twist from another file; a BeamDyn file has its own)",
+                b.twist_file,
+                b.source.name()
+            ),
+            _ => return Ok(()),
+        },
     };
     Err(Error::Invalid {
         origin: p.origin.clone(),

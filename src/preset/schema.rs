@@ -83,6 +83,10 @@ pub struct Blade {
     /// The BeamDyn primary file or the HAWC2 st file, relative to the preset's directory (empty
     /// for the uniform blade).
     pub file: String,
+    /// An AeroDyn 15 blade file whose `BlTwist` turns a HAWC2 blade's sections (the st file
+    /// carries no twist; HAWC2 takes it from the htc's c2_def), relative to the preset's
+    /// directory (hawc2 source only).
+    pub twist_file: String,
     /// Span L (m). A tabulated blade's is its file's.
     pub length: f64,
     /// Hub radius r_hub (m); r = r_hub + x.
@@ -99,6 +103,7 @@ pub struct Blade {
 pub struct Tabulated {
     pub source: BladeSource,
     pub file: String,
+    pub twist_file: String,
     pub st_set: usize,
     pub st_subset: usize,
     pub blade: Arc<TabulatedBlade>,
@@ -110,7 +115,8 @@ impl Tabulated {
         self.source == blade.source
             && self.file == blade.file
             && (self.source != BladeSource::Hawc2
-                || (self.st_set, self.st_subset) == (blade.st_set, blade.st_subset))
+                || (self.st_set, self.st_subset, &self.twist_file)
+                    == (blade.st_set, blade.st_subset, &blade.twist_file))
     }
 }
 
@@ -443,6 +449,7 @@ impl Default for Blade {
         Blade {
             source: BladeSource::Uniform,
             file: String::new(),
+            twist_file: String::new(),
             length: 8.4455,
             hub_radius: 0.0,
             st_set: 1,

@@ -542,11 +542,11 @@ fn a_user_preset_reads_its_own_blade_files_relative_to_itself() {
 fn an_elastodyn_blade_file_is_refused_for_its_missing_torsion() {
     let elastodyn = shipped("blades/nrel5mw/NRELOffshrBsline5MW_Blade.dat");
     let path = elastodyn.to_str().unwrap();
-    for source in ["beamdyn", "hawc2"] {
+    for (preset, source) in [("nrel5mw", "beamdyn"), ("iea15mw", "hawc2")] {
         let r = run(&[
             "modes",
             "--preset",
-            "nrel5mw",
+            preset,
             "--set",
             &format!("blade.source={source}"),
             "--set",
@@ -567,4 +567,65 @@ fn an_elastodyn_blade_file_is_refused_for_its_missing_torsion() {
             r.stderr
         );
     }
+}
+
+/// The IEA 15MW presets from their HAWC2 st files (docs/model.md §11.6): the baseline's lowest
+/// modes are flap, edge, flap, edge, flap with the frequencies the library test measures
+/// (0.5409 Hz flap 1, 0.7182 Hz edge 1 at rated), damped as the preset states (3 % log
+/// decrement); the bend–twist-coupled blade twists more toward feather per metre of flap in its
+/// first mode.
+#[test]
+fn iea15mw_presets_read_their_hawc2_files() {
+    let base = json(&run(&["modes", "--preset", "iea15mw", "--json"]));
+    let m = modes(&base);
+    let families: Vec<&str> = m[..5]
+        .iter()
+        .map(|m| m["family"].as_str().unwrap())
+        .collect();
+    assert_eq!(families, ["flap", "edge", "flap", "edge", "flap"]);
+    for (mode, want) in m.iter().zip([0.5409, 0.7182, 1.5804]) {
+        let f = num(mode, "frequency_hz");
+        assert!((f / want - 1.0).abs() < 2e-3, "{f} vs {want}");
+        assert!((num(mode, "damping_ratio") - 0.00477).abs() < 1e-12);
+    }
+    // The first mode scaled to 1 m of peak flap: its tip twist (rad per m), toward feather.
+    let tip_twist = |preset: &str| {
+        let v = json(&run(&["modes", "--preset", preset, "--json", "--shapes"]));
+        let twist = modes(&v)[0]["shape"]["twist"].as_array().unwrap().clone();
+        twist.last().unwrap().as_f64().unwrap()
+    };
+    let (btc, baseline) = (tip_twist("iea15mw-btc"), tip_twist("iea15mw"));
+    assert!(
+        btc > 1.3 * baseline && baseline > 0.0,
+        "{btc} vs {baseline}"
+    );
+}
+
+/// A HAWC2 blade needs the file its twist comes from, and only a HAWC2 blade takes one.
+#[test]
+fn the_twist_file_belongs_to_hawc2_blades_only() {
+    fails_naming(
+        &run(&["modes", "--preset", "iea15mw", "--set", "blade.twist_file="]),
+        &["blade.twist_file", "AeroDyn 15", "no twist"],
+    );
+    fails_naming(
+        &run(&[
+            "modes",
+            "--preset",
+            "nrel5mw",
+            "--set",
+            "blade.twist_file=blades/iea15mw/IEA-15-240-RWT_AeroDyn15_blade.dat",
+        ]),
+        &["blade.twist_file", "does not apply", "beamdyn"],
+    );
+    fails_naming(
+        &run(&[
+            "modes",
+            "--preset",
+            "iea15mw",
+            "--set",
+            "blade.twist_file=nowhere.dat",
+        ]),
+        &["blade.twist_file = \"nowhere.dat\"", "nowhere.dat"],
+    );
 }

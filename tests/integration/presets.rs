@@ -248,9 +248,8 @@ fn set_reaches_the_new_keys() {
         env!("CARGO_MANIFEST_DIR")
     );
     let e = Preset::load(
-        "nrel5mw",
+        "iea15mw",
         &[
-            "blade.source=hawc2".into(),
             st.clone(),
             "blade.st_set=3".into(),
             "blade.st_subset=2".into(),

@@ -10,10 +10,11 @@
 
 use super::beamdyn::from_beamdyn;
 use super::fem::{assemble, Mesh};
+use super::hawc2::{from_hawc2_st, ChordTwist};
 use super::modal::{stiffness_damping, BladeMode, ModalBlade, StiffnessFactors};
 use super::BladeTable;
 use crate::error::{Error, Result};
-use crate::formats::{beamdyn, elastodyn, hawc2_st};
+use crate::formats::{aerodyn, beamdyn, elastodyn, hawc2_st};
 use crate::preset::{BladeFile, BladeSource, ValidPreset};
 use std::sync::Arc;
 
@@ -54,13 +55,20 @@ impl TabulatedBlade {
 pub fn read_blade(
     source: BladeSource,
     file: &BladeFile,
+    twist: Option<&ChordTwist>,
     st_set: usize,
     st_subset: usize,
 ) -> Result<TabulatedBlade> {
-    match source {
-        BladeSource::Beamdyn => read_beamdyn(file),
-        BladeSource::Hawc2 => read_hawc2(file, st_set, st_subset),
-        BladeSource::Uniform => Err(Error::Invalid {
+    match (source, twist) {
+        (BladeSource::Beamdyn, _) => read_beamdyn(file),
+        (BladeSource::Hawc2, Some(twist)) => read_hawc2(file, twist, st_set, st_subset),
+        (BladeSource::Hawc2, None) => Err(Error::Invalid {
+            origin: file.display(),
+            message: "a HAWC2 st file carries no twist: blade.twist_file must name the blade's \
+                      AeroDyn 15 blade file"
+                .into(),
+        }),
+        (BladeSource::Uniform, _) => Err(Error::Invalid {
             origin: file.display(),
             message: "blade.source = \"uniform\" describes its blade by blade.length and \
                       section.*, not by a file"
@@ -100,25 +108,34 @@ fn read_beamdyn(file: &BladeFile) -> Result<TabulatedBlade> {
     })
 }
 
-/// Subset `st_subset` of set `st_set` of a HAWC2 st file.
-fn read_hawc2(file: &BladeFile, st_set: usize, st_subset: usize) -> Result<TabulatedBlade> {
+/// Subset `st_subset` of set `st_set` of a HAWC2 st file, its sections turned by `twist`
+/// (docs/model.md §11.6). The st file states no damping: a HAWC2 blade is damped as the preset
+/// sets `structure.damping_*`.
+fn read_hawc2(
+    file: &BladeFile,
+    twist: &ChordTwist,
+    st_set: usize,
+    st_subset: usize,
+) -> Result<TabulatedBlade> {
     let name = file.display();
     let text = file.read()?;
     let st = hawc2_st::parse_st(&text, &name)
         .map_err(|e| misread(&text, &name, BladeSource::Hawc2).unwrap_or(e))?;
-    let subset = st.subset(st_set, st_subset)?;
-    // The mapping of st sections to §11's section frame (elastic and shear centres, principal
-    // axes) is physics/blade/hawc2.rs, issue 16's HAWC2 step; until it is merged the subset is
-    // read and checked, and the blade is refused by name rather than approximated.
-    Err(Error::Invalid {
-        origin: name,
-        message: format!(
-            "set #{st_set} subset ${st_subset} read ({} stations), but this build cannot map \
-             HAWC2 st sections to the blade model yet; use the blade's BeamDyn files \
-             (blade.source = \"beamdyn\")",
-            subset.rows.len()
-        ),
+    let table = from_hawc2_st(&st, st_set, st_subset, twist, 0.0)?;
+    Ok(TabulatedBlade {
+        source: BladeSource::Hawc2,
+        table,
+        damping: SourceDamping::None,
+        files: vec![name],
     })
+}
+
+/// The chord twist a HAWC2 blade takes from an AeroDyn 15 blade file's `BlTwist`.
+pub fn read_twist(file: &BladeFile) -> Result<ChordTwist> {
+    let name = file.display();
+    let text = file.read()?;
+    let blade = aerodyn::parse_blade(&text, &name)?;
+    Ok(ChordTwist::from_aerodyn(&blade))
 }
 
 /// When a file does not parse as what `expected` needs, whether it is another kind of blade
