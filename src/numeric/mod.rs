@@ -3,17 +3,20 @@
 //! and reused on plain matrices: the dense non-symmetric eigendecomposition behind the stability
 //! analysis ([`decompose`]) and its parts, isolation by permutation, balancing (also used by the
 //! simulator), faer's general eigendecomposition (also used for the strong-form natural modes),
-//! and the optimal assignment that mode labelling and tracking share ([`hungarian`]). Nothing
-//! here depends on the rest of the crate but its error type.
+//! banded symmetric matrices and the lowest eigenpairs of a banded pencil by shift-invert block
+//! Lanczos (the tabulated blade's modes), and the optimal assignment that mode labelling and
+//! tracking share ([`hungarian`]). Nothing here depends on the rest of the crate but its error type.
 
 mod assignment;
 pub(crate) mod balance;
+pub mod banded;
 pub mod cholesky;
 pub(crate) mod eigen;
 pub(crate) mod faer_evd;
 mod hessenberg;
 mod inverse_iteration;
 mod isolate;
+pub mod lanczos;
 
 pub use assignment::hungarian;
 pub use eigen::{decompose, eigen_decomposition, shares, Roots, Solver};

@@ -284,7 +284,8 @@ fn a_family_damping_key_overrides_the_files_for_that_family() {
     for m in modes(&v) {
         let zeta = num(m, "damping_ratio");
         match m["family"].as_str().unwrap() {
-            "edge" => assert_eq!(zeta, 0.01),
+            // Through the modal damping matrix `2ζω` and back: exact up to the last bit.
+            "edge" => assert!((zeta - 0.01).abs() <= 1e-15, "{zeta}"),
             "torsion" => assert_eq!(zeta, 0.0),
             _ => flap_zetas.push(zeta),
         }

@@ -5,10 +5,12 @@
 //! modal damping ratio (docs/model.md §11.4) and its shape on the element dofs, which
 //! [`BladeMatrices::reference_axis_at`] evaluates at any span position.
 
-use super::fem::{assemble, BladeMatrices, Mesh, NODE_DOFS, PHI, U, V};
+use super::fem::{assemble, BladeMatrices, Mesh, NODE_DOFS, U, V};
 use super::{BladeTable, Section};
 use crate::error::{Error, Result};
-use crate::numeric::cholesky::{cholesky_reduce, symmetrised};
+use crate::numeric::banded::{half_bandwidth, SymmetricBand};
+use crate::numeric::cholesky::symmetrised;
+use crate::numeric::lanczos::lowest_modes;
 use nalgebra::{DMatrix, DVector, SymmetricEigen};
 
 /// Iteration cap of the symmetric eigensolver (nalgebra's implicit QR): far beyond what these
@@ -96,6 +98,8 @@ pub fn stiffness_damping(
 #[derive(Debug, Clone)]
 pub struct ModalBlade {
     pub matrices: BladeMatrices,
+    /// `matrices.mass` in band form: the shares of each mode's kinetic energy in O(n·band).
+    mass: SymmetricBand,
     /// Basis (dofs × b), M-orthonormal.
     basis: DMatrix<f64>,
     reduced_k0: DMatrix<f64>,
@@ -107,7 +111,9 @@ pub struct ModalBlade {
 impl ModalBlade {
     /// Reduce onto the lowest `per_speed` modes at each of `reference_speeds` (rad/s), made
     /// M-orthonormal together: modes at rotor speeds between and near the references are then
-    /// reproduced closely (docs/model.md §11.4 shows the convergence).
+    /// reproduced closely (docs/model.md §11.4 shows the convergence). The modes at each speed
+    /// come from the banded pencil by shift-invert block Lanczos ([`lowest_modes`], residual
+    /// checked), each speed started from the previous one's modes; an error names the blade.
     pub fn new(
         matrices: BladeMatrices,
         reference_speeds: &[f64],
@@ -115,20 +121,39 @@ impl ModalBlade {
     ) -> Result<ModalBlade> {
         let n = matrices.mass.nrows();
         let per_speed = per_speed.min(n);
+        let band = [&matrices.mass, &matrices.k0, &matrices.k_omega]
+            .map(half_bandwidth)
+            .into_iter()
+            .max()
+            .unwrap_or(0);
+        let mass = SymmetricBand::from_dense(&matrices.mass, band);
+        let k0 = SymmetricBand::from_dense(&matrices.k0, band);
+        let k_omega = SymmetricBand::from_dense(&matrices.k_omega, band);
         let mut columns: Vec<DVector<f64>> = Vec::new();
+        let mut previous = DMatrix::zeros(n, 0);
         for &omega in reference_speeds {
-            let k = &matrices.k0 + &matrices.k_omega * (omega * omega);
-            let (_, vectors) = full_modes(&matrices.mass, &k)?;
-            columns.extend((0..per_speed).map(|j| vectors.column(j).into_owned()));
+            let k = k0.plus(omega * omega, &k_omega);
+            let modes = lowest_modes(&k, &mass, per_speed, &previous).map_err(|e| {
+                e.at(format!(
+                    "{}: blade modes at Ω = {omega} rad/s",
+                    matrices.table.origin
+                ))
+            })?;
+            columns.extend(modes.vectors.column_iter().map(|c| c.into_owned()));
+            previous = modes.vectors;
         }
-        let basis = m_orthonormal(&matrices.mass, columns);
+        let basis = m_orthonormal(&mass, columns);
         if basis.ncols() == 0 {
-            return Err(Error::numerical("blade modal basis is empty"));
+            return Err(Error::numerical(format!(
+                "{}: blade modal basis is empty",
+                matrices.table.origin
+            )));
         }
-        let reduced_k0 = symmetrised(basis.transpose() * &matrices.k0 * &basis);
-        let reduced_k_omega = symmetrised(basis.transpose() * &matrices.k_omega * &basis);
+        let reduced_k0 = symmetrised(basis.tr_mul(&k0.mul(&basis)));
+        let reduced_k_omega = symmetrised(basis.tr_mul(&k_omega.mul(&basis)));
         Ok(ModalBlade {
             matrices,
+            mass,
             basis,
             reduced_k0,
             reduced_k_omega,
@@ -139,7 +164,8 @@ impl ModalBlade {
     /// This basis with the structural damping matrix `damping` (free dofs, e.g. from
     /// [`stiffness_damping`]): each mode's [`BladeMode::damping_ratio`] is then its projection.
     pub fn with_damping(mut self, damping: &DMatrix<f64>) -> ModalBlade {
-        self.reduced_damping = Some(symmetrised(self.basis.transpose() * damping * &self.basis));
+        let c = SymmetricBand::from_dense(damping, half_bandwidth(damping));
+        self.reduced_damping = Some(symmetrised(self.basis.tr_mul(&c.mul(&self.basis))));
         self
     }
 
@@ -186,16 +212,24 @@ impl ModalBlade {
     }
 
     fn shares(&self, q: &DVector<f64>) -> [f64; 3] {
-        let m = &self.matrices.mass;
-        let part = |offsets: &[usize]| -> f64 {
-            let idx: Vec<usize> = (0..q.len())
-                .filter(|i| offsets.contains(&(i % NODE_DOFS)))
-                .collect();
-            idx.iter()
-                .map(|&i| idx.iter().map(|&j| q[i] * m[(i, j)] * q[j]).sum::<f64>())
-                .sum()
+        let m = &self.mass;
+        let group = |i: usize| match i % NODE_DOFS {
+            d if d == U || d == U + 1 => 0,
+            d if d == V || d == V + 1 => 1,
+            _ => 2, // PHI, the only other offset
         };
-        let e = [part(&[U, U + 1]), part(&[V, V + 1]), part(&[PHI])];
+        // qᵀ M q over the diagonal blocks of each group: only entries within the band are
+        // non-zero, so the double sum runs over them.
+        let mut e = [0.0; 3];
+        for i in 0..q.len() {
+            let g = group(i);
+            let lo = i.saturating_sub(m.band());
+            let hi = (i + m.band() + 1).min(q.len());
+            e[g] += (lo..hi)
+                .filter(|&j| group(j) == g)
+                .map(|j| q[i] * m.get(i, j) * q[j])
+                .sum::<f64>();
+        }
         let total: f64 = e.iter().sum();
         if total > 0.0 {
             e.map(|x| x / total)
@@ -205,38 +239,29 @@ impl ModalBlade {
     }
 }
 
-/// Every eigenpair of `K x = ω² M x` by Cholesky reduction, ascending: `(ω², vectors)`.
-fn full_modes(mass: &DMatrix<f64>, k: &DMatrix<f64>) -> Result<(Vec<f64>, DMatrix<f64>)> {
-    let (a, l) = cholesky_reduce(mass, k)?;
-    let eig = SymmetricEigen::try_new(a, f64::EPSILON, MAX_SWEEPS)
-        .ok_or_else(|| Error::numerical("blade modes: symmetric eigensolver did not converge"))?;
-    let x = l
-        .tr_solve_lower_triangular(&eig.eigenvectors)
-        .ok_or_else(|| Error::numerical("singular blade mass factor"))?;
-    let mut order: Vec<usize> = (0..eig.eigenvalues.len()).collect();
-    order.sort_by(|&a, &b| eig.eigenvalues[a].total_cmp(&eig.eigenvalues[b]));
-    let vectors = DMatrix::from_fn(x.nrows(), order.len(), |i, c| x[(i, order[c])]);
-    Ok((order.iter().map(|&j| eig.eigenvalues[j]).collect(), vectors))
-}
-
 /// Modified Gram–Schmidt in the M inner product, twice for round-off; dependent vectors dropped.
-fn m_orthonormal(mass: &DMatrix<f64>, columns: Vec<DVector<f64>>) -> DMatrix<f64> {
-    let mut kept: Vec<DVector<f64>> = Vec::new();
+/// Each kept vector's `M k` is stored, so a projection is a dot product, not a product with M.
+fn m_orthonormal(mass: &SymmetricBand, columns: Vec<DVector<f64>>) -> DMatrix<f64> {
+    let n = mass.size();
+    let mut kept: Vec<(DVector<f64>, DVector<f64>)> = Vec::new();
+    let mut mc = DVector::zeros(n);
     for mut c in columns {
-        let start = (c.dot(&(mass * &c))).sqrt();
+        mass.mul_into(c.as_slice(), mc.as_mut_slice());
+        let start = c.dot(&mc).sqrt();
         for _ in 0..2 {
-            for k in &kept {
-                let proj = k.dot(&(mass * &c));
-                c -= k * proj;
+            for (k, mk) in &kept {
+                let proj = mk.dot(&c);
+                c.axpy(-proj, k, 1.0);
             }
         }
-        let norm = (c.dot(&(mass * &c))).sqrt();
+        mass.mul_into(c.as_slice(), mc.as_mut_slice());
+        let norm = c.dot(&mc).sqrt();
         if norm > DEPENDENT * start && norm.is_finite() {
-            kept.push(c / norm);
+            kept.push((c / norm, &mc / norm));
         }
     }
     if kept.is_empty() {
-        return DMatrix::zeros(mass.nrows(), 0);
+        return DMatrix::zeros(n, 0);
     }
-    DMatrix::from_columns(&kept)
+    DMatrix::from_columns(&kept.into_iter().map(|(k, _)| k).collect::<Vec<_>>())
 }
