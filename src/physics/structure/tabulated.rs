@@ -6,7 +6,6 @@
 
 use super::{Family, MotionRows, NaturalMode, Shares, Structure};
 use crate::error::{Error, Result};
-use crate::physics::blade::fem::{NODE_DOFS, PHI, U, V};
 use crate::physics::blade::modal::{BladeMode, ModalBlade};
 use crate::physics::section::SectionProps;
 use nalgebra::{Complex, DMatrix, DVector};
@@ -45,21 +44,7 @@ impl TabulatedStructure {
                 0.0
             }
         });
-        let shapes =
-            DMatrix::from_columns(&modes.iter().map(|m| m.shape.clone()).collect::<Vec<_>>());
-        let block = |offsets: &[usize]| {
-            let mass = &blade.matrices.mass;
-            let masked = DMatrix::from_fn(mass.nrows(), mass.ncols(), |i, j| {
-                let inside = |d: usize| offsets.contains(&(d % NODE_DOFS));
-                if inside(i) && inside(j) {
-                    mass[(i, j)]
-                } else {
-                    0.0
-                }
-            });
-            shapes.transpose() * masked * &shapes
-        };
-        let family_energy = [block(&[U, U + 1]), block(&[V, V + 1]), block(&[PHI])];
+        let family_energy = blade.family_energy(&modes);
         let natural = NaturalMode::named(
             modes
                 .iter()
