@@ -346,13 +346,7 @@ impl Case {
             "simulation.duration=0.05".into(),
             "simulation.sample_rate=200.0".into(),
         ];
-        // A tabulated blade's elements follow its input stations only (no refinement): the
-        // corpus is about extreme operating values, and every new pitch builds the elements
-        // anew, whose size is tested for convergence elsewhere (blade, presets).
-        let coarse = Preset::load(self.preset, &[])?
-            .tabulated_blade()
-            .map(|_| "structure.min_elements=1".to_string());
-        Preset::load(self.preset, &[&set[..], coarse.as_slice()].concat())
+        Preset::load(self.preset, &set)
     }
 }
 
