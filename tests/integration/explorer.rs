@@ -1058,3 +1058,40 @@ fn a_slow_solve_shows_its_running_time() {
     let text = render_text(&s, 160, 48);
     assert!(!text.contains("solving…"), "{text}");
 }
+
+/// The parameters pane dims what changes nothing for the preset: on a tabulated blade without
+/// aerodynamics the ply angle, the loss factor and the wind and tunnel speeds; on the paper's
+/// blade (table section, quasi-steady aerodynamics) none of them.
+#[test]
+fn parameters_that_change_nothing_are_dimmed() {
+    use ratatui::backend::TestBackend;
+    use ratatui::style::Modifier;
+    use ratatui::Terminal;
+    let dimmed_rows = |name: &str| -> Vec<String> {
+        let p = Preset::load(name, &[]).unwrap();
+        let s = settled_state(name, p, &Physics, ViewKind::Main, MarkerKind::Braille);
+        let mut terminal = Terminal::new(TestBackend::new(120, 40)).unwrap();
+        let frame = terminal
+            .draw(|f| flutterscope::explorer::ui::render(&s, f))
+            .unwrap();
+        let buf = frame.buffer;
+        PARAMS
+            .iter()
+            .filter_map(|param| {
+                (0..buf.area.height).find_map(|y| {
+                    let row: String = (0..36).map(|x| buf[(x, y)].symbol()).collect();
+                    let x = row.find(param.label)?;
+                    let cell = &buf[(row[..x].chars().count() as u16, y)];
+                    cell.modifier
+                        .contains(Modifier::DIM)
+                        .then(|| param.label.to_string())
+                })
+            })
+            .collect()
+    };
+    assert_eq!(
+        dimmed_rows("nrel5mw"),
+        ["ply angle", "wind speed", "tunnel speed", "loss factor"]
+    );
+    assert!(dimmed_rows("liu2017").is_empty());
+}

@@ -1,9 +1,10 @@
-//! The parameters pane: the varied parameters with units (the selected one highlighted) and the
-//! live section stiffnesses C22, C23, C33.
+//! The parameters pane: the varied parameters with units (the selected one highlighted, the ones
+//! that change nothing for this preset dimmed) and the live section stiffnesses C22, C23, C33, or
+//! for a tabulated blade which blade it is.
 
 use super::{pane, sig, Theme};
 use crate::explorer::state::{AppState, ParamKind, PARAMS};
-use crate::preset::SectionSource;
+use crate::preset::{AeroModel, SectionSource, ValidPreset};
 use ratatui::layout::Rect;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::Paragraph;
@@ -11,6 +12,23 @@ use ratatui::Frame;
 
 /// Rows: the parameters, a blank, the section header and three stiffnesses, plus borders.
 pub const HEIGHT: u16 = PARAMS.len() as u16 + 5 + 2;
+
+/// Whether a parameter changes nothing for this preset, so the pane dims it: the ply angle with
+/// direct stiffnesses or on a tabulated blade (its sections come from its files), the loss factor
+/// on a tabulated blade (damped per mode family instead), wind and tunnel speed without
+/// aerodynamics.
+fn matters_not(p: &ValidPreset, kind: &ParamKind) -> bool {
+    let tabulated = p.tabulated_blade().is_some();
+    match kind {
+        ParamKind::Number { key, .. } => match *key {
+            "section.ply_angle" => tabulated || p.section.source == SectionSource::Direct,
+            "structure.loss_factor" => tabulated,
+            "operating.wind_speed" | "operating.tunnel_speed" => p.aero.model == AeroModel::None,
+            _ => false,
+        },
+        ParamKind::Aero => false,
+    }
+}
 
 pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
     let name = &state.presets[state.preset_index].name;
@@ -41,15 +59,7 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
             p.label,
             if changed { "*" } else { " " }
         );
-        // With direct stiffnesses the ply angle changes nothing: dim it.
-        let unused = state.preset.section.source == SectionSource::Direct
-            && matches!(
-                p.kind,
-                ParamKind::Number {
-                    key: "section.ply_angle",
-                    ..
-                }
-            );
+        let unused = matters_not(&state.preset, &p.kind);
         let style = match (focused, unused) {
             (true, _) => theme.focus(),
             (false, true) => theme.dim(),
@@ -58,6 +68,25 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
         lines.push(Line::styled(text, style));
     }
     lines.push(Line::from(""));
+    if let Some(blade) = state.preset.tabulated_blade() {
+        // A tabulated blade has no uniform section: show which blade it is instead.
+        lines.push(Line::styled(
+            format!("blade ({})", blade.source.title()),
+            theme.dim(),
+        ));
+        let row = |name: &str, value: String| {
+            Line::from(vec![
+                Span::raw(format!("  {name:<9}")),
+                Span::raw(format!("{value:>10}")),
+            ])
+        };
+        let b = &state.preset.blade;
+        lines.push(row("span", format!("{:.2} m", b.length)));
+        lines.push(row("hub", format!("{:.2} m", b.hub_radius)));
+        lines.push(row("stations", blade.table.sections.len().to_string()));
+        frame.render_widget(Paragraph::new(lines).block(block), area);
+        return;
+    }
     let source = match state.preset.section.source {
         SectionSource::Direct => "direct",
         SectionSource::Table => "table",
