@@ -11,7 +11,9 @@
 //! reads in rad per m of peak flap displacement, a torsion mode's `u` and `v` in m per rad.
 
 use crate::error::Result;
-use crate::physics::structure::{damping_ratio, for_preset, Family, MotionRows, Shares, Structure};
+use crate::physics::structure::{
+    damping_ratio, for_preset, Family, MotionRows, NaturalMode, Structure,
+};
 use crate::plot::{Figure, Panel, Series, PALETTE};
 use crate::preset::{Form, ValidPreset};
 use nalgebra::DVector;
@@ -21,15 +23,10 @@ use std::path::Path;
 /// What `modes` reports about one mode.
 #[derive(Debug, Serialize)]
 struct ModeRow {
-    /// `flap 1`, `edge 2`, `torsion 1`.
-    label: String,
-    family: Family,
-    /// Number within the family, in frequency order.
-    number: usize,
-    frequency_hz: f64,
-    shares: Shares,
-    /// The twist share again, under the name scripts used before issue 16.
-    torsion_share: f64,
+    /// Label, family, number in the family, frequency, shares and the twist share again under
+    /// `torsion_share` (the name scripts used before issue 16).
+    #[serde(flatten)]
+    mode: NaturalMode,
     /// Modal damping ratio ζ; `null` for a mode at zero frequency, which has none.
     damping_ratio: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -116,12 +113,7 @@ fn mode_rows(p: &ValidPreset, structure: &dyn Structure) -> Result<Vec<ModeRow>>
             );
             ModeRow {
                 damping_ratio: damping_ratio(structure, &m),
-                label: m.label,
-                family: m.family,
-                number: m.number,
-                frequency_hz: m.frequency_hz,
-                shares: m.shares,
-                torsion_share: m.torsion_share,
+                mode: m,
                 shape: Some(shape),
             }
         })
@@ -215,11 +207,11 @@ fn render(heading: &str, r: &Report) -> String {
         out.push_str(&format!(
             "{:>4}  {:<12} {:>14}  {:>6.3}  {:>6.3}  {:>6.3}  {zeta:>9}\n",
             k + 1,
-            m.label,
-            format_hz(m.frequency_hz),
-            m.shares.flap,
-            m.shares.edge,
-            m.shares.twist,
+            m.mode.label,
+            format_hz(m.mode.frequency_hz),
+            m.mode.shares.flap,
+            m.mode.shares.edge,
+            m.mode.shares.twist,
         ));
     }
     for m in &r.modes {
@@ -238,8 +230,8 @@ fn render_shape(m: &ModeRow, s: &Shape) -> String {
     };
     let mut out = format!(
         "\n{} at {} Hz ({units})\n{:>9}  {:>9}  {:>12}  {:>12}  {:>12}\n",
-        m.label,
-        format_hz(m.frequency_hz),
+        m.mode.label,
+        format_hz(m.mode.frequency_hz),
         "z (m)",
         "r (m)",
         "flap u",
@@ -267,7 +259,7 @@ fn shapes_figure(p: &ValidPreset, r: &Report) -> Figure {
     for (i, m) in r.modes.iter().enumerate() {
         let Some(s) = &m.shape else { continue };
         let color = PALETTE[i % PALETTE.len()];
-        let name = format!("{} ({} Hz)", m.label, format_hz(m.frequency_hz));
+        let name = format!("{} ({} Hz)", m.mode.label, format_hz(m.mode.frequency_hz));
         for (panel, values) in panels.iter_mut().zip([&s.flap, &s.edge, &s.twist]) {
             panel.series.push(
                 Series::from_xy(&name, &s.r, values, crate::plot::Mark::Line).with_color(color),

@@ -75,21 +75,8 @@ pub fn from_beamdyn(
             } else {
                 [0.0, 0.0]
             };
-            Ok(Section {
-                z,
-                mass,
-                cg,
-                inertia: frame.second_moments([[m[4][4], -m[3][4]], [-m[3][4], m[3][3]]]),
-                ei_flap: section.ei_flap,
-                ei_edge: section.ei_edge,
-                ei_cross: section.ei_cross,
-                gj: section.gj,
-                flap_twist: section.flap_twist,
-                edge_twist: section.edge_twist,
-                twist: twist_at(z),
-                shear_centre: section.shear_centre,
-                tension_centre: section.tension_centre,
-            })
+            let inertia = frame.second_moments([[m[4][4], -m[3][4]], [-m[3][4], m[3][3]]]);
+            Ok(section.at_station(z, twist_at(z), mass, cg, inertia))
         })
         .collect::<Result<Vec<Section>>>()?;
     BladeTable::new(origin, hub_radius, sections)

@@ -15,6 +15,7 @@
 //! read from the flexibility `S = K⁻¹`. With no shear or extension coupling (`K_ab = 0`) `C` is
 //! exactly `K_bb` and both centres are the origin.
 
+use super::Section;
 use nalgebra::{Matrix2, Matrix3};
 
 /// How a file's section axes lie in ours: `ours = A · file` for positions, `A` orthogonal.
@@ -40,6 +41,35 @@ pub struct ClassicalSection {
     pub edge_twist: f64,
     pub shear_centre: [f64; 2],
     pub tension_centre: [f64; 2],
+}
+
+impl ClassicalSection {
+    /// The table station at span `z` with this stiffness part, the structural `twist` and the
+    /// mass part (`mass`, centre of mass `cg`, second moments `inertia`, in our frame).
+    pub fn at_station(
+        self,
+        z: f64,
+        twist: f64,
+        mass: f64,
+        cg: [f64; 2],
+        inertia: [f64; 3],
+    ) -> Section {
+        Section {
+            z,
+            mass,
+            cg,
+            inertia,
+            ei_flap: self.ei_flap,
+            ei_edge: self.ei_edge,
+            ei_cross: self.ei_cross,
+            gj: self.gj,
+            flap_twist: self.flap_twist,
+            edge_twist: self.edge_twist,
+            twist,
+            shear_centre: self.shear_centre,
+            tension_centre: self.tension_centre,
+        }
+    }
 }
 
 impl FileFrame {

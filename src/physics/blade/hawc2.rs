@@ -175,32 +175,6 @@ fn mass_section(c: &MassColumns, place: &Place) -> Result<([f64; 2], [f64; 3])> 
     Ok((cg, inertia))
 }
 
-/// One table station from its mass and stiffness parts.
-fn station(
-    z: f64,
-    twist: f64,
-    mass: f64,
-    cg: [f64; 2],
-    inertia: [f64; 3],
-    c: ClassicalSection,
-) -> Section {
-    Section {
-        z,
-        mass,
-        cg,
-        inertia,
-        ei_flap: c.ei_flap,
-        ei_edge: c.ei_edge,
-        ei_cross: c.ei_cross,
-        gj: c.gj,
-        flap_twist: c.flap_twist,
-        edge_twist: c.edge_twist,
-        twist,
-        shear_centre: c.shear_centre,
-        tension_centre: c.tension_centre,
-    }
-}
-
 /// docs/model.md §11.6: a classic (isotropic) row: `E I_x`, `E I_y` along the principal axes at
 /// the elastic centre, `G I_p` about the shear centre, no bend–twist coupling.
 fn classic_section(r: &ClassicRow, twist: &ChordTwist, place: &Place) -> Result<Section> {
@@ -243,7 +217,7 @@ fn classic_section(r: &ClassicRow, twist: &ChordTwist, place: &Place) -> Result<
         shear_centre: frame.position([r.x_sh, r.y_sh]),
         tension_centre: frame.position([r.x_e, r.y_e]),
     };
-    Ok(station(r.r, twist.at(r.r), r.m, cg, inertia, section))
+    Ok(section.at_station(r.r, twist.at(r.r), r.m, cg, inertia))
 }
 
 /// docs/model.md §11.6: a fully populated row: the 6×6 at the elastic centre along the
@@ -268,5 +242,5 @@ fn fpm_section(r: &FpmRow, twist: &ChordTwist, place: &Place) -> Result<Section>
     let shift = |p: [f64; 2]| [p[0] + e[0], p[1] + e[1]];
     section.shear_centre = shift(section.shear_centre);
     section.tension_centre = shift(section.tension_centre);
-    Ok(station(r.r, twist.at(r.r), r.m, cg, inertia, section))
+    Ok(section.at_station(r.r, twist.at(r.r), r.m, cg, inertia))
 }

@@ -56,63 +56,40 @@ pub struct Section {
 impl Section {
     /// Linear interpolation between two stations (at fraction `t` from `a` to `b`).
     fn lerp(a: &Section, b: &Section, t: f64) -> Section {
-        let l = |x: f64, y: f64| x + (y - x) * t;
-        Section {
-            z: l(a.z, b.z),
-            mass: l(a.mass, b.mass),
-            cg: [l(a.cg[0], b.cg[0]), l(a.cg[1], b.cg[1])],
-            inertia: [
-                l(a.inertia[0], b.inertia[0]),
-                l(a.inertia[1], b.inertia[1]),
-                l(a.inertia[2], b.inertia[2]),
-            ],
-            ei_flap: l(a.ei_flap, b.ei_flap),
-            ei_edge: l(a.ei_edge, b.ei_edge),
-            ei_cross: l(a.ei_cross, b.ei_cross),
-            gj: l(a.gj, b.gj),
-            flap_twist: l(a.flap_twist, b.flap_twist),
-            edge_twist: l(a.edge_twist, b.edge_twist),
-            twist: l(a.twist, b.twist),
-            shear_centre: [
-                l(a.shear_centre[0], b.shear_centre[0]),
-                l(a.shear_centre[1], b.shear_centre[1]),
-            ],
-            tension_centre: [
-                l(a.tension_centre[0], b.tension_centre[0]),
-                l(a.tension_centre[1], b.tension_centre[1]),
-            ],
-        }
+        Section::zip_with(a, b, |x, y| x + (y - x) * t)
     }
 
     /// The per-metre rate of every property from `a` to `b` (the slope of the linear
     /// interpolation; `z` is then 1).
     fn rate(a: &Section, b: &Section) -> Section {
         let h = b.z - a.z;
-        let d = |x: f64, y: f64| (y - x) / h;
         Section {
             z: 1.0,
-            mass: d(a.mass, b.mass),
-            cg: [d(a.cg[0], b.cg[0]), d(a.cg[1], b.cg[1])],
+            ..Section::zip_with(a, b, |x, y| (y - x) / h)
+        }
+    }
+
+    /// Every property of `a` and `b` combined by `f`, field by field.
+    fn zip_with(a: &Section, b: &Section, f: impl Fn(f64, f64) -> f64) -> Section {
+        let pair = |x: [f64; 2], y: [f64; 2]| [f(x[0], y[0]), f(x[1], y[1])];
+        Section {
+            z: f(a.z, b.z),
+            mass: f(a.mass, b.mass),
+            cg: pair(a.cg, b.cg),
             inertia: [
-                d(a.inertia[0], b.inertia[0]),
-                d(a.inertia[1], b.inertia[1]),
-                d(a.inertia[2], b.inertia[2]),
+                f(a.inertia[0], b.inertia[0]),
+                f(a.inertia[1], b.inertia[1]),
+                f(a.inertia[2], b.inertia[2]),
             ],
-            ei_flap: d(a.ei_flap, b.ei_flap),
-            ei_edge: d(a.ei_edge, b.ei_edge),
-            ei_cross: d(a.ei_cross, b.ei_cross),
-            gj: d(a.gj, b.gj),
-            flap_twist: d(a.flap_twist, b.flap_twist),
-            edge_twist: d(a.edge_twist, b.edge_twist),
-            twist: d(a.twist, b.twist),
-            shear_centre: [
-                d(a.shear_centre[0], b.shear_centre[0]),
-                d(a.shear_centre[1], b.shear_centre[1]),
-            ],
-            tension_centre: [
-                d(a.tension_centre[0], b.tension_centre[0]),
-                d(a.tension_centre[1], b.tension_centre[1]),
-            ],
+            ei_flap: f(a.ei_flap, b.ei_flap),
+            ei_edge: f(a.ei_edge, b.ei_edge),
+            ei_cross: f(a.ei_cross, b.ei_cross),
+            gj: f(a.gj, b.gj),
+            flap_twist: f(a.flap_twist, b.flap_twist),
+            edge_twist: f(a.edge_twist, b.edge_twist),
+            twist: f(a.twist, b.twist),
+            shear_centre: pair(a.shear_centre, b.shear_centre),
+            tension_centre: pair(a.tension_centre, b.tension_centre),
         }
     }
 

@@ -128,12 +128,12 @@ impl Shares {
 /// One undamped natural mode of the structure at its rotor speed (in vacuo).
 #[derive(Debug, Clone, serde::Serialize)]
 pub struct NaturalMode {
-    pub frequency_hz: f64,
     /// `flap k`, `edge k` or `torsion k`: [`NaturalMode::family`] and [`NaturalMode::number`].
     pub label: String,
     pub family: Family,
     /// Its number within the family, counting from 1 in frequency order.
     pub number: usize,
+    pub frequency_hz: f64,
     /// Kinetic-energy shares of flap, edge and twist motion.
     pub shares: Shares,
     /// The twist share alone (`shares.twist`), kept for scripts that read it.
