@@ -17,6 +17,7 @@
 //! §5.3), `nonlinear_support`; then add it to [`model_for`].
 
 pub mod onera;
+pub mod polar;
 pub mod quasi_steady;
 pub mod theodorsen;
 
