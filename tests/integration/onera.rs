@@ -502,6 +502,7 @@ use flutterscope::physics::inflow::Station;
 fn paper_station(alpha_r: f64) -> Station {
     let s = paper_strip(alpha_r);
     Station {
+        index: 0,
         x: 6.0,
         weight: 0.7,
         radius: 6.0,

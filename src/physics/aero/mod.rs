@@ -19,6 +19,7 @@
 //! solve needs no special case) and, if it is not affine and must be simulated as such (ONERA,
 //! §5.3), `nonlinear_support`; then add it to [`model_for`].
 
+pub mod blade_element;
 pub mod onera;
 pub mod polar;
 pub mod quasi_steady;
@@ -335,6 +336,7 @@ pub(crate) mod test_support {
 
     pub fn station() -> Station {
         Station {
+            index: 0,
             x: 3.0,
             weight: 0.5,
             radius: 3.5,
