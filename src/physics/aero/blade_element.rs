@@ -17,7 +17,14 @@
 //!   `m_φ = −(M_ac + d_ac (L cos α_g + D sin α_g))`;
 //! - Theodorsen adds the non-circulatory loads of §5.2 on the plunge normal to the inflow,
 //!   `h = −(u cos ψ0 + v sin ψ0)`, with `α_T = −φ`: the velocity terms in the loads, the
-//!   acceleration terms in [`StripModel::apparent_mass`].
+//!   acceleration terms in [`StripModel::apparent_mass`];
+//! - ONERA (the coupled form of §5.3 on the station's own polar) splits the polar into its
+//!   attached line and the static deviation from it, `ΔC_L = a0(α − α0) − C_l(α)`,
+//!   `ΔC_M = C_m(α0) − C_m(α)`, `ΔC_D = C_d(α0) − C_d(α)`: the attached lift runs through the
+//!   Jones lags as Theodorsen's, and each deviation through its second-order stall state
+//!   `C̈2X + a_X ω_r Ċ2X + r_X ω_r² C2X = −r_X ω_r² ΔC_X(α_¾)` (`ω_r = V0/b`); lift
+//!   `L = ½ρW²c (a0(α_e − α0) + C2L)`, moment `½ρW²c² (C_m(α0) + C2M)`, drag
+//!   `½ρW²c (C_d(α0) + C2D)`. Its steady state is the polar exactly.
 //!
 //! Exact partial derivatives come from forward-mode dual numbers (`num-dual`) through the same
 //! code that evaluates the loads, so the state matrix is the Jacobian of the nonlinear right-hand
@@ -57,11 +64,25 @@ impl ElementSection {
 }
 
 /// The unsteady model on top of the polar.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Unsteadiness {
     QuasiSteady,
     Theodorsen,
+    Onera(StallDynamics),
 }
+
+/// ONERA's stall-state coefficients (`aero.onera.a_l`, `r_l`, `a_m`, `r_m`, `a_d`, `r_d`), in the
+/// order lift, moment, drag.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StallDynamics {
+    pub a: [f64; 3],
+    pub r: [f64; 3],
+}
+
+/// Index of the first stall state (`C2L`), after the two Jones lags; each deviation has a
+/// value and a rate state.
+const STALL: usize = 2;
+const ONERA_STATES: usize = STALL + 6;
 
 #[derive(Debug, Clone)]
 pub struct BladeElement {
@@ -72,14 +93,27 @@ pub struct BladeElement {
 }
 
 /// Inputs of one evaluation: `[φ, u, v, φ̇, u̇, v̇, z…]`.
-const MAX_INPUTS: usize = KINEMATICS + JONES.len();
+const MAX_INPUTS: usize = KINEMATICS + ONERA_STATES;
 
 impl BladeElement {
     fn lag_states(&self) -> usize {
         match self.unsteadiness {
             Unsteadiness::QuasiSteady => 0,
             Unsteadiness::Theodorsen => JONES.len(),
+            Unsteadiness::Onera(_) => ONERA_STATES,
         }
+    }
+
+    /// The static deviations `[ΔC_L, ΔC_M, ΔC_D]` of `polar` from its attached flow at `alpha`.
+    fn deviations<T: DualNum<Primitive = f64> + Copy>(polar: &Polar, alpha: T) -> [T; 3] {
+        let line = polar.attached();
+        let at_zero_lift = polar.at(line.zero_lift);
+        let (cl, cd, cm) = coefficients(polar, alpha);
+        [
+            (alpha - line.zero_lift) * line.slope - cl,
+            -cm + at_zero_lift.cm,
+            -cd + at_zero_lift.cd,
+        ]
     }
 
     /// Loads `[m_φ, f_u, f_v]` and lag rates at `inputs = [φ, u, v, φ̇, u̇, v̇, z…]`, in any
@@ -98,10 +132,9 @@ impl BladeElement {
         let w2 = axial * axial + tangential * tangential;
         let zero = T::from(0.0);
         if w2.re() <= 0.0 {
-            // No relative flow: no load, lags relax.
-            for (i, (_, eps)) in JONES.iter().enumerate().take(zdot.len()) {
-                zdot[i] = inputs[KINEMATICS + i] * (-eps * s.v0 / sec.semichord());
-            }
+            // No relative flow (a parked blade in still air): no load; the states stay where
+            // they are, as every rate scales with the flow speed.
+            zdot.fill(zero);
             return [zero; LOADS];
         }
         let w = w2.sqrt();
@@ -109,10 +142,10 @@ impl BladeElement {
         let theta0 = s.psi - s.alpha_r;
         let alpha_g = psi - theta0 - phi;
         let alpha_34 = alpha_g - phi_dot * sec.three_quarter_arm() / w;
+        let rate = s.v0 / sec.semichord();
         let alpha_e = match self.unsteadiness {
             Unsteadiness::QuasiSteady => alpha_34,
-            Unsteadiness::Theodorsen => {
-                let rate = s.v0 / sec.semichord();
+            Unsteadiness::Theodorsen | Unsteadiness::Onera(_) => {
                 let direct = 1.0 - JONES.iter().map(|(a, _)| a).sum::<f64>();
                 let mut alpha_e = alpha_34 * direct;
                 for (i, (amp, eps)) in JONES.iter().enumerate() {
@@ -123,14 +156,27 @@ impl BladeElement {
                 alpha_e
             }
         };
-        let c = sec.polar.at(alpha_e.re());
-        // The polar's value and slope at α_e, carried to every input through α_e's derivative.
-        let delta = alpha_e - alpha_e.re();
-        let (cl, cd, cm) = (
-            delta * c.dcl + c.cl,
-            delta * c.dcd + c.cd,
-            delta * c.dcm + c.cm,
-        );
+        let (cl, cd, cm) = match self.unsteadiness {
+            Unsteadiness::Onera(stall) => {
+                let deviation = Self::deviations(&sec.polar, alpha_34);
+                let line = sec.polar.attached();
+                let at_zero_lift = sec.polar.at(line.zero_lift);
+                let z = |k: usize| inputs[KINEMATICS + STALL + k];
+                for x in 0..3 {
+                    let (a, r) = (stall.a[x], stall.r[x]);
+                    let (value, slope) = (z(2 * x), z(2 * x + 1));
+                    zdot[STALL + 2 * x] = slope;
+                    zdot[STALL + 2 * x + 1] =
+                        -(slope * (a * rate)) - (value + deviation[x]) * (r * rate * rate);
+                }
+                (
+                    (alpha_e - line.zero_lift) * line.slope + z(0),
+                    z(4) + at_zero_lift.cd,
+                    z(2) + at_zero_lift.cm,
+                )
+            }
+            _ => coefficients(&sec.polar, alpha_e),
+        };
         let q = w2 * (0.5 * self.air_density * sec.chord);
         let (lift, drag, moment_ac) = (q * cl, q * cd, q * cm * sec.chord);
         let (sin_psi, cos_psi) = (psi.sin(), psi.cos());
@@ -140,7 +186,7 @@ impl BladeElement {
             lift * cos_psi + drag * sin_psi,
             lift * sin_psi - drag * cos_psi,
         ];
-        if self.unsteadiness == Unsteadiness::Theodorsen {
+        if self.unsteadiness != Unsteadiness::QuasiSteady {
             // Velocity parts of the non-circulatory loads (α̇_T = −φ̇), on the frozen inflow.
             let b = sec.semichord();
             let a = sec.theodorsen_a();
@@ -166,7 +212,7 @@ impl BladeElement {
             .enumerate()
             .map(|(i, &x)| DualSVec64::from_re(x).derivative(i))
             .collect();
-        let mut zdot = [DualSVec64::<N>::from_re(0.0); JONES.len()];
+        let mut zdot = [DualSVec64::<N>::from_re(0.0); ONERA_STATES];
         let ns = self.lag_states();
         let loads = self.strip(s, &duals, &mut zdot[..ns]);
         let gradient = |d: &DualSVec64<N>| d.eps.unwrap_generic(Const::<N>, U1);
@@ -193,11 +239,24 @@ impl BladeElement {
     }
 }
 
+/// `C_l, C_d, C_m` of `polar` at `alpha`: the table's value and slope at α's value, carried to
+/// every input through α's derivative.
+fn coefficients<T: DualNum<Primitive = f64> + Copy>(polar: &Polar, alpha: T) -> (T, T, T) {
+    let c = polar.at(alpha.re());
+    let delta = alpha - alpha.re();
+    (
+        delta * c.dcl + c.cl,
+        delta * c.dcd + c.cd,
+        delta * c.dcm + c.cm,
+    )
+}
+
 impl StripModel for BladeElement {
     fn name(&self) -> &'static str {
         match self.unsteadiness {
             Unsteadiness::QuasiSteady => "quasi-steady",
             Unsteadiness::Theodorsen => "theodorsen",
+            Unsteadiness::Onera(_) => "onera",
         }
     }
 
@@ -238,27 +297,42 @@ impl StripModel for BladeElement {
         if jac {
             match ns {
                 0 => self.strip_with_partials::<KINEMATICS>(s, &inputs[..KINEMATICS], out),
+                2 => self.strip_with_partials::<{ KINEMATICS + 2 }>(
+                    s,
+                    &inputs[..KINEMATICS + 2],
+                    out,
+                ),
                 _ => self.strip_with_partials::<MAX_INPUTS>(s, &inputs, out),
             }
         } else {
-            let mut zdot = [0.0; JONES.len()];
+            let mut zdot = [0.0; ONERA_STATES];
             out.loads = self.strip(s, &inputs[..KINEMATICS + ns], &mut zdot[..ns]);
             out.zdot.copy_from_slice(&zdot[..ns]);
         }
     }
 
-    /// `ż_i = 0` with no motion: `z_i = b α_¾ / (ε_i V0)` with `α_¾ = α_r − φ`.
+    /// `ż = 0` with no motion: `z_i = b α_¾ / (ε_i V0)` with `α_¾ = α_r − φ`; ONERA's stall
+    /// states at `C2X = −ΔC_X(α_¾)`, `Ċ2X = 0`.
     fn steady_states(&self, s: &Station, [phi, _, _]: [f64; RATES], out: &mut SteadyStates) {
+        out.z.fill(0.0);
+        out.dz_dk.fill([0.0; RATES]);
         if self.unsteadiness == Unsteadiness::QuasiSteady || s.v0 <= 0.0 {
-            out.z.fill(0.0);
-            out.dz_dk.fill([0.0; RATES]);
             return;
         }
-        let b = self.sections[s.index].semichord();
+        let sec = &self.sections[s.index];
+        let b = sec.semichord();
         for (i, (_, eps)) in JONES.iter().enumerate() {
             let gain = b / (eps * s.v0);
             out.z[i] = gain * (s.alpha_r - phi);
             out.dz_dk[i] = [-gain, 0.0, 0.0];
+        }
+        if let Unsteadiness::Onera(_) = self.unsteadiness {
+            let alpha = DualSVec64::<1>::from_re(s.alpha_r - phi).derivative(0);
+            for (x, d) in Self::deviations(&sec.polar, alpha).iter().enumerate() {
+                out.z[STALL + 2 * x] = -d.re;
+                // dα/dφ = −1.
+                out.dz_dk[STALL + 2 * x][0] = d.eps.unwrap_generic(Const::<1>, U1)[0];
+            }
         }
     }
 }
@@ -308,25 +382,68 @@ mod tests {
         assert!(jacobian_mismatch(&th, &station(), moving(), &[0.01, -0.02]) < 1e-6);
     }
 
+    fn onera() -> Unsteadiness {
+        Unsteadiness::Onera(StallDynamics {
+            a: [0.3, 0.25, 0.25],
+            r: [0.0324, 0.0484, 0.0484],
+        })
+    }
+
     #[test]
-    fn steady_lags_recover_quasi_steady_loads() {
-        let (qs, th) = (
-            model(Unsteadiness::QuasiSteady),
-            model(Unsteadiness::Theodorsen),
-        );
-        let s = station();
-        let k = Kinematics {
-            phi: 0.02,
-            ..Kinematics::default()
-        };
-        let mut st = SteadyStates::new(2);
-        th.steady_states(&s, [k.phi, 0.0, 0.0], &mut st);
-        let (mut a, mut b) = (StripEval::new(0), StripEval::new(2));
-        qs.evaluate(&s, &k, &[], &mut a, false);
-        th.evaluate(&s, &k, &st.z, &mut b, false);
-        assert!(b.zdot.iter().all(|r| r.abs() < 1e-12));
-        for l in 0..LOADS {
-            assert!((a.loads[l] - b.loads[l]).abs() <= 1e-12 * a.loads[l].abs().max(1.0));
+    fn onera_partials_match_central_differences_in_stall() {
+        let m = model(onera());
+        let mut s = station();
+        for alpha_r in [0.05, 0.25] {
+            s.alpha_r = alpha_r;
+            let z = [0.01, -0.02, -0.3, 0.5, 0.01, -0.2, 0.04, 0.3];
+            let worst = jacobian_mismatch(&m, &s, moving(), &z);
+            assert!(worst < 1e-6, "α_r {alpha_r}: {worst:e}");
+        }
+    }
+
+    #[test]
+    fn steady_states_recover_quasi_steady_loads_attached_and_stalled() {
+        let qs = model(Unsteadiness::QuasiSteady);
+        let mut s = station();
+        for alpha_r in [0.05, 0.25] {
+            s.alpha_r = alpha_r;
+            for unsteady in [Unsteadiness::Theodorsen, onera()] {
+                let m = model(unsteady);
+                let ns = m.states_per_station();
+                let k = Kinematics {
+                    phi: 0.02,
+                    ..Kinematics::default()
+                };
+                let mut st = SteadyStates::new(ns);
+                m.steady_states(&s, [k.phi, 0.0, 0.0], &mut st);
+                let (mut a, mut b) = (StripEval::new(0), StripEval::new(ns));
+                qs.evaluate(&s, &k, &[], &mut a, false);
+                m.evaluate(&s, &k, &st.z, &mut b, false);
+                assert!(
+                    b.zdot.iter().all(|r| r.abs() < 1e-9),
+                    "{unsteady:?}: {:?}",
+                    b.zdot
+                );
+                for l in 0..LOADS {
+                    let scale = a.loads[l].abs().max(1.0);
+                    assert!(
+                        (a.loads[l] - b.loads[l]).abs() <= 1e-12 * scale,
+                        "{unsteady:?}"
+                    );
+                }
+                // The steady states' slope in φ, against central differences.
+                let h = 1e-6;
+                let at = |phi: f64| {
+                    let mut o = SteadyStates::new(ns);
+                    m.steady_states(&s, [phi, 0.0, 0.0], &mut o);
+                    o.z
+                };
+                let (p, q) = (at(k.phi + h), at(k.phi - h));
+                for i in 0..ns {
+                    let numeric = (p[i] - q[i]) / (2.0 * h);
+                    assert!((st.dz_dk[i][0] - numeric).abs() <= 1e-6 * numeric.abs().max(1.0));
+                }
+            }
         }
     }
 
