@@ -14,6 +14,7 @@ mod paper_figures;
 mod plot;
 mod presets;
 mod readme;
+mod rotor_aero;
 mod simulate;
 mod stability;
 mod structure;

@@ -15,9 +15,12 @@
 //! - `f_u = L cos ψ + D sin ψ` (downwind), `f_v = L sin ψ − D cos ψ` (toward the leading edge:
 //!   the in-plane terms are the edgewise aerodynamic damping), and toward feather
 //!   `m_φ = −(M_ac + d_ac (L cos α_g + D sin α_g))`;
-//! - Theodorsen adds the non-circulatory loads of §5.2 on the plunge normal to the inflow,
+//! - every form adds the non-circulatory loads of §5.2 on the plunge normal to the inflow,
 //!   `h = −(u cos ψ0 + v sin ψ0)`, with `α_T = −φ`: the velocity terms in the loads, the
-//!   acceleration terms in [`StripModel::apparent_mass`];
+//!   acceleration terms in [`StripModel::apparent_mass`] (quasi-steady is Theodorsen with
+//!   `C(k) = 1`, as in Hodges & Pierce; without the pitch-rate term of `M_nc` the ¾-chord term
+//!   alone would make the torsion of a blade whose axis lies aft of the quarter chord
+//!   aerodynamically undamped);
 //! - ONERA (the coupled form of §5.3 on the station's own polar) splits the polar into its
 //!   attached line and the static deviation from it, `ΔC_L = a0(α − α0) − C_l(α)`,
 //!   `ΔC_M = C_m(α0) − C_m(α)`, `ΔC_D = C_d(α0) − C_d(α)`: the attached lift runs through the
@@ -186,17 +189,15 @@ impl BladeElement {
             lift * cos_psi + drag * sin_psi,
             lift * sin_psi - drag * cos_psi,
         ];
-        if self.unsteadiness != Unsteadiness::QuasiSteady {
-            // Velocity parts of the non-circulatory loads (α̇_T = −φ̇), on the frozen inflow.
-            let b = sec.semichord();
-            let a = sec.theodorsen_a();
-            let prb2 = PI * self.air_density * b * b;
-            let lift_nc = phi_dot * (-prb2 * s.v0);
-            let moment_nc = phi_dot * (prb2 * s.v0 * b * (0.5 - a));
-            loads[0] -= moment_nc;
-            loads[1] += lift_nc * cos0;
-            loads[2] += lift_nc * sin0;
-        }
+        // Velocity parts of the non-circulatory loads (α̇_T = −φ̇), on the frozen inflow.
+        let b = sec.semichord();
+        let a = sec.theodorsen_a();
+        let prb2 = PI * self.air_density * b * b;
+        let lift_nc = phi_dot * (-prb2 * s.v0);
+        let moment_nc = phi_dot * (prb2 * s.v0 * b * (0.5 - a));
+        loads[0] -= moment_nc;
+        loads[1] += lift_nc * cos0;
+        loads[2] += lift_nc * sin0;
         loads
     }
 
@@ -266,9 +267,6 @@ impl StripModel for BladeElement {
 
     /// Theodorsen's apparent mass on the plunge normal to the frozen inflow and the twist.
     fn apparent_mass(&self, s: &Station) -> [[f64; RATES]; LOADS] {
-        if self.unsteadiness == Unsteadiness::QuasiSteady {
-            return [[0.0; RATES]; LOADS];
-        }
         let sec = &self.sections[s.index];
         let b = sec.semichord();
         let a = sec.theodorsen_a();
@@ -463,7 +461,7 @@ mod tests {
 
     #[test]
     fn apparent_mass_is_symmetric_and_negative_definite() {
-        let m = model(Unsteadiness::Theodorsen);
+        let m = model(Unsteadiness::QuasiSteady);
         let ma = nalgebra::Matrix3::from_fn(|i, j| m.apparent_mass(&station())[i][j]);
         assert_eq!(ma, ma.transpose());
         // Rank two: plunge normal to the inflow and twist; in-flow motion adds no mass.
