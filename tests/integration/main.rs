@@ -1,6 +1,7 @@
 //! The integration tests, one binary (one link on the 2-core CI machine): each module is an
 //! area of the program, driven through the library or the real `flutterscope` binary.
 
+mod bem;
 mod blade;
 mod cli_basic;
 mod eigen;
@@ -21,3 +22,4 @@ mod sweep;
 mod tabulated;
 mod tui_tmux;
 mod validation;
+mod bem_scratch;
