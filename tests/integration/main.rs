@@ -22,4 +22,3 @@ mod sweep;
 mod tabulated;
 mod tui_tmux;
 mod validation;
-mod bem_scratch;
