@@ -3,7 +3,7 @@
 //! every preset whatever its `section.source` (`flutterscope section` evaluates the layup of any
 //! preset).
 
-use super::{AeroModel, BladeSource, ContourShape, Preset, SectionSource};
+use super::{AeroModel, BladeSource, ContourShape, Preset, Schedule, SectionSource};
 use crate::error::{Error, Result};
 
 /// Most samples one time response may hold (`simulation.duration × simulation.sample_rate`):
@@ -50,6 +50,106 @@ pub fn check_blade_keys(p: &Preset) -> Result<()> {
     })
 }
 
+/// The rotor's file keys agree with each other and with the blade (docs/model.md §12.1): one
+/// aerodynamic description, complete, on the structure whose reference axis it is placed from
+/// (AeroDyn + ElastoDyn `PitchAxis`: the pitch axis of a BeamDyn blade; HAWC2 ae + pc: the
+/// half-chord line of a HAWC2 blade, twisted by its `blade.twist_file`), and a table schedule
+/// with its file. Checked before the files are read.
+pub fn check_rotor_keys(p: &Preset) -> Result<()> {
+    let a = &p.aero;
+    let given = |s: &str| !s.trim().is_empty();
+    let aerodyn = given(&a.blade_file) || !a.airfoils.is_empty() || given(&a.pitch_axis_file);
+    let hawc2 = given(&a.ae_file) || given(&a.pc_file);
+    let message = if aerodyn && hawc2 {
+        "aero.blade_file/aero.airfoils/aero.pitch_axis_file (AeroDyn) and aero.ae_file/\
+         aero.pc_file (HAWC2) both describe the blade's aerodynamics; give one set"
+            .to_string()
+    } else if aerodyn && !(given(&a.blade_file) && !a.airfoils.is_empty() && given(&a.pitch_axis_file)) {
+        format!(
+            "an AeroDyn aerodynamic description needs all three of aero.blade_file (the AeroDyn 15 \
+             blade file, now \"{}\"), aero.airfoils (its polar files in BlAFID order, now {} \
+             listed) and aero.pitch_axis_file (an ElastoDyn blade file whose PitchAxis places the \
+             pitch axis on the chord, now \"{}\")",
+            a.blade_file,
+            a.airfoils.len(),
+            a.pitch_axis_file
+        )
+    } else if hawc2 && !(given(&a.ae_file) && given(&a.pc_file)) {
+        format!(
+            "a HAWC2 aerodynamic description needs both aero.ae_file (now \"{}\") and \
+             aero.pc_file (now \"{}\")",
+            a.ae_file, a.pc_file
+        )
+    } else if aerodyn && p.blade.source != BladeSource::Beamdyn {
+        format!(
+            "aero.blade_file places the aerodynamic centre from the pitch axis, the reference axis \
+             of a BeamDyn blade; blade.source = \"{}\" has another (set blade.source = \
+             \"beamdyn\", or describe a HAWC2 blade's aerodynamics by aero.ae_file and \
+             aero.pc_file)",
+            p.blade.source.name()
+        )
+    } else if hawc2 && p.blade.source != BladeSource::Hawc2 {
+        format!(
+            "aero.ae_file places the aerodynamic centre from the half-chord line and takes the \
+             twist from blade.twist_file, as a HAWC2 blade (blade.source = \"hawc2\") has them; \
+             blade.source = \"{}\" has neither",
+            p.blade.source.name()
+        )
+    } else {
+        match (p.operating.schedule, given(&p.operating.schedule_file)) {
+            (Schedule::Table, false) => "operating.schedule = \"table\" needs \
+                 operating.schedule_file: a HAWC2 .opt file of wind speed, pitch and rotor speed, \
+                 relative to the preset file"
+                .to_string(),
+            (s @ (Schedule::None | Schedule::Law), true) => format!(
+                "operating.schedule_file = \"{}\" does not apply to operating.schedule = \"{}\" \
+                 (set operating.schedule = \"table\" to run along it)",
+                p.operating.schedule_file,
+                s.name()
+            ),
+            _ => return Ok(()),
+        }
+    };
+    Err(Error::Invalid {
+        origin: p.origin.clone(),
+        message,
+    })
+}
+
+/// `operating.schedule = "law"` needs its parameters and the rotor's aerodynamics (the pitch
+/// above rated comes from the BEM).
+fn law_is_complete(p: &Preset) -> std::result::Result<(), String> {
+    let o = &p.operating;
+    if o.schedule != Schedule::Law {
+        return Ok(());
+    }
+    let missing = [
+        ("operating.rated_power", o.rated_power),
+        ("operating.tip_speed_ratio", o.tip_speed_ratio),
+        ("operating.rotor_speed_max", o.rotor_speed_max),
+    ]
+    .into_iter()
+    .find(|(_, v)| *v <= 0.0);
+    if let Some((key, v)) = missing {
+        return Err(format!(
+            "operating.schedule = \"law\" needs {key} > 0, found {v}"
+        ));
+    }
+    if o.rotor_speed_min > o.rotor_speed_max {
+        return Err(format!(
+            "operating.rotor_speed_min = {} rpm exceeds operating.rotor_speed_max = {} rpm",
+            o.rotor_speed_min, o.rotor_speed_max
+        ));
+    }
+    if p.aero_blade().is_none() {
+        return Err("operating.schedule = \"law\" pitches to hold operating.rated_power with \
+                    the rotor's aerodynamics: give aero.blade_file (AeroDyn) or aero.ae_file \
+                    (HAWC2)"
+            .to_string());
+    }
+    Ok(())
+}
+
 /// Every rule, in the order a user would fix them; the first broken one is the error.
 pub fn check(p: &Preset) -> Result<()> {
     let invalid = |message: String| Error::Invalid {
@@ -57,6 +157,7 @@ pub fn check(p: &Preset) -> Result<()> {
         message,
     };
     length_is_the_files(p).map_err(invalid)?;
+    law_is_complete(p).map_err(invalid)?;
     if p.blade.source.is_tabulated() && p.aero.model != AeroModel::None {
         return Err(invalid(format!(
             "aero.model = \"{}\" with blade.source = \"{}\": strip aerodynamics on a tabulated \

@@ -83,10 +83,20 @@ impl Polar {
                 "{origin}: the polar has non-finite coefficients"
             )));
         }
-        let attached = attached_line(&alpha, &cl).ok_or_else(|| {
+        // A section that lifts nowhere (a cylinder at the root: C_l = 0 at every angle) has the
+        // attached line C_l = 0; any other polar must have an attached range.
+        let attached = if cl.iter().all(|&c| c == 0.0) {
+            Some(AttachedLine {
+                slope: 0.0,
+                zero_lift: 0.0,
+            })
+        } else {
+            attached_line(&alpha, &cl)
+        }
+        .ok_or_else(|| {
             Error::numerical(format!(
                 "{origin}: no attached-flow range: the lift coefficient never rises through zero \
-                 between −30° and 30°"
+                 between −30° and 30° (and is not zero throughout, as a cylinder's)"
             ))
         })?;
         Ok(Polar {
@@ -250,6 +260,14 @@ mod tests {
         let a = 0.05;
         let expected = 0.75 * p.at(a).cl + 0.25 * q.at(a).cl;
         assert!((m.at(a).cl - expected).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_cylinder_lifts_nowhere() {
+        let alpha = vec![-std::f64::consts::PI, 0.0, std::f64::consts::PI];
+        let p = Polar::new(alpha, vec![0.0; 3], vec![0.5; 3], vec![0.0; 3], "cyl").unwrap();
+        assert_eq!(p.attached().slope, 0.0);
+        assert_eq!(p.at(0.3).cd, 0.5);
     }
 
     #[test]

@@ -5,11 +5,16 @@
 //! Positions along the blade are span positions from the blade root (m), the same coordinate as
 //! the structure's; the radius is `hub_radius + span`.
 
+pub mod bem;
+pub mod files;
+pub mod schedule;
+pub mod steady;
+
 use crate::physics::aero::polar::Polar;
 use std::sync::Arc;
 
 /// One aerodynamic node as the file gives it.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct AeroNode {
     /// Span position from the blade root (m).
     pub span: f64,
@@ -24,7 +29,7 @@ pub struct AeroNode {
 }
 
 /// The aerodynamic description of one blade: nodes with strictly increasing span.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct AeroBlade {
     pub nodes: Vec<AeroNode>,
     /// Where the description came from, for messages.
