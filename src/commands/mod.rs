@@ -32,13 +32,7 @@ pub fn run(command: Command) -> Result<()> {
             json,
             csv,
             plot,
-        } => operating::run(
-            &preset.load()?,
-            vary.as_deref(),
-            json,
-            csv,
-            plot.as_deref(),
-        ),
+        } => operating::run(&preset.load()?, vary.as_deref(), json, csv, plot.as_deref()),
         Command::Flutter {
             preset,
             vary,

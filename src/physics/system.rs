@@ -24,6 +24,7 @@ use crate::physics::aero::{
     model_for, Kinematics, NonlinearSupport, SteadyStates, StripEval, StripModel, LOADS, RATES,
 };
 use crate::physics::inflow::{stations, OperatingPoint, Station};
+use crate::physics::operating;
 use crate::physics::structure::{for_preset, Structure};
 use crate::preset::ValidPreset;
 use nalgebra::{DMatrix, DVector};
@@ -80,7 +81,16 @@ pub struct LinearSystem {
 impl System {
     /// Assemble structure, stations (along the structure's span) and the preset's aerodynamic
     /// model.
+    ///
+    /// A real blade with its aerodynamic description runs at its scheduled rotor speed and pitch,
+    /// its strips on the inflow of its steady aeroelastic operating point
+    /// ([`crate::physics::operating`], docs/model.md §12.5).
     pub fn new(p: &ValidPreset) -> Result<System> {
+        if operating::in_the_wind(p) {
+            return operating::steady(p, operating::unsteadiness(p)).map(|op| op.system);
+        }
+        let scheduled = operating::on_schedule(p)?;
+        let p = &scheduled;
         let structure = for_preset(p)?;
         let model = model_for(p)?;
         let stations = stations(
@@ -164,6 +174,21 @@ impl System {
     pub fn tip(&self, x: &DVector<f64>) -> (f64, f64) {
         let q = x.rows(0, self.nq());
         (self.tip_rows[0].dot(&q), self.tip_rows[1].dot(&q))
+    }
+
+    /// `[φ, u, v]` (twist toward feather, flap downwind, edge toward the leading edge) at the
+    /// tip's reference axis in state `x`.
+    pub fn tip_motion(&self, x: &DVector<f64>) -> [f64; RATES] {
+        let q = x.rows(0, self.nq());
+        self.tip_rows.each_ref().map(|row| row.dot(&q))
+    }
+
+    /// `[φ, u, v]` at every station in state `x`.
+    pub fn station_motion(&self, x: &DVector<f64>) -> Vec<[f64; RATES]> {
+        let q = x.rows(0, self.nq());
+        (0..self.stations.len())
+            .map(|si| self.deflection_at(si, q))
+            .collect()
     }
 
     /// ẋ = f(x).
