@@ -3,6 +3,7 @@
 
 mod blade;
 mod cli_basic;
+mod coupling;
 mod eigen;
 mod explorer;
 mod formats;
