@@ -415,6 +415,8 @@ pub enum Selected {
     TunnelSpeed,
     RotorSpeed,
     Pitch,
+    /// `blade.bend_twist_coupling` (tabulated blades).
+    BendTwistCoupling,
 }
 
 impl Selected {
@@ -426,6 +428,7 @@ impl Selected {
             Selected::TunnelSpeed => "operating.tunnel_speed",
             Selected::RotorSpeed => "operating.rotor_speed",
             Selected::Pitch => "operating.pitch",
+            Selected::BendTwistCoupling => "blade.bend_twist_coupling",
         }
     }
 }

@@ -70,16 +70,25 @@ fn positive_coupling_twists_toward_feather_as_the_btc_blade_does() {
     assert!(nrel.iter().all(|(flap, _)| *flap > 0.0));
     assert!(nrel[1].1.abs() < 1e-12, "{nrel:?}");
     assert!(nrel[2].1 > 1e-4 && nrel[0].1 < -1e-4, "{nrel:?}");
-    assert!(btc[1].1 > 0.01, "the BTC blade twists toward feather: {btc:?}");
+    assert!(
+        btc[1].1 > 0.01,
+        "the BTC blade twists toward feather: {btc:?}"
+    );
     assert!(btc[2].1 > btc[1].1 && btc[1].1 > btc[0].1, "{btc:?}");
 }
 
 /// The build kept for one α is not the one for another: the cache key holds α.
 #[test]
 fn the_build_cache_tells_couplings_apart() {
-    let a = blade_structure(&with_alpha("nrel5mw", 0.1)).unwrap().unwrap();
-    let b = blade_structure(&with_alpha("nrel5mw", -0.1)).unwrap().unwrap();
-    let again = blade_structure(&with_alpha("nrel5mw", 0.1)).unwrap().unwrap();
+    let a = blade_structure(&with_alpha("nrel5mw", 0.1))
+        .unwrap()
+        .unwrap();
+    let b = blade_structure(&with_alpha("nrel5mw", -0.1))
+        .unwrap()
+        .unwrap();
+    let again = blade_structure(&with_alpha("nrel5mw", 0.1))
+        .unwrap()
+        .unwrap();
     assert!(!Arc::ptr_eq(&a, &b));
     assert!(Arc::ptr_eq(&a, &again));
     let fa = a.modes(0.0).unwrap()[0].frequency_hz;

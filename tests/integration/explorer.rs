@@ -145,6 +145,7 @@ impl TestEngine {
                 c33: 0.46,
             }),
             stability: test_stability(p),
+            shapes: Vec::new(),
         })
     }
 }

@@ -6,6 +6,7 @@ pub mod locus;
 pub mod modes;
 pub mod params;
 pub mod response;
+pub mod shape;
 pub mod status;
 pub mod theme;
 
@@ -43,8 +44,11 @@ pub fn render(state: &AppState, frame: &mut Frame) {
     let left_w = (area.width * 3 / 10).clamp(34, 44);
     let [left, right] =
         Layout::horizontal([Constraint::Length(left_w), Constraint::Min(0)]).areas(body);
-    let [params_area, modes_area] =
-        Layout::vertical([Constraint::Length(params::HEIGHT), Constraint::Min(0)]).areas(left);
+    let [params_area, modes_area] = Layout::vertical([
+        Constraint::Length(params::height(&state.preset)),
+        Constraint::Min(0),
+    ])
+    .areas(left);
     params::render(state, &theme, frame, params_area);
     match state.view {
         ViewMode::Main => {
@@ -54,6 +58,15 @@ pub fn render(state: &AppState, frame: &mut Frame) {
                     .areas(right);
             locus::render(state, &theme, frame, locus_area);
             response::render(state, &theme, frame, response_area);
+        }
+        ViewMode::Shape => {
+            modes::render(state, &theme, frame, modes_area);
+            // Half and half: the shape needs rows for its legend and its three curves.
+            let [locus_area, shape_area] =
+                Layout::vertical([Constraint::Percentage(50), Constraint::Percentage(50)])
+                    .areas(right);
+            locus::render(state, &theme, frame, locus_area);
+            shape::render(state, &theme, frame, shape_area);
         }
         ViewMode::Campbell => {
             modes::render(state, &theme, frame, modes_area);

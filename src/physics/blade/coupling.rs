@@ -96,7 +96,13 @@ mod tests {
         // Without edge coupling the criterion is |g| < √(EI_ξ GJ): ratio 1 is the limit.
         assert_eq!(indefinite_station(&table(0.0), 0.3), None);
         assert_eq!(indefinite_station(&table(1.5e8), 0.24), None);
-        assert_eq!(indefinite_station(&table(1.5e8), 0.26).map(|s| s.0), Some(0));
-        assert_eq!(indefinite_station(&table(-1.5e8), -0.26).map(|s| s.0), Some(0));
+        assert_eq!(
+            indefinite_station(&table(1.5e8), 0.26).map(|s| s.0),
+            Some(0)
+        );
+        assert_eq!(
+            indefinite_station(&table(-1.5e8), -0.26).map(|s| s.0),
+            Some(0)
+        );
     }
 }
