@@ -190,18 +190,15 @@ fn canvas<'a>(
                 y2: 0.0,
                 color: guide,
             });
-            for k in 0..3 {
-                if shape.peaks[k] <= 0.0 {
-                    continue;
-                }
-                let values = &shape.components[k];
+            let drawn = shape.peaks.iter().zip(&shape.components).zip(colors);
+            for ((_, values), color) in drawn.filter(|((peak, _), _)| **peak > 0.0) {
                 for (x, y) in shape.span.windows(2).zip(values.windows(2)) {
                     ctx.draw(&Line {
                         x1: x[0],
                         y1: y[0],
                         x2: x[1],
                         y2: y[1],
-                        color: colors[k],
+                        color,
                     });
                 }
             }

@@ -64,7 +64,7 @@ mod tests {
             mass: 100.0,
             cg: [0.0, 0.0],
             inertia: [1.0, 5.0, 0.0],
-            ei_flap: 4.0e9,
+            ei_flap: 4.0e8,
             ei_edge: 9.0e9,
             ei_cross: 0.0,
             gj: 1.0e8,
@@ -85,7 +85,7 @@ mod tests {
     #[test]
     fn alpha_adds_its_share_of_the_geometric_mean_stiffness() {
         let t = with_bend_twist_coupling(&table(1.0e8), 0.25);
-        // √(4e9 · 1e8) = 2e8.
+        // √(4e8 · 1e8) = 2e8.
         assert_eq!(t.sections[0].flap_twist, 1.0e8 + 0.25 * 2.0e8);
         assert_eq!(coupling_ratio(&t.sections[1]), 0.75);
         assert_eq!(with_bend_twist_coupling(&table(1.0e8), 0.0), table(1.0e8));
