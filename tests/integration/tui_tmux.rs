@@ -108,6 +108,25 @@ impl Session {
     }
 }
 
+impl Session {
+    /// `q` ends the explorer with status 0, the alternate screen off and none of its panes left
+    /// (the pane's shell prints the exit status: the command line ends with an `echo`).
+    fn quit_cleanly(&self) {
+        self.keys(&["q"]);
+        let after = self.wait_for("explorer exited with");
+        assert!(after.contains("explorer exited with 0"), "{after}");
+        assert_eq!(
+            self.display("#{alternate_on}"),
+            "0",
+            "alternate screen still on"
+        );
+        assert!(
+            !after.contains("Root locus"),
+            "terminal not restored:\n{after}"
+        );
+    }
+}
+
 impl Drop for Session {
     fn drop(&mut self) {
         let _ = Command::new("tmux")
@@ -180,13 +199,7 @@ fn explorer_runs_adjusts_helps_and_quits_cleanly_in_a_terminal() {
 
     // q quits with status 0 and leaves the alternate screen: the shell's line is visible and
     // none of the explorer's panes remain.
-    s.keys(&["q"]);
-    let after = s.wait_for("explorer exited with");
-    assert!(after.contains("explorer exited with 0"), "{after}");
-    assert!(
-        !after.contains("Root locus"),
-        "terminal not restored:\n{after}"
-    );
+    s.quit_cleanly();
 }
 
 /// Issue 14: a real blade in a real terminal. `--set` applies to the starting preset (the
@@ -241,18 +254,7 @@ fn a_real_blade_drags_its_coupling_shows_its_modes_and_quits_cleanly() {
     let screen = s.wait_for("nrel5mw [5/7]");
     assert!(coupling_row(&screen).contains("0.10"), "{screen}");
 
-    s.keys(&["q"]);
-    let after = s.wait_for("explorer exited with");
-    assert!(after.contains("explorer exited with 0"), "{after}");
-    assert_eq!(
-        s.display("#{alternate_on}"),
-        "0",
-        "alternate screen still on"
-    );
-    assert!(
-        !after.contains("Root locus"),
-        "terminal not restored:\n{after}"
-    );
+    s.quit_cleanly();
 }
 
 #[test]
@@ -400,20 +402,9 @@ fn a_flood_of_keys_and_resizes_ends_cleanly_and_idles() {
         "a paused explorer kept the CPU busy: {idle:?} ticks per 3 s"
     );
 
-    s.keys(&["q"]);
-    let after = s.wait_for("explorer exited with");
+    s.quit_cleanly();
     let history = s.history();
-    assert!(after.contains("explorer exited with 0"), "{after}");
     assert!(!history.contains("panicked"), "{history}");
-    assert_eq!(
-        s.display("#{alternate_on}"),
-        "0",
-        "alternate screen still on"
-    );
-    assert!(
-        !after.contains("Root locus"),
-        "terminal not restored:\n{after}"
-    );
 }
 
 /// With no subcommand in a terminal whose TERM is `dumb`, the explorer is refused with a clear
