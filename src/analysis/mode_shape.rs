@@ -9,7 +9,7 @@
 //! each component's peak amplitude and phase there, relative to that reference, say how large and
 //! how late it is.
 
-use crate::physics::structure::{Family, Structure};
+use crate::physics::structure::{Family, MotionRows, Structure};
 use nalgebra::Complex;
 
 /// A component with less of the mode's kinetic energy than this is absent (round-off of an
@@ -35,13 +35,26 @@ pub struct ModeShape {
     pub reference: Family,
 }
 
+/// The structure's motion rows at its span points, evaluated once for all the modes of a solve.
+pub struct SpanRows {
+    span: Vec<f64>,
+    rows: Vec<MotionRows>,
+}
+
+impl SpanRows {
+    pub fn of(structure: &dyn Structure) -> SpanRows {
+        let span = structure.span_points();
+        let rows = span.iter().map(|&x| structure.motion_rows(x)).collect();
+        SpanRows { span, rows }
+    }
+}
+
 /// The shape of the structural coordinates `q` (an eigenvector's first `n_q` entries) along
-/// `structure`'s span points.
-pub fn mode_shape(structure: &dyn Structure, q: &[Complex<f64>]) -> ModeShape {
-    let span = structure.span_points();
+/// `structure`'s span points, whose motion rows `at` holds.
+pub fn mode_shape(structure: &dyn Structure, at: &SpanRows, q: &[Complex<f64>]) -> ModeShape {
+    let span = at.span.clone();
     let mut raw: [Vec<Complex<f64>>; 3] = Default::default();
-    for &x in &span {
-        let rows = structure.motion_rows(x);
+    for rows in &at.rows {
         for (values, row) in raw.iter_mut().zip([&rows.flap, &rows.edge, &rows.twist]) {
             values.push(
                 row.iter()

@@ -4,7 +4,7 @@
 //! never assembles or linearises anything twice.
 
 use crate::analysis::eigen::{analyse_system, Stability};
-use crate::analysis::mode_shape::{mode_shape, ModeShape};
+use crate::analysis::mode_shape::{mode_shape, ModeShape, SpanRows};
 use crate::analysis::simulate::Simulator;
 use crate::error::Result;
 use crate::physics::system::{LinearSystem, System};
@@ -49,10 +49,11 @@ impl Solution {
     /// this build's structure (docs/model.md §6.5).
     pub fn mode_shapes(&self, stability: &Stability) -> Vec<ModeShape> {
         let structure = self.system.structure();
+        let at = SpanRows::of(structure);
         stability
             .eigenvalues
             .iter()
-            .map(|m| mode_shape(structure, &m.shape))
+            .map(|m| mode_shape(structure, &at, &m.shape))
             .collect()
     }
 
