@@ -1255,3 +1255,61 @@ fn snapshot_the_shape_pane_of_every_builtin_preset() {
         }
     }
 }
+
+/// Without aerodynamics a tabulated blade's roots are its damped natural modes, so the shape the
+/// solve gives the pane must be the one `modes --shapes` prints (scaled the same way: the
+/// dominant component +1 at its peak), through an independent path (the command's JSON).
+#[test]
+fn the_solved_shape_of_a_structural_root_is_the_natural_mode_shape() {
+    let p = Preset::load("nrel5mw", &[]).unwrap();
+    let solution = flutterscope::analysis::solve::solve(&p).unwrap();
+    let stability = solution.stability().unwrap();
+    let shapes = solution.mode_shapes(&stability);
+    let out = assert_cmd::Command::cargo_bin("flutterscope")
+        .unwrap()
+        .args(["modes", "--preset", "nrel5mw", "--shapes", "--json"])
+        .output()
+        .unwrap();
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    for label in ["flap 1", "edge 1", "flap 2"] {
+        let i = stability
+            .eigenvalues
+            .iter()
+            .position(|m| m.label == label)
+            .unwrap();
+        let shape = &shapes[i];
+        let printed = json["modes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|m| m["label"] == label)
+            .unwrap();
+        let along = |c: &str| -> Vec<f64> {
+            printed["shape"][c]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|v| v.as_f64().unwrap())
+                .collect()
+        };
+        let z = along("z");
+        assert_eq!(z.len(), shape.span.len(), "{label}");
+        for (k, c) in ["flap", "edge"].iter().enumerate() {
+            let printed = along(c);
+            let peak = printed.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+            assert!(
+                (shape.peaks[k] - peak).abs() < 1e-6 * peak.max(1e-3),
+                "{label} {c}: peak {} against {peak}",
+                shape.peaks[k]
+            );
+            for (drawn, value) in shape.components[k].iter().zip(&printed) {
+                assert!(
+                    (drawn * peak - value).abs() < 1e-6,
+                    "{label} {c}: {drawn} × {peak} against {value}"
+                );
+            }
+        }
+        // No coupling in the NREL 5MW file: no twist to draw.
+        assert_eq!(shape.peaks[2], 0.0, "{label}");
+    }
+}
