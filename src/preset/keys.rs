@@ -127,6 +127,7 @@ pub static KEYS: &[KeySpec] = &[
     real!("blade.hub_radius", "m", 0.0, 100.0, open = false, blade.hub_radius),
     int!("blade.st_set", 1, 1000, blade.st_set),
     int!("blade.st_subset", 1, 1000, blade.st_subset),
+    real!("blade.bend_twist_coupling", "", -0.3, 0.3, open = false, blade.bend_twist_coupling),
     real!("section.ply_angle", "deg", 0.0, 90.0, open = false, section.ply_angle),
     real!("section.mass_per_length", "kg/m", 0.0, 1e5, open = true, section.mass_per_length),
     real!("section.polar_inertia", "kg·m", 0.0, 1e5, open = true, section.polar_inertia),

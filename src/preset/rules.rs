@@ -5,17 +5,25 @@
 
 use super::{AeroModel, BladeSource, ContourShape, Preset, Schedule, SectionSource};
 use crate::error::{Error, Result};
+use crate::physics::blade::coupling::{coupling_ratio, indefinite_station};
 
 /// Most samples one time response may hold (`simulation.duration × simulation.sample_rate`):
 /// 2e6 samples is 10⁴ s at 200/s; time, tip twist and flap take 48 MB.
 pub const MAX_SAMPLES: f64 = 2e6;
 
 /// `blade.source` and `blade.file` agree: a tabulated blade names its file, the uniform blade
-/// names none (a file given without its source would otherwise be ignored). Checked before the
-/// file is read.
+/// names none (a file given without its source would otherwise be ignored), nor a bend–twist
+/// coupling α (it scales a tabulated blade's stations). Checked before the file is read.
 pub fn check_blade_keys(p: &Preset) -> Result<()> {
     let b = &p.blade;
     let message = match (b.source, b.file.trim().is_empty()) {
+        (BladeSource::Uniform, _) if b.bend_twist_coupling != 0.0 => format!(
+            "blade.bend_twist_coupling = {} does not apply to blade.source = \"uniform\": it \
+             adds to the flap–twist coupling of a tabulated blade's stations (blade.source = \
+             \"beamdyn\" or \"hawc2\"); the uniform blade's coupling is section.c23, or \
+             section.ply_angle for a table or layup section",
+            b.bend_twist_coupling
+        ),
         (BladeSource::Uniform, false) => format!(
             "blade.file = \"{}\" does not apply to blade.source = \"uniform\" (the paper's \
              uniform blade, from blade.length and section.*); set blade.source = \"beamdyn\" for \
@@ -162,6 +170,7 @@ pub fn check(p: &Preset) -> Result<()> {
     };
     length_is_the_files(p).map_err(invalid)?;
     law_is_complete(p).map_err(invalid)?;
+    coupling_is_definite(p).map_err(invalid)?;
     let described = p.rotor_files.as_ref().is_some_and(|r| r.blade.is_some());
     if p.blade.source.is_tabulated() && p.aero.model != AeroModel::None && !described {
         return Err(invalid(format!(
@@ -218,6 +227,27 @@ fn length_is_the_files(p: &Preset) -> std::result::Result<(), String> {
         p.blade.length,
         t.source.name(),
         t.file
+    ))
+}
+
+/// A tabulated blade's stations stay positive definite in bending and torsion with
+/// `blade.bend_twist_coupling` added (docs/model.md §11.7), or its strain energy is not.
+fn coupling_is_definite(p: &Preset) -> std::result::Result<(), String> {
+    let (Some(t), alpha) = (&p.tabulated, p.blade.bend_twist_coupling) else {
+        return Ok(());
+    };
+    let Some((k, s)) = indefinite_station(&t.blade.table, alpha) else {
+        return Ok(());
+    };
+    Err(format!(
+        "blade.bend_twist_coupling = {alpha} couples station {} of blade.file = \"{}\" (z = {} \
+         m) more than its stiffnesses can carry: its flap–twist coupling g/√(EI_flap·GJ) = {:.4} \
+         from the file plus α must leave the section's bending–torsion stiffness positive \
+         definite (|g|/√(EI_flap·GJ) < 1 without edge coupling); choose a smaller |α|",
+        k + 1,
+        t.file,
+        s.z,
+        coupling_ratio(&s)
     ))
 }
 

@@ -101,6 +101,10 @@ pub struct Blade {
     pub st_set: usize,
     /// HAWC2 st subset `$N` within the set (hawc2 source).
     pub st_subset: usize,
+    /// α: adds `α·√(EI_flap·GJ)` to the flap–twist coupling of every station of a tabulated
+    /// blade, on top of its files' (docs/model.md §11.7); α > 0 twists toward feather under
+    /// downwind bending. Tabulated blades only.
+    pub bend_twist_coupling: f64,
 }
 
 /// The tabulated blade a preset was checked with, and the keys it was read from: a change of
@@ -501,6 +505,8 @@ pub enum Selected {
     TunnelSpeed,
     RotorSpeed,
     Pitch,
+    /// `blade.bend_twist_coupling` (tabulated blades).
+    BendTwistCoupling,
 }
 
 impl Selected {
@@ -512,6 +518,7 @@ impl Selected {
             Selected::TunnelSpeed => "operating.tunnel_speed",
             Selected::RotorSpeed => "operating.rotor_speed",
             Selected::Pitch => "operating.pitch",
+            Selected::BendTwistCoupling => "blade.bend_twist_coupling",
         }
     }
 }
@@ -545,6 +552,7 @@ impl Default for Blade {
             hub_radius: 0.0,
             st_set: 1,
             st_subset: 1,
+            bend_twist_coupling: 0.0,
         }
     }
 }

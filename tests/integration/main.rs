@@ -4,6 +4,7 @@
 mod bem;
 mod blade;
 mod cli_basic;
+mod coupling;
 mod eigen;
 mod explorer;
 mod formats;
