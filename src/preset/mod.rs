@@ -167,6 +167,15 @@ impl Preset {
         }
         preset.origin = origin.to_string();
         preset.base = base;
+        // A rotor speed or pitch set on the command line holds against the schedule, as an
+        // edit does ([`Preset::set`]).
+        for ov in overrides {
+            match ov.split('=').next().map(str::trim) {
+                Some("operating.rotor_speed") => preset.schedule_overrides.rotor_speed = true,
+                Some("operating.pitch") => preset.schedule_overrides.pitch = true,
+                _ => {}
+            }
+        }
         preset.check_ranges()?;
         rules::check_blade_keys(&preset)?;
         preset.read_tabulated()?;
@@ -355,11 +364,24 @@ impl Preset {
 
     /// Set a numeric key, checking its range (the rules across keys wait for
     /// [`Preset::validate`]).
+    ///
+    /// Setting `operating.rotor_speed` or `operating.pitch` overrides the schedule for that key
+    /// ([`ScheduleOverrides`]); [`Preset::follow_schedule`] returns to it.
     pub fn set(&mut self, key: &str, value: f64) -> Result<()> {
         let spec = key_spec(key)?;
         spec.check(&self.origin, value)?;
         (spec.set)(self, value);
+        match key {
+            "operating.rotor_speed" => self.schedule_overrides.rotor_speed = true,
+            "operating.pitch" => self.schedule_overrides.pitch = true,
+            _ => {}
+        }
         Ok(())
+    }
+
+    /// Rotor speed and pitch follow `operating.schedule` again.
+    pub fn follow_schedule(&mut self) {
+        self.schedule_overrides = ScheduleOverrides::default();
     }
 
     /// The preset as TOML text (round-trips through [`Preset::from_toml`]).

@@ -36,6 +36,17 @@ pub struct Preset {
     /// `operating.schedule_file` keys when the preset was checked (`None` when it names none).
     #[serde(skip)]
     pub rotor_files: Option<RotorFiles>,
+    /// Which of the schedule's outputs an edit (`--set`, `--vary`, the explorer) has set by
+    /// hand: those hold, the schedule gives the rest (docs/model.md §12.3).
+    #[serde(skip)]
+    pub schedule_overrides: ScheduleOverrides,
+}
+
+/// Rotor speed and pitch set by hand while `operating.schedule` runs: overspeed, idling.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct ScheduleOverrides {
+    pub rotor_speed: bool,
+    pub pitch: bool,
 }
 
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
@@ -538,6 +549,7 @@ impl Default for Preset {
             base: FileBase::default(),
             tabulated: None,
             rotor_files: None,
+            schedule_overrides: ScheduleOverrides::default(),
         }
     }
 }
