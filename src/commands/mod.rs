@@ -12,6 +12,7 @@ pub mod presets;
 pub mod reproduce;
 pub mod section;
 pub mod simulate;
+pub mod slurm;
 pub mod snapshot;
 pub mod sweep;
 pub mod tui;
@@ -32,13 +33,7 @@ pub fn run(command: Command) -> Result<()> {
             json,
             csv,
             plot,
-        } => operating::run(
-            &preset.load()?,
-            vary.as_deref(),
-            json,
-            csv,
-            plot.as_deref(),
-        ),
+        } => operating::run(&preset.load()?, vary.as_deref(), json, csv, plot.as_deref()),
         Command::Flutter {
             preset,
             vary,

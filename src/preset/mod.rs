@@ -292,15 +292,16 @@ impl Preset {
         } else {
             None
         };
-        let table = match self.operating.schedule {
-            Schedule::Table => {
-                let name = &self.operating.schedule_file;
-                Some(read_schedule_table(&base.resolve(name)).map_err(|e| {
-                    invalid(&format!("operating.schedule_file = \"{name}\""), e)
-                })?)
-            }
-            _ => None,
-        };
+        let table =
+            match self.operating.schedule {
+                Schedule::Table => {
+                    let name = &self.operating.schedule_file;
+                    Some(read_schedule_table(&base.resolve(name)).map_err(|e| {
+                        invalid(&format!("operating.schedule_file = \"{name}\""), e)
+                    })?)
+                }
+                _ => None,
+            };
         self.rotor_files = Some(RotorFiles {
             keys,
             blade: blade.map(Arc::new),

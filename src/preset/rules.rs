@@ -64,7 +64,9 @@ pub fn check_rotor_keys(p: &Preset) -> Result<()> {
         "aero.blade_file/aero.airfoils/aero.pitch_axis_file (AeroDyn) and aero.ae_file/\
          aero.pc_file (HAWC2) both describe the blade's aerodynamics; give one set"
             .to_string()
-    } else if aerodyn && !(given(&a.blade_file) && !a.airfoils.is_empty() && given(&a.pitch_axis_file)) {
+    } else if aerodyn
+        && !(given(&a.blade_file) && !a.airfoils.is_empty() && given(&a.pitch_axis_file))
+    {
         format!(
             "an AeroDyn aerodynamic description needs all three of aero.blade_file (the AeroDyn 15 \
              blade file, now \"{}\"), aero.airfoils (its polar files in BlAFID order, now {} \
@@ -142,10 +144,12 @@ fn law_is_complete(p: &Preset) -> std::result::Result<(), String> {
         ));
     }
     if p.aero_blade().is_none() {
-        return Err("operating.schedule = \"law\" pitches to hold operating.rated_power with \
+        return Err(
+            "operating.schedule = \"law\" pitches to hold operating.rated_power with \
                     the rotor's aerodynamics: give aero.blade_file (AeroDyn) or aero.ae_file \
                     (HAWC2)"
-            .to_string());
+                .to_string(),
+        );
     }
     Ok(())
 }

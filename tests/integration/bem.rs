@@ -4,11 +4,11 @@
 
 use flutterscope::formats::aerodyn::read_blade as read_aerodyn_blade;
 use flutterscope::formats::hawc2_aero::{read_opt, read_pc};
-use flutterscope::preset::Preset;
 use flutterscope::physics::rotor::bem::{solve, Conditions, Rotor, Station};
 use flutterscope::physics::rotor::files::{read_aerodyn, read_hawc2};
 use flutterscope::physics::rotor::AeroBlade;
 use flutterscope::preset::BladeFile;
+use flutterscope::preset::Preset;
 use std::path::{Path, PathBuf};
 
 fn blades() -> PathBuf {
@@ -31,7 +31,13 @@ pub fn iea15mw() -> AeroBlade {
 
 pub fn nrel5mw() -> AeroBlade {
     let airfoils = [
-        "Cylinder1", "Cylinder2", "DU40_A17", "DU35_A17", "DU30_A17", "DU25_A17", "DU21_A17",
+        "Cylinder1",
+        "Cylinder2",
+        "DU40_A17",
+        "DU35_A17",
+        "DU30_A17",
+        "DU25_A17",
+        "DU21_A17",
         "NACA64_A17",
     ]
     .map(|n| disk(&format!("nrel5mw/Airfoils/{n}.dat")));
@@ -108,7 +114,10 @@ fn iea15mw_rigid_against_the_flexible_operation_table() {
             100.0 * (s.thrust / row.thrust - 1.0)
         );
         for tip in [1.0, 2.0, 3.0] {
-            let twist: Vec<f64> = stations.iter().map(|st| f64::to_radians(tip) * st.span / length).collect();
+            let twist: Vec<f64> = stations
+                .iter()
+                .map(|st| f64::to_radians(tip) * st.span / length)
+                .collect();
             let t = solve(&rotor, &stations, &twist, &row.at).unwrap();
             eprintln!(
                 "    tip twist {tip}° toward feather: power {:+.2} %, thrust {:+.2} %",
@@ -116,7 +125,12 @@ fn iea15mw_rigid_against_the_flexible_operation_table() {
                 100.0 * (t.thrust / row.thrust - 1.0)
             );
         }
-        assert!(s.thrust > row.thrust, "{} m/s: rigid thrust {} below the table's", row.wind, s.thrust);
+        assert!(
+            s.thrust > row.thrust,
+            "{} m/s: rigid thrust {} below the table's",
+            row.wind,
+            s.thrust
+        );
         if row.wind > 11.0 {
             let pitch = flutterscope::numeric::root::brent(
                 |p| {
@@ -129,7 +143,11 @@ fn iea15mw_rigid_against_the_flexible_operation_table() {
             )
             .unwrap();
             let extra = (pitch - row.at.pitch).to_degrees();
-            eprintln!("    pitch for the table's power: {:.3}° (table {:.3}°, {extra:+.3}°)", pitch.to_degrees(), row.at.pitch.to_degrees());
+            eprintln!(
+                "    pitch for the table's power: {:.3}° (table {:.3}°, {extra:+.3}°)",
+                pitch.to_degrees(),
+                row.at.pitch.to_degrees()
+            );
             assert!((1.5..4.0).contains(&extra), "{} m/s: {extra}°", row.wind);
         }
     }
@@ -149,7 +167,11 @@ fn iea15mw_within_5_percent_of_its_operation_table() {
         .iter()
         .map(|row| {
             let s = solve(&rotor, &stations, &[], &row.at).unwrap();
-            (row.wind, s.power / row.power - 1.0, s.thrust / row.thrust - 1.0)
+            (
+                row.wind,
+                s.power / row.power - 1.0,
+                s.thrust / row.thrust - 1.0,
+            )
         })
         .filter(|(_, p, t)| p.abs() >= 0.05 || t.abs() >= 0.05)
         .collect();
@@ -207,7 +229,10 @@ fn nrel5mw_centre_ahead_of_the_pitch_axis_matches_the_aerodyn_offsets() {
     assert!((tip.ac_ahead - 0.125 * tip.chord).abs() < 1e-9);
     // Airfoil ids name aero.airfoils in order: the tip node (BlAFID 8) has NACA64's table.
     let c = tip.polar.at(-175f64.to_radians());
-    assert!((c.cl - 0.374).abs() < 1e-12 && (c.cd - 0.0341).abs() < 1e-12, "{c:?}");
+    assert!(
+        (c.cl - 0.374).abs() < 1e-12 && (c.cd - 0.0341).abs() < 1e-12,
+        "{c:?}"
+    );
 }
 
 /// HAWC2: the centre a quarter chord ahead of the half-chord line, the twist from the AeroDyn
@@ -226,20 +251,24 @@ fn iea15mw_hawc2_mapping() {
     let set = &pc.sets[0];
     let (lo, hi) = (&set.profiles[5], &set.profiles[6]);
     assert_eq!((lo.thickness_pct, hi.thickness_pct), (36.0, 50.0));
-    let w = (38.97928181828250 - 36.0) / 14.0;
+    let w = (38.979_281_818_282_5 - 36.0) / 14.0;
     let lin = |alpha: &[f64], v: &[f64], a: f64| {
         let k = alpha.partition_point(|&x| x <= a);
         let t = (a - alpha[k - 1]) / (alpha[k] - alpha[k - 1]);
         v[k - 1] + t * (v[k] - v[k - 1])
     };
     for a in [-10.0, 0.0, 5.0, 12.0, 40.0] {
-        let expected = (1.0 - w) * lin(&lo.alpha_deg, &lo.cl, a) + w * lin(&hi.alpha_deg, &hi.cl, a);
+        let expected =
+            (1.0 - w) * lin(&lo.alpha_deg, &lo.cl, a) + w * lin(&hi.alpha_deg, &hi.cl, a);
         let got = row.polar.at(f64::to_radians(a)).cl;
         assert!((got - expected).abs() < 1e-9, "α {a}: {got} vs {expected}");
     }
     // Outboard rows of one thickness share one polar.
     let n = blade.nodes.len();
-    assert!(std::sync::Arc::ptr_eq(&blade.nodes[n - 1].polar, &blade.nodes[n - 2].polar));
+    assert!(std::sync::Arc::ptr_eq(
+        &blade.nodes[n - 1].polar,
+        &blade.nodes[n - 2].polar
+    ));
 }
 
 /// Every station converges over the whole operating envelope and beyond it: parked (Ω = 0),
@@ -267,7 +296,9 @@ fn bem_converges_at_every_station_parked_and_stalled() {
                     assert!(s.power.is_finite() && s.thrust.is_finite());
                     for f in &s.stations {
                         assert!(f.inflow_angle.is_finite() && f.axial_induction.is_finite());
-                        if f.angle_of_attack > 20f64.to_radians() && f.span > 0.3 * blade.span_range().1 {
+                        if f.angle_of_attack > 20f64.to_radians()
+                            && f.span > 0.3 * blade.span_range().1
+                        {
                             stalled += 1;
                         }
                     }
@@ -282,7 +313,11 @@ fn bem_converges_at_every_station_parked_and_stalled() {
                 }
             }
         }
-        assert!(stalled > 100, "{}: only {stalled} stalled outboard stations", blade.origin);
+        assert!(
+            stalled > 100,
+            "{}: only {stalled} stalled outboard stations",
+            blade.origin
+        );
         assert_eq!(points, 150);
     }
 }
@@ -303,14 +338,35 @@ fn converged_elements_balance_momentum() {
     };
     let s = solve(&rotor, &stations, &[], &at).unwrap();
     let mut checked = 0;
-    for f in s.stations.iter().filter(|f| f.axial_induction > 0.01 && f.axial_induction < 0.4) {
-        let (r, a, ap, big_f) = (f.radius, f.axial_induction, f.tangential_induction, f.loss_factor);
+    for f in s
+        .stations
+        .iter()
+        .filter(|f| f.axial_induction > 0.01 && f.axial_induction < 0.4)
+    {
+        let (r, a, ap, big_f) = (
+            f.radius,
+            f.axial_induction,
+            f.tangential_induction,
+            f.loss_factor,
+        );
         let rho_u = at.air_density * at.wind_speed;
         let thrust = 4.0 * std::f64::consts::PI * r * rho_u * at.wind_speed * a * (1.0 - a) * big_f;
-        let torque =
-            4.0 * std::f64::consts::PI * r.powi(3) * rho_u * at.rotor_speed * ap * (1.0 - a) * big_f;
-        assert!((3.0 * f.out_of_plane_load / thrust - 1.0).abs() < 1e-6, "r {r}");
-        assert!((3.0 * f.in_plane_load * r / torque - 1.0).abs() < 1e-6, "r {r}");
+        let torque = 4.0
+            * std::f64::consts::PI
+            * r.powi(3)
+            * rho_u
+            * at.rotor_speed
+            * ap
+            * (1.0 - a)
+            * big_f;
+        assert!(
+            (3.0 * f.out_of_plane_load / thrust - 1.0).abs() < 1e-6,
+            "r {r}"
+        );
+        assert!(
+            (3.0 * f.in_plane_load * r / torque - 1.0).abs() < 1e-6,
+            "r {r}"
+        );
         checked += 1;
     }
     assert!(checked > 15, "{checked}");
@@ -357,17 +413,31 @@ pitch_axis_file = "presets/blades/nrel5mw/NRELOffshrBsline5MW_Blade.dat"
 #[test]
 fn hostile_aerodynamic_keys_and_files_are_named() {
     let e = load(NREL_AERO).unwrap_err();
-    assert!(e.contains("aero.airfoils") && e.contains("0") && e.contains("test.toml"), "{e}");
+    assert!(
+        e.contains("aero.airfoils") && e.contains("0") && e.contains("test.toml"),
+        "{e}"
+    );
     let two = NREL_AERO.replace(
         "[aero]",
         r#"[aero]
 airfoils = ["presets/blades/nrel5mw/Airfoils/Cylinder1.dat", "presets/blades/nrel5mw/Airfoils/Cylinder2.dat"]"#,
     );
     let e = load(&two).unwrap_err();
-    assert!(e.contains("BlAFID = 3") && e.contains("2 file(s)") && e.contains("NRELOffshrBsline5MW_AeroDyn_blade.dat"), "{e}");
-    let wrong_axis = two.replace("NRELOffshrBsline5MW_Blade.dat", "NRELOffshrBsline5MW_BeamDyn.dat");
+    assert!(
+        e.contains("BlAFID = 3")
+            && e.contains("2 file(s)")
+            && e.contains("NRELOffshrBsline5MW_AeroDyn_blade.dat"),
+        "{e}"
+    );
+    let wrong_axis = two.replace(
+        "NRELOffshrBsline5MW_Blade.dat",
+        "NRELOffshrBsline5MW_BeamDyn.dat",
+    );
     let e = load(&wrong_axis).unwrap_err();
-    assert!(e.contains("aero.pitch_axis_file") && e.contains("NRELOffshrBsline5MW_BeamDyn.dat"), "{e}");
+    assert!(
+        e.contains("aero.pitch_axis_file") && e.contains("NRELOffshrBsline5MW_BeamDyn.dat"),
+        "{e}"
+    );
     let mixed = NREL_AERO.replace("[aero]", "[aero]\nae_file = 'x'\npc_file = 'y'");
     assert!(load(&mixed).unwrap_err().contains("give one set"));
     let hawc2_on_beamdyn = r#"
@@ -379,18 +449,35 @@ model = "none"
 ae_file = "presets/blades/iea15mw/IEA_15MW_RWT_ae.dat"
 pc_file = "presets/blades/iea15mw/IEA_15MW_RWT_pc.dat"
 "#;
-    assert!(load(hawc2_on_beamdyn).unwrap_err().contains("half-chord line"));
-    let e = Preset::load("iea15mw", &["aero.ae_set=2".into()]).unwrap_err().to_string();
-    assert!(e.contains("aero.ae_set = 2") && e.contains("1 ae set(s)"), "{e}");
-    let e = Preset::load("iea15mw", &["operating.schedule=law".into()]).unwrap_err().to_string();
-    assert!(e.contains("operating.schedule_file") , "{e}");
-    let e = Preset::load("nrel5mw", &["operating.rotor_speed_min=13".into()]).unwrap_err().to_string();
-    assert!(e.contains("operating.rotor_speed_min = 13") && e.contains("operating.rotor_speed_max"), "{e}");
+    assert!(load(hawc2_on_beamdyn)
+        .unwrap_err()
+        .contains("half-chord line"));
+    let e = Preset::load("iea15mw", &["aero.ae_set=2".into()])
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("aero.ae_set = 2") && e.contains("1 ae set(s)"),
+        "{e}"
+    );
+    let e = Preset::load("iea15mw", &["operating.schedule=law".into()])
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("operating.schedule_file"), "{e}");
+    let e = Preset::load("nrel5mw", &["operating.rotor_speed_min=13".into()])
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("operating.rotor_speed_min = 13") && e.contains("operating.rotor_speed_max"),
+        "{e}"
+    );
     let e = Preset::load("iea15mw", &["operating.wind_speed=30".into()])
         .and_then(|p| flutterscope::physics::rotor::steady::for_preset(&p))
         .unwrap_err()
         .to_string();
-    assert!(e.contains("outside the operating table") && e.contains("25"), "{e}");
+    assert!(
+        e.contains("outside the operating table") && e.contains("25"),
+        "{e}"
+    );
 }
 
 /// A thickness outside the pc set's profiles is refused, not extrapolated.
@@ -400,8 +487,15 @@ fn thickness_outside_the_pc_set_is_refused() {
     use flutterscope::physics::blade::hawc2::ChordTwist;
     use flutterscope::physics::rotor::files::from_hawc2;
     let ae = parse_ae("1\n1 2\n0 1 15 1\n10 1 20 1\n", "a.ae").unwrap();
-    let pc = parse_pc("1\n1\n1 3 18 x\n-10 -1 0.01 0\n0 0.2 0.01 0\n10 1.2 0.02 0\n", "p.pc").unwrap();
+    let pc = parse_pc(
+        "1\n1\n1 3 18 x\n-10 -1 0.01 0\n0 0.2 0.01 0\n10 1.2 0.02 0\n",
+        "p.pc",
+    )
+    .unwrap();
     let e = from_hawc2(&ae, "a.ae", 1, &pc, "p.pc", &ChordTwist::untwisted()).unwrap_err();
     let e = e.to_string();
-    assert!(e.contains("a.ae") && e.contains("row 1") && e.contains("15 %"), "{e}");
+    assert!(
+        e.contains("a.ae") && e.contains("row 1") && e.contains("15 %"),
+        "{e}"
+    );
 }

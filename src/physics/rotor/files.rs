@@ -50,7 +50,11 @@ pub fn read_aerodyn(
 /// the pitching moment is part of the aerodynamic description.
 pub fn airfoil_polar(file: &AirfoilFile, origin: &str) -> Result<Polar> {
     let table = file.tables.first().ok_or_else(|| {
-        Error::format(origin, 0, "the airfoil file has no polar table (NumTabs = 0)")
+        Error::format(
+            origin,
+            0,
+            "the airfoil file has no polar table (NumTabs = 0)",
+        )
     })?;
     let cm = table.cm.clone().ok_or_else(|| {
         Error::format(
@@ -61,8 +65,14 @@ pub fn airfoil_polar(file: &AirfoilFile, origin: &str) -> Result<Polar> {
         )
     })?;
     let alpha = table.alpha_deg.iter().map(|a| a.to_radians()).collect();
-    Polar::new(alpha, table.cl.clone(), table.cd.clone(), cm, &format!("{origin}, table 1"))
-        .map_err(|e| Error::format(origin, 0, e.to_string()))
+    Polar::new(
+        alpha,
+        table.cl.clone(),
+        table.cd.clone(),
+        cm,
+        &format!("{origin}, table 1"),
+    )
+    .map_err(|e| Error::format(origin, 0, e.to_string()))
 }
 
 /// [`read_aerodyn`] on parsed files; `blade_origin` and `axis_origin` name them in errors.
@@ -80,7 +90,8 @@ pub fn from_aerodyn(
         .iter()
         .enumerate()
         .map(|(i, n)| {
-            let at = |what: String| Error::format(blade_origin, 0, format!("node {}: {what}", i + 1));
+            let at =
+                |what: String| Error::format(blade_origin, 0, format!("node {}: {what}", i + 1));
             let polar = polars.get(n.bl_af_id - 1).ok_or_else(|| {
                 at(format!(
                     "BlAFID = {} names airfoil {} but aero.airfoils lists {} file(s)",
@@ -89,8 +100,11 @@ pub fn from_aerodyn(
                     polars.len()
                 ))
             })?;
-            if !(n.bl_chord > 0.0) {
-                return Err(at(format!("BlChord = {} m; a chord must be positive", n.bl_chord)));
+            if n.bl_chord <= 0.0 {
+                return Err(at(format!(
+                    "BlChord = {} m; a chord must be positive",
+                    n.bl_chord
+                )));
             }
             let pitch_axis = pitch_axis_at(axis, n.bl_spn / span);
             Ok(AeroNode {
@@ -106,7 +120,10 @@ pub fn from_aerodyn(
         return Err(Error::format(
             blade_origin,
             0,
-            format!("BlSpn starts at {} m; spans are measured from the root, ≥ 0", nodes[0].span),
+            format!(
+                "BlSpn starts at {} m; spans are measured from the root, ≥ 0",
+                nodes[0].span
+            ),
         ));
     }
     Ok(AeroBlade {
@@ -155,7 +172,9 @@ fn check_fractions(axis: &ElastoDynBlade, origin: &str) -> Result<()> {
 /// `PitchAxis` at blade fraction `f`, linear between stations.
 fn pitch_axis_at(axis: &ElastoDynBlade, f: f64) -> f64 {
     let s = &axis.stations;
-    let k = s.partition_point(|x| x.bl_fract <= f).clamp(1, s.len().max(2) - 1);
+    let k = s
+        .partition_point(|x| x.bl_fract <= f)
+        .clamp(1, s.len().max(2) - 1);
     if s.len() == 1 {
         return s[0].pitch_axis;
     }
@@ -195,7 +214,10 @@ pub fn from_hawc2(
         Error::format(
             ae_origin,
             0,
-            format!("aero.ae_set = {ae_set}: the file has {} ae set(s)", ae.sets.len()),
+            format!(
+                "aero.ae_set = {ae_set}: the file has {} ae set(s)",
+                ae.sets.len()
+            ),
         )
     })?;
     // Rows of the same pc set and thickness share one polar (the outboard IEA 15MW rows all
@@ -204,13 +226,24 @@ pub fn from_hawc2(
     let mut nodes = Vec::with_capacity(set.rows.len());
     for (i, row) in set.rows.iter().enumerate() {
         let at = |what: String| {
-            Error::format(ae_origin, 0, format!("ae set {ae_set}, row {} (r = {} m): {what}", i + 1, row.r))
+            Error::format(
+                ae_origin,
+                0,
+                format!("ae set {ae_set}, row {} (r = {} m): {what}", i + 1, row.r),
+            )
         };
-        if !(row.chord > 0.0) {
-            return Err(at(format!("chord {} m; a chord must be positive", row.chord)));
+        if row.chord <= 0.0 {
+            return Err(at(format!(
+                "chord {} m; a chord must be positive",
+                row.chord
+            )));
         }
         let pc_set = pc.sets.get(row.pc_set - 1).ok_or_else(|| {
-            at(format!("pc set {} named, but {pc_origin} has {} set(s)", row.pc_set, pc.sets.len()))
+            at(format!(
+                "pc set {} named, but {pc_origin} has {} set(s)",
+                row.pc_set,
+                pc.sets.len()
+            ))
         })?;
         let found = made
             .iter()

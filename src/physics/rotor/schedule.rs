@@ -65,7 +65,9 @@ impl Table {
                 self.origin
             )));
         }
-        let k = w.partition_point(|&x| x <= wind).clamp(1, w.len().max(2) - 1);
+        let k = w
+            .partition_point(|&x| x <= wind)
+            .clamp(1, w.len().max(2) - 1);
         if w.len() == 1 {
             return Ok(Setting {
                 rotor_speed: self.rotor_speed[0],
@@ -152,6 +154,9 @@ mod tests {
         wind.set(10.0);
         let high = law.at(10.0, power).unwrap();
         assert_eq!(high.rotor_speed, 1.0);
-        assert!((0.002 * 1000.0 * (1.0 - high.pitch) - 1.0).abs() < 1e-6, "{high:?}");
+        assert!(
+            (0.002 * 1000.0 * (1.0 - high.pitch) - 1.0).abs() < 1e-6,
+            "{high:?}"
+        );
     }
 }

@@ -35,13 +35,15 @@ pub fn rotor_of(p: &ValidPreset, blade: &AeroBlade) -> Rotor {
 
 /// The preset's aerodynamic description, or an error saying which keys give one.
 pub fn aero_blade_of(p: &ValidPreset) -> Result<&AeroBlade> {
-    p.aero_blade().map(|b| b.as_ref()).ok_or_else(|| Error::Invalid {
-        origin: p.origin.clone(),
-        message: "the steady operating point needs the rotor's aerodynamic description: \
+    p.aero_blade()
+        .map(|b| b.as_ref())
+        .ok_or_else(|| Error::Invalid {
+            origin: p.origin.clone(),
+            message: "the steady operating point needs the rotor's aerodynamic description: \
                   aero.blade_file, aero.airfoils and aero.pitch_axis_file (AeroDyn 15 with a \
                   BeamDyn blade) or aero.ae_file and aero.pc_file (HAWC2 with a HAWC2 blade)"
-            .into(),
-    })
+                .into(),
+        })
 }
 
 /// The steady operating point at the preset's wind speed, rigid blade.
