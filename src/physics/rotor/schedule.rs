@@ -146,7 +146,7 @@ mod tests {
             tip_radius: 10.0,
         };
         // A made-up rotor: power ∝ U³ cos²(pitch)·… , falling with pitch.
-        let wind = std::cell::Cell::new(0.0);
+        let wind = std::cell::Cell::new(0.0f64);
         let power = |_: f64, pitch: f64| Ok(0.002 * wind.get().powi(3) * (1.0 - pitch));
         wind.set(1.0);
         let low = law.at(1.0, power).unwrap();
