@@ -481,3 +481,134 @@ fn thickness_outside_the_pc_set_is_refused() {
         "{e}"
     );
 }
+
+fn flutterscope(args: &[&str]) -> std::process::Output {
+    assert_cmd::cargo::cargo_bin_cmd!("flutterscope")
+        .args(args)
+        .env_remove("SLURM_ARRAY_TASK_ID")
+        .env_remove("SLURM_ARRAY_TASK_COUNT")
+        .output()
+        .unwrap()
+}
+
+/// `operating --json` carries the totals and, per station, the inflow angle, angle of attack and
+/// inductions; the law holds rated power above rated.
+#[test]
+fn operating_json_reports_totals_and_stations() {
+    let out = flutterscope(&[
+        "operating",
+        "--preset",
+        "nrel5mw",
+        "--set",
+        "operating.wind_speed=15",
+        "--json",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    for key in [
+        "power_w",
+        "thrust_n",
+        "torque_nm",
+        "tip_speed_ratio",
+        "pitch_deg",
+        "rotor_speed_rpm",
+    ] {
+        assert!(v[key].as_f64().unwrap().is_finite(), "{key}");
+    }
+    assert!((v["power_w"].as_f64().unwrap() / 5.296e6 - 1.0).abs() < 1e-6);
+    assert!(v["pitch_deg"].as_f64().unwrap() > 5.0);
+    let stations = v["stations"].as_array().unwrap();
+    assert_eq!(stations.len(), 30);
+    for s in stations {
+        for key in [
+            "inflow_angle_deg",
+            "angle_of_attack_deg",
+            "axial_induction",
+            "tangential_induction",
+        ] {
+            assert!(s[key].as_f64().unwrap().is_finite(), "{key}");
+        }
+    }
+}
+
+/// Along the schedule: one CSV row per wind speed, the curve plotted; the table refuses winds
+/// beyond it; a preset without an aerodynamic description is told which keys give one.
+#[test]
+fn operating_curves_and_errors() {
+    let dir = std::env::temp_dir().join(format!("flutterscope-bem-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let plot = dir.join("curve.svg");
+    let out = flutterscope(&[
+        "operating",
+        "--preset",
+        "iea15mw",
+        "--vary",
+        "operating.wind_speed=5:25:5",
+        "--plot",
+        plot.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let csv = String::from_utf8(out.stdout).unwrap();
+    let lines: Vec<&str> = csv.lines().collect();
+    assert_eq!(lines.len(), 6, "{csv}");
+    assert!(lines[0].contains("power_w") && lines[0].contains("thrust_n"));
+    assert!(std::fs::read_to_string(&plot).unwrap().contains("<svg"));
+    let out = flutterscope(&[
+        "operating",
+        "--preset",
+        "iea15mw",
+        "--vary",
+        "operating.wind_speed=20:30:5",
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("outside the operating table"));
+    let out = flutterscope(&["operating", "--preset", "liu2017"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("aero.blade_file"));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `--shard auto` outside a Slurm array job is a usage error naming the variables; inside one it
+/// computes the task's slice.
+#[test]
+fn shard_auto_reads_the_slurm_array_task() {
+    let args = [
+        "sweep",
+        "--preset",
+        "liu2017",
+        "--vary",
+        "operating.rotor_speed=0:100:50",
+        "--shard",
+        "auto",
+    ];
+    let out = flutterscope(&args);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("SLURM_ARRAY_TASK_ID"));
+    let whole = flutterscope(&args[..5]);
+    let mut merged = String::new();
+    for task in 1..=2 {
+        let out = assert_cmd::cargo::cargo_bin_cmd!("flutterscope")
+            .args(args)
+            .env("SLURM_ARRAY_TASK_ID", task.to_string())
+            .env("SLURM_ARRAY_TASK_COUNT", "2")
+            .env("SLURM_ARRAY_TASK_MIN", "1")
+            .output()
+            .unwrap();
+        assert!(out.status.success());
+        let text = String::from_utf8(out.stdout).unwrap();
+        let skip = if task == 1 { 0 } else { 1 };
+        for line in text.lines().skip(skip) {
+            merged.push_str(line);
+            merged.push('\n');
+        }
+    }
+    assert_eq!(merged, String::from_utf8(whole.stdout).unwrap());
+}
