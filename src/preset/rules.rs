@@ -164,10 +164,10 @@ pub fn check(p: &Preset) -> Result<()> {
     law_is_complete(p).map_err(invalid)?;
     if p.blade.source.is_tabulated() && p.aero.model != AeroModel::None {
         return Err(invalid(format!(
-            "aero.model = \"{}\" with blade.source = \"{}\": strip aerodynamics on a tabulated \
-             blade needs the blade's own aerodynamic description (chord, twist and airfoil polars \
-             along the span), which a preset cannot give yet; set aero.model = \"none\" for the \
-             blade's structural modes and damping",
+            "aero.model = \"{}\" with blade.source = \"{}\": strip aerodynamics in the linear \
+             model of a tabulated blade is not built yet (its aerodynamic description, aero.*, \
+             feeds the steady operating point of `flutterscope operating` only); set aero.model \
+             = \"none\" for the blade's structural modes and damping",
             p.aero.model.name(),
             p.blade.source.name()
         )));
