@@ -165,8 +165,9 @@ pub enum Command {
         csv: bool,
         #[arg(long)]
         json: bool,
-        /// Compute slice I of N (1-based) of the grid, for batch schedulers.
-        #[arg(long, value_name = "I/N")]
+        /// Compute slice I of N (1-based) of the grid, for batch schedulers; `auto` takes it
+        /// from a Slurm array job (SLURM_ARRAY_TASK_ID, SLURM_ARRAY_TASK_COUNT).
+        #[arg(long, value_name = "I/N|auto")]
         shard: Option<String>,
         /// Write a plot (SVG or PNG by extension).
         #[arg(long, value_name = "FILE")]

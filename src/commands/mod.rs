@@ -12,6 +12,7 @@ pub mod presets;
 pub mod reproduce;
 pub mod section;
 pub mod simulate;
+pub mod slurm;
 pub mod snapshot;
 pub mod sweep;
 pub mod tui;

@@ -1,10 +1,10 @@
 //! The steady aeroelastic operating point of a real blade and its linear system (docs/model.md
-//! §12.5).
+//! §12.6).
 //!
 //! Inputs: a checked preset with a tabulated blade and its aerodynamic description. Steps:
 //! rotor speed and pitch from `operating.schedule` at the wind speed ([`on_schedule`]); the
 //! structure there; the BEM (§12.2) on the blade twisted by its elastic twist (none at first);
-//! the strips on that inflow, induction frozen (§12.4); the static equilibrium of the structure
+//! the strips on that inflow, induction frozen (§12.5); the static equilibrium of the structure
 //! under those strip loads, whose angles of attack see the elastic twist (§6); the BEM again
 //! with the new twist, until the twist at every station settles. Outputs: the converged flow,
 //! the system about it and the equilibrium state.

@@ -84,7 +84,7 @@ impl System {
     ///
     /// A real blade with its aerodynamic description runs at its scheduled rotor speed and pitch,
     /// its strips on the inflow of its steady aeroelastic operating point
-    /// ([`crate::physics::operating`], docs/model.md §12.5).
+    /// ([`crate::physics::operating`], docs/model.md §12.6).
     pub fn new(p: &ValidPreset) -> Result<System> {
         if operating::in_the_wind(p) {
             return operating::steady(p, operating::unsteadiness(p)).map(|op| op.system);

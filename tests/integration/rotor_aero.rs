@@ -1,4 +1,4 @@
-//! Real-blade aerodynamics in the system (docs/model.md §12.4): the blade-element strip loads
+//! Real-blade aerodynamics in the system (docs/model.md §12.5): the blade-element strip loads
 //! in flap, edge and twist on a tabulated structure.
 
 use flutterscope::formats::airfoil::{read_airfoil, PolarColumns};

@@ -1,4 +1,4 @@
-//! Blade-element strip loads on a real blade in three directions (docs/model.md §12.4): each
+//! Blade-element strip loads on a real blade in three directions (docs/model.md §12.5): each
 //! station's own chord, aerodynamic centre and polar, the steady inflow with its induction frozen,
 //! and the section's flap, edge and twist motion.
 //!

@@ -100,7 +100,7 @@ pub fn from_aerodyn(
                     polars.len()
                 ))
             })?;
-            if !(n.bl_chord > 0.0) {
+            if n.bl_chord <= 0.0 {
                 return Err(at(format!(
                     "BlChord = {} m; a chord must be positive",
                     n.bl_chord
@@ -232,7 +232,7 @@ pub fn from_hawc2(
                 format!("ae set {ae_set}, row {} (r = {} m): {what}", i + 1, row.r),
             )
         };
-        if !(row.chord > 0.0) {
+        if row.chord <= 0.0 {
             return Err(at(format!(
                 "chord {} m; a chord must be positive",
                 row.chord
