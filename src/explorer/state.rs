@@ -93,6 +93,8 @@ pub fn offered(p: &ValidPreset, param: &Param) -> bool {
         ParamKind::Number { key, .. } => match key {
             "section.ply_angle" => !tabulated && p.section.source != SectionSource::Direct,
             "structure.loss_factor" => !tabulated,
+            // A real blade's inflow is the BEM's (docs/model.md §12.6): no tunnel.
+            "operating.tunnel_speed" => !tabulated,
             "blade.bend_twist_coupling" => tabulated,
             _ => true,
         },
@@ -497,6 +499,7 @@ impl AppState {
     fn campbell_key(&self) -> Preset {
         let mut p = self.preset.clone().into_preset();
         p.operating.rotor_speed = 0.0;
+        p.schedule_overrides.rotor_speed = false;
         p
     }
 

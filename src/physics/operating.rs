@@ -85,11 +85,14 @@ pub fn on_schedule(p: &ValidPreset) -> Result<ValidPreset> {
     let s = setting(p, &rotor, power).map_err(|e| e.at(p.operating_point()))?;
     let held = p.schedule_overrides;
     p.edited(|q| {
+        // Back to the preset's units, rounded to 1e-9 (far below any schedule's precision) so
+        // that a table's 12.1 rpm reads 12.1 again after its trip through rad/s.
+        let tidy = |x: f64| (x * 1e9).round() / 1e9;
         if !held.rotor_speed {
-            q.operating.rotor_speed = s.rotor_speed * 30.0 / std::f64::consts::PI;
+            q.operating.rotor_speed = tidy(s.rotor_speed * 30.0 / std::f64::consts::PI);
         }
         if !held.pitch {
-            q.operating.pitch = s.pitch.to_degrees();
+            q.operating.pitch = tidy(s.pitch.to_degrees());
         }
         q.operating.schedule = Schedule::None;
         q.operating.schedule_file.clear();

@@ -65,7 +65,7 @@ fn nrel5mw_is_the_5mw_blade_from_its_beamdyn_files() {
     assert_eq!(p.blade.hub_radius, 1.5);
     assert_eq!(p.operating.rotor_speed, 12.1);
     assert_eq!(p.operating.pitch, 0.0);
-    assert_eq!(p.aero.model, flutterscope::preset::AeroModel::None);
+    assert_eq!(p.aero.model, flutterscope::preset::AeroModel::Theodorsen);
     assert_eq!(p.structure.modes, 12);
     let blade = p
         .tabulated_blade()
