@@ -5,7 +5,8 @@
 
 use crate::commands::{parse_vary, print_json, print_text};
 use crate::error::{Error, Result};
-use crate::physics::rotor::steady::{for_preset, SteadyPoint};
+use crate::physics::operating::deflected_point;
+use crate::physics::rotor::steady::SteadyPoint;
 use crate::preset::ValidPreset;
 use rayon::prelude::*;
 use serde::Serialize;
@@ -22,10 +23,15 @@ struct Totals {
     power_w: f64,
     thrust_n: f64,
     torque_nm: f64,
+    /// The tip's elastic deflection at the static aeroelastic equilibrium: twist toward feather,
+    /// flap downwind, edge toward the leading edge.
+    tip_twist_deg: f64,
+    tip_flap_m: f64,
+    tip_edge_m: f64,
 }
 
 impl Totals {
-    fn of(s: &SteadyPoint) -> Totals {
+    fn of((s, [twist, flap, edge]): &(SteadyPoint, [f64; 3])) -> Totals {
         Totals {
             wind_speed: s.wind_speed,
             rotor_speed_rpm: s.rotor_speed_rpm,
@@ -34,6 +40,9 @@ impl Totals {
             power_w: s.state.power,
             thrust_n: s.state.thrust,
             torque_nm: s.state.torque,
+            tip_twist_deg: twist.to_degrees(),
+            tip_flap_m: *flap,
+            tip_edge_m: *edge,
         }
     }
 }
@@ -110,19 +119,19 @@ pub fn run(
 }
 
 fn one_point(p: &ValidPreset, json: bool, csv: bool) -> Result<()> {
-    let s = for_preset(p)?;
+    let point = deflected_point(p)?;
     if json {
         return print_json(&PointReport {
             preset: p.display_name(),
             schedule: p.operating.schedule.name(),
-            totals: Totals::of(&s),
-            stations: station_rows(&s),
+            totals: Totals::of(&point),
+            stations: station_rows(&point.0),
         });
     }
     if csv {
-        return print_text(&stations_csv(&s));
+        return print_text(&stations_csv(&point.0));
     }
-    print_text(&point_text(p, &s))
+    print_text(&point_text(p, &point))
 }
 
 const STATION_COLUMNS: &str = "span_m,radius_m,inflow_angle_deg,angle_of_attack_deg,\
@@ -153,12 +162,14 @@ fn stations_csv(s: &SteadyPoint) -> String {
     out
 }
 
-fn point_text(p: &ValidPreset, s: &SteadyPoint) -> String {
+fn point_text(p: &ValidPreset, (s, [twist, flap, edge]): &(SteadyPoint, [f64; 3])) -> String {
     let t = &s.state;
     let mut out = format!(
-        "Steady operating point — {} (operating.schedule = {}; rigid blade)\n\
+        "Steady operating point — {} (operating.schedule = {}; deflected blade, static \
+         aeroelastic equilibrium)\n\
          wind {:.3} m/s, rotor speed {:.4} rpm, pitch {:.4}°, tip speed ratio {:.4}\n\
-         power {:.1} kW, thrust {:.1} kN, torque {:.1} kN·m\n\n",
+         power {:.1} kW, thrust {:.1} kN, torque {:.1} kN·m\n\
+         tip deflection: flap {:.3} m downwind, edge {:.3} m, twist {:.3}° toward feather\n\n",
         p.display_name(),
         p.operating.schedule.name(),
         s.wind_speed,
@@ -167,7 +178,10 @@ fn point_text(p: &ValidPreset, s: &SteadyPoint) -> String {
         t.tip_speed_ratio,
         t.power / 1e3,
         t.thrust / 1e3,
-        t.torque / 1e3
+        t.torque / 1e3,
+        flap,
+        edge,
+        twist.to_degrees()
     );
     out.push_str(
         "  span (m)  r (m)   φ (°)    α (°)     a       a'      F     W (m/s)   Cl      Cd    \
@@ -201,9 +215,9 @@ fn curve(p: &ValidPreset, spec: &str, json: bool, plot: Option<&Path>) -> Result
     for &v in [values.first(), values.last()].into_iter().flatten() {
         p.with(&key, v)?;
     }
-    let points: Vec<SteadyPoint> = values
+    let points: Vec<(SteadyPoint, [f64; 3])> = values
         .par_iter()
-        .map(|&v| p.with(&key, v).and_then(|q| for_preset(&q)))
+        .map(|&v| p.with(&key, v).and_then(|q| deflected_point(&q)))
         .collect::<Result<_>>()?;
     if json {
         print_json(&serde_json::json!({
@@ -215,27 +229,31 @@ fn curve(p: &ValidPreset, spec: &str, json: bool, plot: Option<&Path>) -> Result
         }))?;
     } else {
         let mut out = format!(
-            "{key},wind_speed,rotor_speed_rpm,pitch_deg,tip_speed_ratio,power_w,thrust_n,torque_nm\n"
+            "{key},wind_speed,rotor_speed_rpm,pitch_deg,tip_speed_ratio,power_w,thrust_n,\
+             torque_nm,tip_twist_deg,tip_flap_m,tip_edge_m\n"
         );
         for (v, s) in values.iter().zip(&points) {
             let t = Totals::of(s);
             let _ = writeln!(
                 out,
-                "{v},{},{},{},{},{},{},{}",
+                "{v},{},{},{},{},{},{},{},{},{},{}",
                 t.wind_speed,
                 t.rotor_speed_rpm,
                 t.pitch_deg,
                 t.tip_speed_ratio,
                 t.power_w,
                 t.thrust_n,
-                t.torque_nm
+                t.torque_nm,
+                t.tip_twist_deg,
+                t.tip_flap_m,
+                t.tip_edge_m
             );
         }
         print_text(&out)?;
     }
     if let Some(path) = plot {
-        let power: Vec<f64> = points.iter().map(|s| s.state.power).collect();
-        let thrust: Vec<f64> = points.iter().map(|s| s.state.thrust).collect();
+        let power: Vec<f64> = points.iter().map(|(s, _)| s.state.power).collect();
+        let thrust: Vec<f64> = points.iter().map(|(s, _)| s.state.thrust).collect();
         let fig = crate::plot::from_results::power_curve(
             p.display_name(),
             &key,

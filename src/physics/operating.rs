@@ -21,7 +21,7 @@ use crate::physics::aero::blade_element::{
 };
 use crate::physics::inflow::Station;
 use crate::physics::rotor::bem::{self, Conditions, OperatingState};
-use crate::physics::rotor::steady::{aero_blade_of, rotor_of, setting};
+use crate::physics::rotor::steady::{aero_blade_of, rotor_of, setting, SteadyPoint};
 use crate::physics::structure::for_preset;
 use crate::physics::system::System;
 use crate::preset::{AeroModel, Schedule, ValidPreset};
@@ -97,6 +97,23 @@ pub fn on_schedule(p: &ValidPreset) -> Result<ValidPreset> {
         q.operating.schedule = Schedule::None;
         q.operating.schedule_file.clear();
     })
+}
+
+/// The steady operating point of `p` as `flutterscope operating` reports it: the BEM on the
+/// blade deflected by its static aeroelastic equilibrium, the setting it ran at and the tip's
+/// deflection.
+pub fn deflected_point(p: &ValidPreset) -> Result<(SteadyPoint, [f64; 3])> {
+    let op = steady(p, unsteadiness(p))?;
+    let tip = op.tip();
+    Ok((
+        SteadyPoint {
+            wind_speed: op.preset.operating.wind_speed,
+            rotor_speed_rpm: op.preset.operating.rotor_speed,
+            pitch_deg: op.preset.operating.pitch,
+            state: op.flow,
+        },
+        tip,
+    ))
 }
 
 /// The unsteady strip model a preset's `aero.model` selects on a real blade; quasi-steady for
