@@ -1,10 +1,34 @@
 //! `flutterscope flutter`: the flutter (or divergence) boundary along one key.
 
 use crate::analysis::flutter::flutter_search;
+use crate::analysis::flutter::Search;
 use crate::analysis::sweep::track;
 use crate::error::Result;
 use crate::preset::ValidPreset;
+use serde::Serialize;
 use std::path::Path;
+
+/// The search as `--json` prints it, with the overspeed margin when it is one.
+#[derive(Serialize)]
+struct Report<'a> {
+    #[serde(flatten)]
+    search: &'a Search,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    rated_rotor_speed_rpm: Option<f64>,
+    /// Critical rotor speed / `operating.rated_rotor_speed`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    rated_multiple: Option<f64>,
+}
+
+/// The critical rotor speed as a multiple of the rated one, when the search is along the rotor
+/// speed and the preset states its rated speed (`operating.rated_rotor_speed` > 0).
+fn overspeed_margin(p: &ValidPreset, key: &str, critical: Option<f64>) -> Option<f64> {
+    let rated = p.operating.rated_rotor_speed;
+    (key == "operating.rotor_speed" && rated > 0.0)
+        .then_some(critical)
+        .flatten()
+        .map(|c| c / rated)
+}
 
 pub fn run(
     p: &ValidPreset,
@@ -19,10 +43,22 @@ pub fn run(
         crate::plot::format_for(path)?;
     }
     let search = flutter_search(p, key, from, to, points)?;
+    let overspeed = overspeed_margin(p, key, search.boundary.critical);
     if json {
-        super::print_json(&search)?;
+        super::print_json(&Report {
+            search: &search,
+            rated_rotor_speed_rpm: overspeed.map(|_| p.operating.rated_rotor_speed),
+            rated_multiple: overspeed,
+        })?;
     } else {
         println!("{}: {}", p.display_name(), search.message);
+        if let Some(multiple) = overspeed {
+            println!(
+                "overspeed margin: {multiple:.3}× the rated rotor speed ({} rpm, \
+                 operating.rated_rotor_speed)",
+                p.operating.rated_rotor_speed
+            );
+        }
     }
     if let Some(path) = plot {
         // The tracked modes on the search grid: damping ratio and frequency along the key.

@@ -153,3 +153,67 @@ fn flap_is_heavily_damped_edge_lightly_and_stall_takes_the_edge_damping_away() {
     assert!(damping(20.0, "edge 1") < damping(14.0, "edge 1"));
     assert!(damping(20.0, "flap 1") < 0.25 * damping(14.0, "flap 1"));
 }
+
+/// Overspeed flutter (issue 17 item 6): along the rotor speed at the preset's wind and scheduled
+/// pitch, the IEA 15MW blade's boundary, also as a multiple of its rated rotor speed.
+#[test]
+fn overspeed_flutter_is_quoted_against_the_rated_rotor_speed() {
+    let out = assert_cmd::Command::cargo_bin("flutterscope")
+        .unwrap()
+        .args([
+            "flutter",
+            "--preset",
+            "iea15mw",
+            "--vary",
+            "operating.rotor_speed",
+            "--from",
+            "7.56",
+            "--to",
+            "20",
+            "--json",
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let critical = json["critical"].as_f64().unwrap();
+    assert_eq!(json["rated_rotor_speed_rpm"].as_f64(), Some(7.56));
+    let multiple = json["rated_multiple"].as_f64().unwrap();
+    assert!((multiple - critical / 7.56).abs() < 1e-12);
+    // Above rated and within the range searched; the flutter frequency lies between the first
+    // flap and first torsion frequencies of the blade (a coalescence, not an edge mode).
+    assert!(multiple > 1.0 && critical < 20.0, "{critical}");
+    let f = json["frequency_hz"].as_f64().unwrap();
+    assert!(f > 0.6 && f < 4.2, "{f}");
+}
+
+/// The aeroelastic Campbell diagram along the schedule (issue 17 item 5): every wind speed of
+/// the IEA 15MW's operating range solves, at the table's rotor speed and pitch, and the first
+/// edge mode stays lightly damped while the first flap mode is heavily damped below rated.
+#[test]
+fn the_campbell_along_the_schedule_solves_every_wind_speed() {
+    let p = Preset::load("iea15mw", &[]).unwrap();
+    let grid: Vec<f64> = (3..=25).map(f64::from).collect();
+    let sweep = flutterscope::analysis::sweep::track(&p, "operating.wind_speed", &grid).unwrap();
+    assert!(sweep.failed.is_empty(), "{:?}", sweep.failed);
+    let mode = |label: &str| {
+        sweep
+            .modes
+            .iter()
+            .find(|m| m.label == label)
+            .unwrap_or_else(|| panic!("no {label}"))
+    };
+    let (edge, flap) = (mode("edge 1"), mode("flap 1"));
+    for (k, wind) in grid.iter().enumerate() {
+        let zeta = edge.damping_ratio[k];
+        assert!(zeta > 0.0 && zeta < 0.05, "edge 1 at {wind} m/s: {zeta}");
+        if *wind <= 10.0 {
+            let zeta = flap.damping_ratio[k];
+            assert!(zeta > 0.1, "flap 1 at {wind} m/s: {zeta}");
+        }
+    }
+}
