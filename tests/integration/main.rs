@@ -6,6 +6,7 @@ mod cli_basic;
 mod eigen;
 mod explorer;
 mod formats;
+mod identify;
 mod hostile;
 mod laminate;
 mod modes;

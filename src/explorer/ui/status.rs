@@ -137,12 +137,15 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
     let least = match (&state.solved, &state.solve_error) {
         // A non-oscillatory root has no frequency and ζ = 1 by definition: its decay rate σ is
         // what tells how stable it is.
+        // The long form names the mode with the shares of its motion, as `eigen` and
+        // `flutter` do.
         (Some(s), None) => least_damped(&s.stability).map(|m| {
             if m.im == 0.0 {
+                let kind = if m.overdamped() { "overdamped" } else { "real root" };
                 (
                     format!(
-                        " least damped: {} (real root) σ = {} 1/s",
-                        m.label,
+                        " least damped: {} ({kind}) σ = {} 1/s",
+                        m.described(),
                         sig(m.re, 3)
                     ),
                     format!(" {} σ = {} 1/s", m.label, sig(m.re, 2)),
@@ -151,7 +154,7 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
                 (
                     format!(
                         " least damped: {} {} Hz, ζ = {}",
-                        m.label,
+                        m.described(),
                         sig(m.frequency_hz, 3),
                         sig(m.damping_ratio, 2)
                     ),
