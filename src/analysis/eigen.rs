@@ -11,8 +11,8 @@
 //! [`Error::Numerical`](crate::error::Error::Numerical), never a hang or a panic; this module gives
 //! the roots their aeroelastic meaning.
 
-use crate::error::Result;
 use crate::analysis::identify::{identify, Identified};
+use crate::error::Result;
 use crate::numeric::decompose;
 use crate::physics::structure::{Family, Shares};
 use crate::physics::system::{LinearSystem, System};
@@ -73,7 +73,11 @@ impl Mode {
             re,
             im,
             frequency_hz: im / std::f64::consts::TAU,
-            damping_ratio: if magnitude > 0.0 { -re / magnitude } else { 0.0 },
+            damping_ratio: if magnitude > 0.0 {
+                -re / magnitude
+            } else {
+                0.0
+            },
             label: String::new(),
             family: None,
             shares: Shares::from_energies(0.0, 0.0, 0.0),
@@ -88,11 +92,15 @@ impl Mode {
     /// The name with the shares of its motion, as every command and pane reports a mode:
     /// `torsion 1 (flap 38 %, twist 60 %)`; families below 0.5 % are left out.
     pub fn described(&self) -> String {
-        let parts: Vec<String> = [("flap", self.shares.flap), ("edge", self.shares.edge), ("twist", self.shares.twist)]
-            .iter()
-            .filter(|(_, s)| *s >= 0.005)
-            .map(|(name, s)| format!("{name} {:.0} %", 100.0 * s))
-            .collect();
+        let parts: Vec<String> = [
+            ("flap", self.shares.flap),
+            ("edge", self.shares.edge),
+            ("twist", self.shares.twist),
+        ]
+        .iter()
+        .filter(|(_, s)| *s >= 0.005)
+        .map(|(name, s)| format!("{name} {:.0} %", 100.0 * s))
+        .collect();
         if parts.is_empty() || self.family.is_none() {
             self.label.clone()
         } else {
@@ -161,7 +169,13 @@ pub fn analyse_system(ls: &LinearSystem) -> Result<Stability> {
         .iter()
         .enumerate()
         .map(|(k, lambda)| {
-            let q: Vec<Complex<f64>> = roots.vectors.column(k).rows(0, nq).iter().copied().collect();
+            let q: Vec<Complex<f64>> = roots
+                .vectors
+                .column(k)
+                .rows(0, nq)
+                .iter()
+                .copied()
+                .collect();
             let left: Vec<Complex<f64>> = if roots.left.ncols() == 0 {
                 Vec::new()
             } else {
@@ -173,7 +187,11 @@ pub fn analyse_system(ls: &LinearSystem) -> Result<Stability> {
             } else {
                 roots.participation(k)[..2 * nq].iter().sum()
             };
-            let im = if lambda.im.abs() <= tol { 0.0 } else { lambda.im };
+            let im = if lambda.im.abs() <= tol {
+                0.0
+            } else {
+                lambda.im
+            };
             Mode {
                 // ζ from the exact λ: a root within the tolerance of the real axis is still
                 // damped as its true |λ| says.

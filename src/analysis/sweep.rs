@@ -489,8 +489,7 @@ pub fn grid_sweep(
                     .ok()
                     .map(|s| s.eigenvalues)
             };
-            let tracked =
-                tracked_with_gaps(&grid.keys[grid.keys.len() - 1], &axis, pts, &resolve);
+            let tracked = tracked_with_gaps(&grid.keys[grid.keys.len() - 1], &axis, pts, &resolve);
             for (k, i) in r.clone().enumerate() {
                 if !own.contains(&i) {
                     continue;

@@ -311,8 +311,10 @@ mod tests {
                 let j = match_modes(&here.2, &next).partner[here.1].unwrap();
                 here = (p, j, next);
             }
-            assert_eq!(here.1, to, "c = {c}: refinement disagrees with a fine sweep");
+            assert_eq!(
+                here.1, to,
+                "c = {c}: refinement disagrees with a fine sweep"
+            );
         }
     }
 }
-

@@ -65,7 +65,16 @@ pub fn render(p: &ValidPreset, s: &Stability) -> String {
 fn table(modes: &[Mode]) -> String {
     let mut out = format!(
         "{:<14} {:>13} {:>13} {:>12} {:>10} {:>7} {:>11}  {:>5} {:>5} {:>5}\n",
-        "mode", "σ (1/s)", "ω (rad/s)", "f (Hz)", "ζ", "struct", "in vacuo", "flap", "edge", "twist"
+        "mode",
+        "σ (1/s)",
+        "ω (rad/s)",
+        "f (Hz)",
+        "ζ",
+        "struct",
+        "in vacuo",
+        "flap",
+        "edge",
+        "twist"
     );
     for m in modes {
         out += &format!(

@@ -2,9 +2,7 @@
 //! aerodynamic states have no dynamics (§6.1).
 
 use crate::stability::within;
-use flutterscope::analysis::eigen::{
-    analyse, analyse_system, linear_system, Stability,
-};
+use flutterscope::analysis::eigen::{analyse, analyse_system, linear_system, Stability};
 use flutterscope::numeric::{decompose, Solver};
 use flutterscope::physics::aero::{model_for, Kinematics, SteadyStates, StripEval, StripModel};
 use flutterscope::physics::inflow::{preset_stations, Station};
@@ -194,7 +192,13 @@ fn check_still_air(name: &str, overrides: &[String]) -> Stability {
         .eigenvalues
         .iter()
         // An oscillating mode and an overdamped mode (two real roots) fill two dimensions each.
-        .map(|m| if m.im > 0.0 || m.second_re.is_some() { 2 } else { 1 })
+        .map(|m| {
+            if m.im > 0.0 || m.second_re.is_some() {
+                2
+            } else {
+                1
+            }
+        })
         .sum();
     assert_eq!(structural, 2 * ls.nq, "{what}");
     assert!(s.stable, "{what}");

@@ -16,13 +16,20 @@ fn names_are_unique_and_within_their_family_everywhere() {
     for name in builtin_names() {
         for model in ["none", "quasi-steady", "theodorsen", "onera"] {
             for n in [1, 5, 8, 20] {
-                let o = vec![format!("aero.model={model}"), format!("structure.modes={n}")];
+                let o = vec![
+                    format!("aero.model={model}"),
+                    format!("structure.modes={n}"),
+                ];
                 // Not every preset takes every model or N (tabulated blades: aero none for now).
                 let Ok(p) = Preset::load(name, &o) else {
                     continue;
                 };
                 let Ok(s) = analyse(&p) else { continue };
-                let natural = linear_system(&p).unwrap().structure.natural_modes().unwrap();
+                let natural = linear_system(&p)
+                    .unwrap()
+                    .structure
+                    .natural_modes()
+                    .unwrap();
                 let count = |f: Family| natural.iter().filter(|m| m.family == f).count();
                 let what = format!("{name}, {model}, N = {n}");
                 let mut seen = HashSet::new();
@@ -63,7 +70,11 @@ fn demo_blade_names_agree_and_tracks_are_continuous() {
 
     let search = flutter_search(&p, "operating.rotor_speed", 0.0, 200.0, 41).unwrap();
     assert_eq!(search.boundary.mode.as_deref(), Some(name.as_str()));
-    assert!(search.message.contains(&format!("{name} (flap ")), "{}", search.message);
+    assert!(
+        search.message.contains(&format!("{name} (flap ")),
+        "{}",
+        search.message
+    );
 
     let grid: Vec<f64> = (0..=20).map(|k| 10.0 * k as f64).collect();
     let sweep = track(&p, "operating.rotor_speed", &grid).unwrap();
@@ -84,7 +95,10 @@ fn demo_blade_names_agree_and_tracks_are_continuous() {
         .unwrap();
     let text = String::from_utf8(out.stdout).unwrap();
     let status = text.lines().rev().nth(1).unwrap();
-    assert!(status.contains(&format!("least damped: {}", unstable.described())), "{status}");
+    assert!(
+        status.contains(&format!("least damped: {}", unstable.described())),
+        "{status}"
+    );
 
     // Continuity: a step whose frequency jump exceeds 25 % (and 1 Hz) either ends at an
     // overdamped point (0 Hz), or is a branch switch confirmed and recorded in that step, or is

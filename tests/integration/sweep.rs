@@ -273,12 +273,16 @@ fn overdamped_modes_keep_their_rows() {
     assert!(!r.stdout.lines().any(|l| l.contains(",,,")), "{}", r.stdout);
     assert!(r.stdout.contains("0,torsion 1,0,"), "{}", r.stdout);
     assert!(
-        r.stdout.lines().any(|l| l.starts_with("0,torsion 1,") && l.ends_with(",overdamped")),
+        r.stdout
+            .lines()
+            .any(|l| l.starts_with("0,torsion 1,") && l.ends_with(",overdamped")),
         "{}",
         r.stdout
     );
     assert!(
-        r.stdout.lines().any(|l| l.starts_with("100,torsion 1,") && l.ends_with(",ok")),
+        r.stdout
+            .lines()
+            .any(|l| l.starts_with("100,torsion 1,") && l.ends_with(",ok")),
         "{}",
         r.stdout
     );

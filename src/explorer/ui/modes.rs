@@ -56,13 +56,14 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
     };
     let block = pane(title, theme);
     let mut modes: Vec<&Mode> = stab.eigenvalues.iter().collect();
-    // Oscillatory modes by frequency, then the real (overdamped or divergent) roots.
+    // In the order of the in-vacuo modes they are named after (flap 1, flap 2, torsion 1, … by
+    // in-vacuo frequency): a row keeps its place while the air shifts its root, and a root far
+    // from its in-vacuo frequency still sits among its family. Unnamed roots last.
     modes.sort_by(|a, b| {
-        let real = |m: &Mode| m.frequency_hz <= 0.0;
-        real(a)
-            .cmp(&real(b))
+        let f0 = |m: &Mode| m.in_vacuo_hz.unwrap_or(f64::INFINITY);
+        f0(a)
+            .total_cmp(&f0(b))
             .then(a.frequency_hz.total_cmp(&b.frequency_hz))
-            .then(b.re.total_cmp(&a.re))
     });
     let critical = stab
         .eigenvalues
@@ -94,8 +95,13 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
             Row::new(vec![
                 Cell::from(Line::styled(m.label.clone(), swatch)),
                 Cell::from(Line::from(format!("{frequency}{f_trend}")).right_aligned()),
-                Cell::from(Line::from(m.in_vacuo_hz.map(|f| sig(f, 3)).unwrap_or_default()).right_aligned()),
-                Cell::from(Line::from(format!("{}{z_trend}", sig(m.damping_ratio, 3))).right_aligned()),
+                Cell::from(
+                    Line::from(m.in_vacuo_hz.map(|f| sig(f, 3)).unwrap_or_default())
+                        .right_aligned(),
+                ),
+                Cell::from(
+                    Line::from(format!("{}{z_trend}", sig(m.damping_ratio, 3))).right_aligned(),
+                ),
             ])
             .style(style)
         })
