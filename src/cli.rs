@@ -114,6 +114,23 @@ pub enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Steady operating point of the rotor (BEM, rigid blade): power, thrust, torque, tip speed
+    /// ratio and the flow at every station; with --vary, power and thrust curves.
+    Operating {
+        #[command(flatten)]
+        preset: PresetArgs,
+        /// KEY=FROM:TO:STEP, e.g. operating.wind_speed=3:25:1 (along operating.schedule).
+        #[arg(long, value_name = "KEY=A:B:STEP")]
+        vary: Option<String>,
+        #[arg(long, conflicts_with = "csv")]
+        json: bool,
+        /// CSV: the stations (one point) or the curve (with --vary, the default then).
+        #[arg(long)]
+        csv: bool,
+        /// Plot the power and thrust curves (needs --vary; SVG or PNG by extension).
+        #[arg(long, value_name = "FILE")]
+        plot: Option<std::path::PathBuf>,
+    },
     /// Flutter (or divergence) boundary along one numeric preset key.
     Flutter {
         #[command(flatten)]
@@ -148,8 +165,9 @@ pub enum Command {
         csv: bool,
         #[arg(long)]
         json: bool,
-        /// Compute slice I of N (1-based) of the grid, for batch schedulers.
-        #[arg(long, value_name = "I/N")]
+        /// Compute slice I of N (1-based) of the grid, for batch schedulers; `auto` takes it
+        /// from a Slurm array job (SLURM_ARRAY_TASK_ID, SLURM_ARRAY_TASK_COUNT).
+        #[arg(long, value_name = "I/N|auto")]
         shard: Option<String>,
         /// Write a plot (SVG or PNG by extension).
         #[arg(long, value_name = "FILE")]

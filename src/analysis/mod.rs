@@ -6,6 +6,7 @@ pub mod cancel;
 pub mod eigen;
 pub mod flutter;
 pub mod identify;
+pub mod mode_shape;
 pub mod simulate;
 pub mod solve;
 pub mod sweep;

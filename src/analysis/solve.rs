@@ -4,6 +4,7 @@
 //! never assembles or linearises anything twice.
 
 use crate::analysis::eigen::{analyse_system, Stability};
+use crate::analysis::mode_shape::{mode_shape, ModeShape, SpanRows};
 use crate::analysis::simulate::Simulator;
 use crate::error::Result;
 use crate::physics::system::{LinearSystem, System};
@@ -42,6 +43,18 @@ impl Solution {
     /// Eigenvalues, labels and verdict (docs/model.md §6).
     pub fn stability(&self) -> Result<Stability> {
         analyse_system(self.linear()?)
+    }
+
+    /// The shape along the span of each structural root of `stability` (in its order), from
+    /// this build's structure (docs/model.md §6.5).
+    pub fn mode_shapes(&self, stability: &Stability) -> Vec<ModeShape> {
+        let structure = self.system.structure();
+        let at = SpanRows::of(structure);
+        stability
+            .eigenvalues
+            .iter()
+            .map(|m| mode_shape(structure, &at, &m.shape))
+            .collect()
     }
 
     /// The tip response of `simulation.*` (docs/model.md §7), stepping the linearisation of this

@@ -7,10 +7,12 @@ use crate::error::{Error, Result};
 pub mod eigen;
 pub mod flutter;
 pub mod modes;
+pub mod operating;
 pub mod presets;
 pub mod reproduce;
 pub mod section;
 pub mod simulate;
+pub mod slurm;
 pub mod snapshot;
 pub mod sweep;
 pub mod tui;
@@ -25,6 +27,13 @@ pub fn run(command: Command) -> Result<()> {
             plot,
         } => modes::run(&preset.load()?, json, shapes, plot.as_deref()),
         Command::Eigen { preset, json } => eigen::run(&preset.load()?, json),
+        Command::Operating {
+            preset,
+            vary,
+            json,
+            csv,
+            plot,
+        } => operating::run(&preset.load()?, vary.as_deref(), json, csv, plot.as_deref()),
         Command::Flutter {
             preset,
             vary,

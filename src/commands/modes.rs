@@ -61,7 +61,10 @@ pub fn run(p: &ValidPreset, json: bool, shapes: bool, plot: Option<&Path>) -> Re
     if let Some(path) = plot {
         crate::plot::format_for(path)?;
     }
-    // The structure alone depends on the rotor speed only, of the operating point.
+    // The structure alone depends on the rotor speed and pitch only, of the operating point:
+    // the schedule's at the preset's wind speed when it has one, as every other command runs.
+    let scheduled = crate::physics::operating::on_schedule(p)?;
+    let p = &scheduled;
     let at = || {
         format!(
             "{} at operating.rotor_speed = {} rpm",

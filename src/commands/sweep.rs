@@ -1,7 +1,7 @@
 //! `flutterscope sweep`: tracked modes over a grid of one or more keys (CSV or JSON), on all
 //! cores, optionally one shard of the grid.
 
-use crate::analysis::sweep::{grid_sweep, Grid, Shard, SweepRow, SweepSummary};
+use crate::analysis::sweep::{grid_sweep, Grid, SweepRow, SweepSummary};
 use crate::error::{Error, Result};
 use crate::preset::ValidPreset;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -31,7 +31,7 @@ pub fn run(
     // Rows kept for the plot (one key: the tracked modes along it).
     let mut plotted: Vec<SweepRow> = Vec::new();
     let keep = plot.is_some();
-    let shard = shard.map(Shard::parse).transpose()?;
+    let shard = shard.map(super::slurm::shard).transpose()?;
     let own = shard.map_or(grid.total(), |s| s.range(grid.total()).len());
     let bar = progress_bar(own as u64);
     let progress = |n: u64| bar.inc(n);

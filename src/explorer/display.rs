@@ -69,16 +69,24 @@ pub enum ViewKind {
     Main,
     Campbell,
     Help,
+    /// The main view with the mode-shape pane (the least-damped mode).
+    Shape,
 }
 
 impl ViewKind {
-    pub const ALL: [ViewKind; 3] = [ViewKind::Main, ViewKind::Campbell, ViewKind::Help];
+    pub const ALL: [ViewKind; 4] = [
+        ViewKind::Main,
+        ViewKind::Campbell,
+        ViewKind::Help,
+        ViewKind::Shape,
+    ];
 
     pub fn name(self) -> &'static str {
         match self {
             ViewKind::Main => "main",
             ViewKind::Campbell => "campbell",
             ViewKind::Help => "help",
+            ViewKind::Shape => "shape",
         }
     }
 }

@@ -6,18 +6,22 @@ use crate::analysis::campbell::ROTOR_SPEED_KEY;
 use crate::analysis::cancel::Cancel;
 use crate::analysis::eigen::Stability;
 use crate::analysis::flutter::{Boundary, SearchRange};
+use crate::analysis::mode_shape::ModeShape;
 use crate::analysis::simulate::{RunStatus, Simulator, TipSample};
 use crate::analysis::solve::SectionProps;
 use crate::analysis::sweep::TrackedSweep;
 use crate::error::Result;
 use crate::preset::ValidPreset;
 
-/// One operating point, solved: the live section stiffnesses (a uniform blade's) and the
-/// eigen-analysis.
+/// One operating point, solved: the live section stiffnesses (a uniform blade's), the
+/// eigen-analysis and the shape of each of its structural roots.
 #[derive(Debug, Clone)]
 pub struct Solved {
     pub section: Option<SectionProps>,
     pub stability: Stability,
+    /// `shapes[i]` is the span shape of `stability.eigenvalues[i]` (empty when the engine
+    /// computes none).
+    pub shapes: Vec<ModeShape>,
 }
 
 /// What one solve gives the explorer: the analysis and the tip simulation started from the same
@@ -70,9 +74,11 @@ impl Engine for Physics {
         match solution {
             Ok(solution) => {
                 let solved = cancel.check().and_then(|_| {
+                    let stability = solution.stability()?;
                     Ok(Solved {
                         section: solution.section().copied(),
-                        stability: solution.stability()?,
+                        shapes: solution.mode_shapes(&stability),
+                        stability,
                     })
                 });
                 let stream = cancel

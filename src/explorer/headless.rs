@@ -113,6 +113,7 @@ pub fn settled_state(
         ViewKind::Main => {}
         ViewKind::Campbell => press(&mut state, engine, &[Action::ToggleCampbell]),
         ViewKind::Help => press(&mut state, engine, &[Action::ToggleHelp]),
+        ViewKind::Shape => press(&mut state, engine, &[Action::ToggleShape]),
     }
     state
 }

@@ -22,6 +22,11 @@ pub enum Action {
     Kick,
     Boundary,
     ToggleCampbell,
+    /// The mode-shape pane in place of the tip response, or back.
+    ToggleShape,
+    /// The previous / next mode in the mode-shape pane.
+    PrevMode,
+    NextMode,
     CycleMarker,
     ToggleHelp,
     /// Close the help overlay, else leave the Campbell view.
@@ -177,6 +182,24 @@ pub static BINDINGS: &[Binding] = &[
         help: "Campbell diagram (modes against rotor speed) / back",
     },
     Binding {
+        keys: &[ch('s')],
+        shown: "s",
+        action: Action::ToggleShape,
+        help: "mode shape along the span (in place of the tip response) / back",
+    },
+    Binding {
+        keys: &[ch(','), ch('<')],
+        shown: ",  <",
+        action: Action::PrevMode,
+        help: "mode shape of the previous mode (by frequency)",
+    },
+    Binding {
+        keys: &[ch('.'), ch('>')],
+        shown: ".  >",
+        action: Action::NextMode,
+        help: "mode shape of the next mode (by frequency)",
+    },
+    Binding {
         keys: &[ch('m')],
         shown: "m",
         action: Action::CycleMarker,
@@ -192,7 +215,7 @@ pub static BINDINGS: &[Binding] = &[
         keys: &[plain(KeyCode::Esc)],
         shown: "Esc",
         action: Action::Back,
-        help: "close the help, or leave the Campbell view",
+        help: "close the help, or go back to the main view",
     },
     Binding {
         keys: &[ch('q'), ctrl('c')],

@@ -70,17 +70,54 @@ const fn number(
     }
 }
 
-/// The row of `PARAMS` that varies `key` (the first row if none does).
-pub fn param_index(key: &str) -> usize {
+/// The row of `PARAMS` that varies `key`, if it is offered for `p` (else the first row that is).
+pub fn param_index(p: &ValidPreset, key: &str) -> usize {
     PARAMS
         .iter()
-        .position(|p| matches!(p.kind, ParamKind::Number { key: k, .. } if k == key))
+        .position(|r| {
+            offered(p, r) && matches!(r.kind, ParamKind::Number { key: k, .. } if k == key)
+        })
+        .or_else(|| PARAMS.iter().position(|r| offered(p, r)))
         .unwrap_or(0)
+}
+
+/// Whether the parameters pane offers `param` for `p`: a knob that can change nothing for the
+/// preset's blade is left out (the ply angle on direct stiffnesses or on a tabulated blade,
+/// whose sections come from its files; the loss factor on a tabulated blade, damped per mode
+/// family; the bend–twist coupling on the uniform blade, which refuses it). Knobs that only
+/// wait for another setting the explorer can change (wind speed without aerodynamics) stay,
+/// dimmed by the pane.
+pub fn offered(p: &ValidPreset, param: &Param) -> bool {
+    let tabulated = p.tabulated_blade().is_some();
+    match param.kind {
+        ParamKind::Number { key, .. } => match key {
+            "section.ply_angle" => !tabulated && p.section.source != SectionSource::Direct,
+            "structure.loss_factor" => !tabulated,
+            "blade.bend_twist_coupling" => tabulated,
+            _ => true,
+        },
+        ParamKind::Aero => true,
+    }
+}
+
+/// The rows of `PARAMS` offered for `p`, in pane order.
+pub fn offered_rows(p: &ValidPreset) -> Vec<usize> {
+    (0..PARAMS.len())
+        .filter(|&i| offered(p, &PARAMS[i]))
+        .collect()
 }
 
 /// The parameters the explorer varies, in pane order.
 pub static PARAMS: &[Param] = &[
     number("ply angle", "section.ply_angle", 1.0, 5.0, 1, true),
+    number(
+        "bend–twist α",
+        "blade.bend_twist_coupling",
+        0.01,
+        0.05,
+        2,
+        true,
+    ),
     number("wind speed", "operating.wind_speed", 0.5, 5.0, 1, true),
     number("tunnel speed", "operating.tunnel_speed", 1.0, 10.0, 1, true),
     number("rotor speed", "operating.rotor_speed", 1.0, 10.0, 0, true),
@@ -149,6 +186,8 @@ impl Default for Options {
 pub enum ViewMode {
     Main,
     Campbell,
+    /// The main view with the mode-shape pane in place of the tip response.
+    Shape,
 }
 
 /// The streaming tip response of the current parameters.
@@ -213,6 +252,9 @@ pub struct AppState {
     pub boundary: Option<BoundaryJob>,
     pub campbell: Option<CampbellJob>,
     pub view: ViewMode,
+    /// The mode the mode-shape pane shows, by label; `None`: the least-damped one (the flutter
+    /// mode once unstable). Also `None` when the picked label is gone after a solve.
+    pub shape_pick: Option<String>,
     pub help: bool,
     pub paused: bool,
     pub opts: Options,
@@ -303,12 +345,13 @@ impl AppState {
         );
         let index = index.min(presets.len() - 1);
         let preset = presets[index].preset.clone();
-        let start = preset.view.select.key();
+        let focus = param_index(&preset, preset.view.select.key());
+        let start = opening_key(&preset, focus);
         AppState {
             presets,
             preset_index: index,
             preset,
-            focus: param_index(start),
+            focus,
             gen: 0,
             solved_gen: 0,
             solved: None,
@@ -322,6 +365,7 @@ impl AppState {
             boundary: None,
             campbell: None,
             view: ViewMode::Main,
+            shape_pick: None,
             help: false,
             paused: false,
             opts,
@@ -396,8 +440,9 @@ impl AppState {
         self.preset_index = index;
         self.preset = self.presets[index].preset.clone();
         // Each preset opens on the parameter it selects (`view.select`).
-        self.boundary_key = self.preset.view.select.key();
-        self.focus = param_index(self.boundary_key);
+        self.focus = param_index(&self.preset, self.preset.view.select.key());
+        self.boundary_key = opening_key(&self.preset, self.focus);
+        self.shape_pick = None;
         self.trails.clear();
         self.prev_modes.clear();
         self.fresh = true;
@@ -532,15 +577,6 @@ impl AppState {
                 match self.preset.with(key, next) {
                     Ok(p) => {
                         self.preset = p;
-                        if key == "section.ply_angle"
-                            && self.preset.section.source == SectionSource::Direct
-                        {
-                            self.notice = Some(
-                                "ply angle has no effect: this preset gives C22, C23, C33 directly \
-                                 (section.source = direct)"
-                                    .into(),
-                            );
-                        }
                         self.changed()
                     }
                     Err(e) => {
@@ -556,12 +592,16 @@ impl AppState {
         self.notice = None;
         match action {
             Action::FocusPrev | Action::FocusNext => {
-                let n = PARAMS.len();
-                self.focus = if action == Action::FocusNext {
-                    (self.focus + 1) % n
+                // Step through the rows offered for this preset only.
+                let rows = offered_rows(&self.preset);
+                let n = rows.len().max(1);
+                let at = rows.iter().position(|&r| r == self.focus).unwrap_or(0);
+                let next = if action == Action::FocusNext {
+                    (at + 1) % n
                 } else {
-                    (self.focus + n - 1) % n
+                    (at + n - 1) % n
                 };
+                self.focus = rows.get(next).copied().unwrap_or(self.focus);
                 self.trails.clear();
                 if let ParamKind::Number {
                     key,
@@ -626,10 +666,23 @@ impl AppState {
             }
             Action::ToggleCampbell => {
                 self.view = match self.view {
-                    ViewMode::Main => ViewMode::Campbell,
+                    ViewMode::Main | ViewMode::Shape => ViewMode::Campbell,
                     ViewMode::Campbell => ViewMode::Main,
                 };
                 self.campbell_effect().into_iter().collect()
+            }
+            Action::ToggleShape => {
+                self.view = match self.view {
+                    ViewMode::Main | ViewMode::Campbell => ViewMode::Shape,
+                    ViewMode::Shape => ViewMode::Main,
+                };
+                // The pane opens on the least-damped mode.
+                self.shape_pick = None;
+                Vec::new()
+            }
+            Action::PrevMode | Action::NextMode => {
+                self.step_shape(action == Action::NextMode);
+                Vec::new()
             }
             Action::CycleMarker => {
                 self.opts.marker = self.opts.marker.next();
@@ -642,7 +695,7 @@ impl AppState {
             Action::Back => {
                 if self.help {
                     self.help = false;
-                } else if self.view == ViewMode::Campbell {
+                } else {
                     self.view = ViewMode::Main;
                 }
                 Vec::new()
@@ -651,6 +704,42 @@ impl AppState {
                 self.quit = true;
                 vec![Effect::Quit]
             }
+        }
+    }
+
+    /// The structural root the mode-shape pane shows: the picked label, else the least damped
+    /// (largest σ: the flutter mode once unstable), as an index into the solved eigenvalues.
+    pub fn shape_index(&self) -> Option<usize> {
+        let modes = &self.solved.as_ref()?.stability.eigenvalues;
+        let picked = self
+            .shape_pick
+            .as_ref()
+            .and_then(|label| modes.iter().position(|m| &m.label == label));
+        picked.or_else(|| (0..modes.len()).max_by(|&a, &b| modes[a].re.total_cmp(&modes[b].re)))
+    }
+
+    /// Pick the next (or previous) mode for the mode-shape pane, in the modes pane's order:
+    /// oscillatory roots by frequency, then the real ones.
+    fn step_shape(&mut self, forward: bool) {
+        let Some(current) = self.shape_index() else {
+            self.notice = Some("no modes solved yet".into());
+            return;
+        };
+        let Some(solved) = self.solved.as_ref() else {
+            return;
+        };
+        let modes = &solved.stability.eigenvalues;
+        let order = frequency_order(modes);
+        let n = order.len();
+        let at = order.iter().position(|&i| i == current).unwrap_or(0);
+        let next = order[if forward {
+            (at + 1) % n
+        } else {
+            (at + n - 1) % n
+        }];
+        self.shape_pick = Some(modes[next].label.clone());
+        if self.view != ViewMode::Shape {
+            self.view = ViewMode::Shape;
         }
     }
 
@@ -687,6 +776,33 @@ impl AppState {
             }
         }
     }
+}
+
+/// The parameter a preset's first boundary search runs along: the focused row's key when it
+/// searches one, else rotor speed.
+fn opening_key(p: &ValidPreset, focus: usize) -> &'static str {
+    match PARAMS[focus].kind {
+        ParamKind::Number {
+            key,
+            boundary: true,
+            ..
+        } if offered(p, &PARAMS[focus]) => key,
+        _ => "operating.rotor_speed",
+    }
+}
+
+/// Indices of `modes` with the oscillatory ones first, by frequency, then the real roots: the
+/// order the modes pane lists them in.
+pub fn frequency_order(modes: &[Mode]) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..modes.len()).collect();
+    order.sort_by(|&a, &b| {
+        let real = |m: &Mode| m.frequency_hz <= 0.0;
+        real(&modes[a])
+            .cmp(&real(&modes[b]))
+            .then(modes[a].frequency_hz.total_cmp(&modes[b].frequency_hz))
+            .then(modes[b].re.total_cmp(&modes[a].re))
+    });
+    order
 }
 
 /// Apply one message. Returns the effects to carry out, in order.

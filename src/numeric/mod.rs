@@ -17,6 +17,7 @@ mod hessenberg;
 mod inverse_iteration;
 mod isolate;
 pub mod lanczos;
+pub mod root;
 
 pub use assignment::hungarian;
 pub use eigen::{decompose, eigen_decomposition, shares, Roots, Solver};

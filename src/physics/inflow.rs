@@ -15,6 +15,9 @@ use crate::preset::{Inflow, ValidPreset};
 /// The rigid (structure-independent) flow seen by one strip.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Station {
+    /// Position of the station in its list: a model with a section per station (a real blade,
+    /// §12) keeps them in the same order.
+    pub index: usize,
     /// Span position x from the root (m).
     pub x: f64,
     /// Quadrature weight (m): `Σ w_s = L`.
@@ -84,7 +87,8 @@ pub fn stations(length: f64, hub_radius: f64, op: &OperatingPoint, count: usize)
     nodes
         .iter()
         .zip(&weights)
-        .map(|(&xi, &w)| {
+        .enumerate()
+        .map(|(index, (&xi, &w))| {
             let x = half * (xi + 1.0);
             let radius = hub_radius + x;
             let (v0, psi) = match op.inflow {
@@ -92,6 +96,7 @@ pub fn stations(length: f64, hub_radius: f64, op: &OperatingPoint, count: usize)
                 Inflow::Local => op.velocity_triangle(radius),
             };
             Station {
+                index,
                 x,
                 weight: half * w,
                 radius,

@@ -6,6 +6,8 @@ pub mod basis;
 pub mod blade;
 pub mod inflow;
 pub mod laminate;
+pub mod operating;
+pub mod rotor;
 pub mod section;
 pub mod structure;
 pub mod system;

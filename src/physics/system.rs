@@ -6,9 +6,10 @@
 //! aerodynamic states `z` (station-major: `z[s·n_s + i]` is state `i` of station `s`).
 //!
 //! `(M − M_a) q̈ = Q(q, q̇, z) − K q − C q̇`, `ż = G(q, q̇, z)`, where `Q` is the projection
-//! `Q = Σ_s w_s (m_φ e_φ(x_s) + f_u e_u(x_s))` of the strip loads on the structure's motion rows
-//! (`φ = e_φ·q`, `u = e_u·q` at the station, [`MotionRows`]) and `M_a = Σ_s w_s Pᵀ M_a,s P` the
-//! apparent mass (P maps `q` to the strip's `[φ, u]`).
+//! `Q = Σ_s w_s (m_φ e_φ(x_s) + f_u e_u(x_s) + f_v e_v(x_s))` of the strip loads on the
+//! structure's motion rows (`φ = e_φ·q`, `u = e_u·q`, `v = e_v·q` at the station,
+//! [`MotionRows`]; the paper's blade has `e_v = 0`) and `M_a = Σ_s w_s Pᵀ M_a,s P` the apparent
+//! mass (P maps `q` to the strip's `[φ, u, v]`).
 //!
 //! The system is written for any [`StripModel`], linear or not: [`System::rhs`] gives `ẋ`,
 //! [`System::jacobian`] its exact Jacobian (chain rule through the models' analytic partials),
@@ -20,9 +21,10 @@
 
 use crate::error::{Error, Result};
 use crate::physics::aero::{
-    model_for, Kinematics, NonlinearSupport, SteadyStates, StripEval, StripModel,
+    model_for, Kinematics, NonlinearSupport, SteadyStates, StripEval, StripModel, LOADS, RATES,
 };
 use crate::physics::inflow::{stations, OperatingPoint, Station};
+use crate::physics::operating;
 use crate::physics::structure::{for_preset, Structure};
 use crate::preset::ValidPreset;
 use nalgebra::{DMatrix, DVector};
@@ -35,10 +37,10 @@ pub struct System {
     structure: Arc<dyn Structure>,
     stations: Vec<Station>,
     model: Box<dyn StripModel>,
-    /// The rows e_φ and e_u that map q to each strip's φ and u.
-    rows: Vec<[DVector<f64>; 2]>,
+    /// The rows e_φ, e_u and e_v that map q to each strip's φ, u and v.
+    rows: Vec<[DVector<f64>; RATES]>,
     /// The same at the tip.
-    tip_rows: [DVector<f64>; 2],
+    tip_rows: [DVector<f64>; RATES],
     /// (M − M_a)⁻¹, factored once: every rhs and Jacobian needs it.
     mass_inv: DMatrix<f64>,
     stiffness: DMatrix<f64>,
@@ -79,7 +81,16 @@ pub struct LinearSystem {
 impl System {
     /// Assemble structure, stations (along the structure's span) and the preset's aerodynamic
     /// model.
+    ///
+    /// A real blade with its aerodynamic description runs at its scheduled rotor speed and pitch,
+    /// its strips on the inflow of its steady aeroelastic operating point
+    /// ([`crate::physics::operating`], docs/model.md §12.6).
     pub fn new(p: &ValidPreset) -> Result<System> {
+        if operating::in_the_wind(p) {
+            return operating::steady(p, operating::unsteadiness(p)).map(|op| op.system);
+        }
+        let scheduled = operating::on_schedule(p)?;
+        let p = &scheduled;
         let structure = for_preset(p)?;
         let model = model_for(p)?;
         let stations = stations(
@@ -97,17 +108,17 @@ impl System {
         stations: Vec<Station>,
         model: Box<dyn StripModel>,
     ) -> Result<System> {
-        let twist_and_flap = |x: f64| {
+        let motion = |x: f64| {
             let r = structure.motion_rows(x);
-            [r.twist, r.flap]
+            [r.twist, r.flap, r.edge]
         };
-        let rows: Vec<[DVector<f64>; 2]> = stations.iter().map(|s| twist_and_flap(s.x)).collect();
-        let tip_rows = twist_and_flap(structure.length());
+        let rows: Vec<[DVector<f64>; RATES]> = stations.iter().map(|s| motion(s.x)).collect();
+        let tip_rows = motion(structure.length());
         let mut mass = structure.mass().clone();
         for (s, rows) in stations.iter().zip(&rows) {
             let ma = model.apparent_mass(s);
-            for l in 0..2 {
-                for j in 0..2 {
+            for l in 0..LOADS {
+                for j in 0..RATES {
                     if ma[l][j] != 0.0 {
                         // Loads M_a q̈ move to the left-hand side: M − M_a.
                         mass.ger(-s.weight * ma[l][j], &rows[l], &rows[j], 1.0);
@@ -163,6 +174,21 @@ impl System {
     pub fn tip(&self, x: &DVector<f64>) -> (f64, f64) {
         let q = x.rows(0, self.nq());
         (self.tip_rows[0].dot(&q), self.tip_rows[1].dot(&q))
+    }
+
+    /// `[φ, u, v]` (twist toward feather, flap downwind, edge toward the leading edge) at the
+    /// tip's reference axis in state `x`.
+    pub fn tip_motion(&self, x: &DVector<f64>) -> [f64; RATES] {
+        let q = x.rows(0, self.nq());
+        self.tip_rows.each_ref().map(|row| row.dot(&q))
+    }
+
+    /// `[φ, u, v]` at every station in state `x`.
+    pub fn station_motion(&self, x: &DVector<f64>) -> Vec<[f64; RATES]> {
+        let q = x.rows(0, self.nq());
+        (0..self.stations.len())
+            .map(|si| self.deflection_at(si, q))
+            .collect()
     }
 
     /// ẋ = f(x).
@@ -303,8 +329,8 @@ impl System {
         x.rows_mut(0, nq).copy_from(q);
         let mut st = SteadyStates::new(self.ns);
         for (si, s) in self.stations.iter().enumerate() {
-            let (phi, u) = self.deflection_at(si, q.as_view());
-            self.model.steady_states(s, phi, u, &mut st);
+            let deflection = self.deflection_at(si, q.as_view());
+            self.model.steady_states(s, deflection, &mut st);
             x.rows_mut(2 * nq + si * self.ns, self.ns)
                 .copy_from_slice(&st.z);
         }
@@ -336,13 +362,16 @@ impl System {
             let mut zq = DMatrix::zeros(self.n_aero(), nq);
             let mut st = SteadyStates::new(self.ns);
             for (si, s) in self.stations.iter().enumerate() {
-                let (phi, u) = self.deflection_at(si, q.as_view());
-                self.model.steady_states(s, phi, u, &mut st);
+                let deflection = self.deflection_at(si, q.as_view());
+                self.model.steady_states(s, deflection, &mut st);
                 let rows = self.kinematic_rows(si);
                 for i in 0..self.ns {
                     let mut row = zq.row_mut(si * self.ns + i);
-                    row +=
-                        st.dz_dk[i][0] * rows[0].transpose() + st.dz_dk[i][1] * rows[1].transpose();
+                    for (d, r) in st.dz_dk[i].iter().zip(rows) {
+                        if *d != 0.0 {
+                            row += *d * r.transpose();
+                        }
+                    }
                 }
             }
             jac += &pr.dz * zq;
@@ -350,13 +379,12 @@ impl System {
         Ok((res, jac))
     }
 
-    /// `[φ, u]` at station `si` for coordinates `q`.
-    fn deflection_at(&self, si: usize, q: nalgebra::DVectorView<f64>) -> (f64, f64) {
-        let [phi, u] = &self.rows[si];
-        (phi.dot(&q), u.dot(&q))
+    /// `[φ, u, v]` at station `si` for coordinates `q`.
+    fn deflection_at(&self, si: usize, q: nalgebra::DVectorView<f64>) -> [f64; RATES] {
+        self.rows[si].each_ref().map(|row| row.dot(&q))
     }
 
-    fn kinematic_rows(&self, si: usize) -> &[DVector<f64>; 2] {
+    fn kinematic_rows(&self, si: usize) -> &[DVector<f64>; RATES] {
         &self.rows[si]
     }
 
@@ -388,13 +416,15 @@ impl System {
         let mut eval = StripEval::new(ns);
         let mut zs = Vec::with_capacity(ns);
         for (si, s) in self.stations.iter().enumerate() {
-            let (phi, u) = self.deflection_at(si, q);
-            let (phi_dot, u_dot) = self.deflection_at(si, v);
+            let [phi, u, edge] = self.deflection_at(si, q);
+            let [phi_dot, u_dot, v_dot] = self.deflection_at(si, v);
             let k = Kinematics {
                 phi,
                 u,
+                v: edge,
                 phi_dot,
                 u_dot,
+                v_dot,
             };
             zs.clear();
             zs.extend(z.rows(si * ns, ns).iter());
@@ -409,13 +439,13 @@ impl System {
             if !want_jac {
                 continue;
             }
-            for l in 0..2 {
-                for j in 0..2 {
+            for l in 0..LOADS {
+                for j in 0..RATES {
                     let dpos = eval.dloads_dk[l][j];
                     if dpos != 0.0 {
                         pr.dq.ger(w * dpos, &rows[l], &rows[j], 1.0);
                     }
-                    let drate = eval.dloads_dk[l][j + 2];
+                    let drate = eval.dloads_dk[l][j + RATES];
                     if drate != 0.0 {
                         pr.dv.ger(w * drate, &rows[l], &rows[j], 1.0);
                     }
@@ -428,10 +458,16 @@ impl System {
             for i in 0..ns {
                 let r = si * ns + i;
                 let d = eval.dzdot_dk[i];
-                let mut gq = pr.gq.row_mut(r);
-                gq += d[0] * rows[0].transpose() + d[1] * rows[1].transpose();
-                let mut gv = pr.gv.row_mut(r);
-                gv += d[2] * rows[0].transpose() + d[3] * rows[1].transpose();
+                for (j, row) in rows.iter().enumerate() {
+                    if d[j] != 0.0 {
+                        let mut gq = pr.gq.row_mut(r);
+                        gq += d[j] * row.transpose();
+                    }
+                    if d[j + RATES] != 0.0 {
+                        let mut gv = pr.gv.row_mut(r);
+                        gv += d[j + RATES] * row.transpose();
+                    }
+                }
                 for j in 0..ns {
                     pr.gz[(r, si * ns + j)] = eval.dzdot_dz[i * ns + j];
                 }
@@ -518,19 +554,15 @@ impl System {
         let mut scratch = self.remainder_scratch();
         let mut reference = Vec::with_capacity(stations);
         for (si, s) in self.stations.iter().enumerate() {
-            let [phi, u] = &self.rows[si];
             for (r, &input) in support.inputs.iter().enumerate() {
                 let mut row = c.row_mut(si * p + r);
-                match input {
-                    NonlinearSupport::TWIST => row.columns_mut(0, nq).copy_from(&phi.transpose()),
-                    NonlinearSupport::FLAP => row.columns_mut(0, nq).copy_from(&u.transpose()),
-                    NonlinearSupport::TWIST_RATE => {
-                        row.columns_mut(nq, nq).copy_from(&phi.transpose())
-                    }
-                    NonlinearSupport::FLAP_RATE => {
-                        row.columns_mut(nq, nq).copy_from(&u.transpose())
-                    }
-                    state => row[2 * nq + si * ns + state - NonlinearSupport::FIRST_STATE] = 1.0,
+                if input < NonlinearSupport::FIRST_STATE {
+                    // A deflection reads q, a rate q̇, through the same motion row.
+                    let offset = if input < RATES { 0 } else { nq };
+                    let motion = &self.rows[si][input % RATES];
+                    row.columns_mut(offset, nq).copy_from(&motion.transpose());
+                } else {
+                    row[2 * nq + si * ns + input - NonlinearSupport::FIRST_STATE] = 1.0;
                 }
             }
             for (k, &output) in support.outputs.iter().enumerate() {
@@ -613,13 +645,12 @@ impl System {
         }
     }
 
-    /// Station `si`'s local inputs `[φ, u, φ̇, u̇, z…]` in state `x`.
+    /// Station `si`'s local inputs `[φ, u, v, φ̇, u̇, v̇, z…]` in state `x`.
     fn local_inputs(&self, si: usize, x: &DVector<f64>, out: &mut Vec<f64>) {
         let (nq, ns) = (self.nq(), self.ns);
-        let (phi, u) = self.deflection_at(si, x.rows(0, nq));
-        let (phi_dot, u_dot) = self.deflection_at(si, x.rows(nq, nq));
         out.clear();
-        out.extend_from_slice(&[phi, u, phi_dot, u_dot]);
+        out.extend_from_slice(&self.deflection_at(si, x.rows(0, nq)));
+        out.extend_from_slice(&self.deflection_at(si, x.rows(nq, nq)));
         out.extend(x.rows(2 * nq + si * ns, ns).iter());
     }
 
@@ -633,12 +664,9 @@ impl System {
         want: bool,
     ) {
         let inp = &scratch.inputs;
-        let k = Kinematics {
-            phi: inp[0],
-            u: inp[1],
-            phi_dot: inp[2],
-            u_dot: inp[3],
-        };
+        let mut kinematics = [0.0; NonlinearSupport::FIRST_STATE];
+        kinematics.copy_from_slice(&inp[..NonlinearSupport::FIRST_STATE]);
+        let k = Kinematics::from_array(kinematics);
         let e = &mut scratch.eval;
         self.model.evaluate(
             &self.stations[si],

@@ -259,3 +259,33 @@ pub fn section_grid(preset: &str, key: &str, values: &[f64], sections: &[LayupSe
             pick(|s| s.props.c33),
         ))
 }
+
+/// Aerodynamic power and thrust over a grid of one key (`operating --vary`, e.g. the power curve
+/// along the operating schedule).
+pub fn power_curve(
+    preset: &str,
+    key: &str,
+    values: &[f64],
+    power: &[f64],
+    thrust: &[f64],
+) -> Figure {
+    let x_label = key_label(key);
+    let series = |ys: &[f64], scale: f64| -> Vec<(f64, f64)> {
+        values
+            .iter()
+            .zip(ys)
+            .map(|(&x, &y)| (x, y * scale))
+            .collect()
+    };
+    Figure::new(format!("Steady operation over {key} — {preset}"))
+        .with_panel(
+            Panel::new(&x_label, "power (MW)")
+                .titled("(a) aerodynamic power")
+                .with_series(Series::line_points("power", series(power, 1e-6))),
+        )
+        .with_panel(
+            Panel::new(&x_label, "thrust (kN)")
+                .titled("(b) rotor thrust")
+                .with_series(Series::line_points("thrust", series(thrust, 1e-3))),
+        )
+}

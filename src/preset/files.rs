@@ -1,4 +1,5 @@
-//! The files a preset refers to (`blade.file`) and where they resolve. A preset file's relative
+//! The files a preset refers to (`blade.file`, `aero.*` files, `operating.schedule_file`) and
+//! where they resolve. A preset file's relative
 //! paths resolve against its own directory, as BeamDyn resolves its `BldFile`; a built-in
 //! preset's against the blade files built into the binary ([`BUILTIN_FILES`]), so the binary
 //! runs from any directory; text given without a location against the working directory.
@@ -28,6 +29,58 @@ pub static BUILTIN_FILES: &[(&str, &str)] = &[
     (
         "blades/iea15mw/IEA-15-240-RWT_AeroDyn15_blade.dat",
         include_str!("../../presets/blades/iea15mw/IEA-15-240-RWT_AeroDyn15_blade.dat"),
+    ),
+    (
+        "blades/nrel5mw/NRELOffshrBsline5MW_AeroDyn_blade.dat",
+        include_str!("../../presets/blades/nrel5mw/NRELOffshrBsline5MW_AeroDyn_blade.dat"),
+    ),
+    (
+        "blades/nrel5mw/NRELOffshrBsline5MW_Blade.dat",
+        include_str!("../../presets/blades/nrel5mw/NRELOffshrBsline5MW_Blade.dat"),
+    ),
+    (
+        "blades/nrel5mw/Airfoils/Cylinder1.dat",
+        include_str!("../../presets/blades/nrel5mw/Airfoils/Cylinder1.dat"),
+    ),
+    (
+        "blades/nrel5mw/Airfoils/Cylinder2.dat",
+        include_str!("../../presets/blades/nrel5mw/Airfoils/Cylinder2.dat"),
+    ),
+    (
+        "blades/nrel5mw/Airfoils/DU40_A17.dat",
+        include_str!("../../presets/blades/nrel5mw/Airfoils/DU40_A17.dat"),
+    ),
+    (
+        "blades/nrel5mw/Airfoils/DU35_A17.dat",
+        include_str!("../../presets/blades/nrel5mw/Airfoils/DU35_A17.dat"),
+    ),
+    (
+        "blades/nrel5mw/Airfoils/DU30_A17.dat",
+        include_str!("../../presets/blades/nrel5mw/Airfoils/DU30_A17.dat"),
+    ),
+    (
+        "blades/nrel5mw/Airfoils/DU25_A17.dat",
+        include_str!("../../presets/blades/nrel5mw/Airfoils/DU25_A17.dat"),
+    ),
+    (
+        "blades/nrel5mw/Airfoils/DU21_A17.dat",
+        include_str!("../../presets/blades/nrel5mw/Airfoils/DU21_A17.dat"),
+    ),
+    (
+        "blades/nrel5mw/Airfoils/NACA64_A17.dat",
+        include_str!("../../presets/blades/nrel5mw/Airfoils/NACA64_A17.dat"),
+    ),
+    (
+        "blades/iea15mw/IEA_15MW_RWT_ae.dat",
+        include_str!("../../presets/blades/iea15mw/IEA_15MW_RWT_ae.dat"),
+    ),
+    (
+        "blades/iea15mw/IEA_15MW_RWT_pc.dat",
+        include_str!("../../presets/blades/iea15mw/IEA_15MW_RWT_pc.dat"),
+    ),
+    (
+        "blades/iea15mw/IEA_15MW_RWT_Onshore.opt",
+        include_str!("../../presets/blades/iea15mw/IEA_15MW_RWT_Onshore.opt"),
     ),
 ];
 

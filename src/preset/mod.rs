@@ -24,6 +24,9 @@ pub use schema::*;
 
 use crate::error::{Error, Result};
 use crate::physics::blade::source::{read_blade, read_twist, TabulatedBlade};
+use crate::physics::rotor::files::{read_aerodyn, read_hawc2};
+use crate::physics::rotor::schedule::Table as ScheduleTable;
+use crate::physics::rotor::AeroBlade;
 use serde::Deserialize;
 use std::path::Path;
 use std::sync::Arc;
@@ -164,6 +167,15 @@ impl Preset {
         }
         preset.origin = origin.to_string();
         preset.base = base;
+        // A rotor speed or pitch set on the command line holds against the schedule, as an
+        // edit does ([`Preset::set`]).
+        for ov in overrides {
+            match ov.split('=').next().map(str::trim) {
+                Some("operating.rotor_speed") => preset.schedule_overrides.rotor_speed = true,
+                Some("operating.pitch") => preset.schedule_overrides.pitch = true,
+                _ => {}
+            }
+        }
         preset.check_ranges()?;
         rules::check_blade_keys(&preset)?;
         preset.read_tabulated()?;
@@ -177,6 +189,8 @@ impl Preset {
         self.check_ranges()?;
         rules::check_blade_keys(&self)?;
         self.read_tabulated()?;
+        rules::check_rotor_keys(&self)?;
+        self.read_rotor_files()?;
         rules::check(&self)?;
         Ok(ValidPreset(self))
     }
@@ -233,6 +247,89 @@ impl Preset {
         Ok(())
     }
 
+    /// Read the aerodynamic description (`aero.blade_file` … or `aero.ae_file` …) and the
+    /// operating table (`operating.schedule_file`), once: a preset edited in other keys keeps
+    /// what it holds. File errors keep the file's own path and line, after the preset and keys.
+    fn read_rotor_files(&mut self) -> Result<()> {
+        let keys = RotorFiles::keys_of(self);
+        if self.rotor_files.as_ref().is_some_and(|r| r.keys == keys) {
+            return Ok(());
+        }
+        let origin = self.origin.clone();
+        let invalid = |keys: &str, e: Error| Error::Invalid {
+            origin: origin.clone(),
+            message: format!("{keys}: {e}"),
+        };
+        let (a, base) = (&self.aero, &self.base);
+        let blade = if !a.blade_file.is_empty() {
+            let airfoils: Vec<BladeFile> = a.airfoils.iter().map(|f| base.resolve(f)).collect();
+            Some(
+                read_aerodyn(
+                    &base.resolve(&a.blade_file),
+                    &airfoils,
+                    &base.resolve(&a.pitch_axis_file),
+                )
+                .map_err(|e| {
+                    invalid(
+                        &format!(
+                            "aero.blade_file = \"{}\" (with aero.airfoils, aero.pitch_axis_file = \"{}\")",
+                            a.blade_file, a.pitch_axis_file
+                        ),
+                        e,
+                    )
+                })?,
+            )
+        } else if !a.ae_file.is_empty() {
+            Some(
+                read_hawc2(
+                    &base.resolve(&a.ae_file),
+                    a.ae_set,
+                    &base.resolve(&a.pc_file),
+                    &base.resolve(&self.blade.twist_file),
+                )
+                .map_err(|e| {
+                    invalid(
+                        &format!(
+                            "aero.ae_file = \"{}\" (aero.ae_set = {}, aero.pc_file = \"{}\", \
+                             twist from blade.twist_file = \"{}\")",
+                            a.ae_file, a.ae_set, a.pc_file, self.blade.twist_file
+                        ),
+                        e,
+                    )
+                })?,
+            )
+        } else {
+            None
+        };
+        let table =
+            match self.operating.schedule {
+                Schedule::Table => {
+                    let name = &self.operating.schedule_file;
+                    Some(read_schedule_table(&base.resolve(name)).map_err(|e| {
+                        invalid(&format!("operating.schedule_file = \"{name}\""), e)
+                    })?)
+                }
+                _ => None,
+            };
+        self.rotor_files = Some(RotorFiles {
+            keys,
+            blade: blade.map(Arc::new),
+            table: table.map(Arc::new),
+        });
+        Ok(())
+    }
+
+    /// The aerodynamic description this checked preset holds (`None` when it names no
+    /// aerodynamic files).
+    pub fn aero_blade(&self) -> Option<&Arc<AeroBlade>> {
+        self.rotor_files.as_ref().and_then(|r| r.blade.as_ref())
+    }
+
+    /// The operating table this checked preset holds (`operating.schedule = "table"`).
+    pub fn schedule_table(&self) -> Option<&Arc<ScheduleTable>> {
+        self.rotor_files.as_ref().and_then(|r| r.table.as_ref())
+    }
+
     /// Defaults that depend on `blade.source`, for the keys `written` (the preset's keys as
     /// written, overrides applied) leaves out: a tabulated blade is as long as its file says,
     /// keeps [`TABULATED_MODES`] modes and, until its aerodynamics can be described, has none.
@@ -267,11 +364,24 @@ impl Preset {
 
     /// Set a numeric key, checking its range (the rules across keys wait for
     /// [`Preset::validate`]).
+    ///
+    /// Setting `operating.rotor_speed` or `operating.pitch` overrides the schedule for that key
+    /// ([`ScheduleOverrides`]); [`Preset::follow_schedule`] returns to it.
     pub fn set(&mut self, key: &str, value: f64) -> Result<()> {
         let spec = key_spec(key)?;
         spec.check(&self.origin, value)?;
         (spec.set)(self, value);
+        match key {
+            "operating.rotor_speed" => self.schedule_overrides.rotor_speed = true,
+            "operating.pitch" => self.schedule_overrides.pitch = true,
+            _ => {}
+        }
         Ok(())
+    }
+
+    /// Rotor speed and pitch follow `operating.schedule` again.
+    pub fn follow_schedule(&mut self) {
+        self.schedule_overrides = ScheduleOverrides::default();
     }
 
     /// The preset as TOML text (round-trips through [`Preset::from_toml`]).
@@ -314,6 +424,22 @@ impl Preset {
     pub fn pitch_rad(&self) -> f64 {
         self.operating.pitch.to_radians()
     }
+}
+
+/// An operating table from a HAWC2 `.opt` file, in SI.
+fn read_schedule_table(file: &BladeFile) -> Result<ScheduleTable> {
+    let name = file.display();
+    let opt = crate::formats::hawc2_aero::parse_opt(&file.read()?, &name)?;
+    Ok(ScheduleTable {
+        wind_speed: opt.wind_speed,
+        pitch: opt.pitch_deg.iter().map(|d| d.to_radians()).collect(),
+        rotor_speed: opt
+            .rotor_speed_rpm
+            .iter()
+            .map(|r| r * std::f64::consts::PI / 30.0)
+            .collect(),
+        origin: name,
+    })
 }
 
 /// Apply one `key=value` override to the raw TOML table, creating intermediate tables. The value

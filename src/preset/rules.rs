@@ -3,19 +3,27 @@
 //! every preset whatever its `section.source` (`flutterscope section` evaluates the layup of any
 //! preset).
 
-use super::{AeroModel, BladeSource, ContourShape, Preset, SectionSource};
+use super::{AeroModel, BladeSource, ContourShape, Preset, Schedule, SectionSource};
 use crate::error::{Error, Result};
+use crate::physics::blade::coupling::{coupling_ratio, indefinite_station};
 
 /// Most samples one time response may hold (`simulation.duration × simulation.sample_rate`):
 /// 2e6 samples is 10⁴ s at 200/s; time, tip twist and flap take 48 MB.
 pub const MAX_SAMPLES: f64 = 2e6;
 
 /// `blade.source` and `blade.file` agree: a tabulated blade names its file, the uniform blade
-/// names none (a file given without its source would otherwise be ignored). Checked before the
-/// file is read.
+/// names none (a file given without its source would otherwise be ignored), nor a bend–twist
+/// coupling α (it scales a tabulated blade's stations). Checked before the file is read.
 pub fn check_blade_keys(p: &Preset) -> Result<()> {
     let b = &p.blade;
     let message = match (b.source, b.file.trim().is_empty()) {
+        (BladeSource::Uniform, _) if b.bend_twist_coupling != 0.0 => format!(
+            "blade.bend_twist_coupling = {} does not apply to blade.source = \"uniform\": it \
+             adds to the flap–twist coupling of a tabulated blade's stations (blade.source = \
+             \"beamdyn\" or \"hawc2\"); the uniform blade's coupling is section.c23, or \
+             section.ply_angle for a table or layup section",
+            b.bend_twist_coupling
+        ),
         (BladeSource::Uniform, false) => format!(
             "blade.file = \"{}\" does not apply to blade.source = \"uniform\" (the paper's \
              uniform blade, from blade.length and section.*); set blade.source = \"beamdyn\" for \
@@ -50,6 +58,110 @@ pub fn check_blade_keys(p: &Preset) -> Result<()> {
     })
 }
 
+/// The rotor's file keys agree with each other and with the blade (docs/model.md §12.1): one
+/// aerodynamic description, complete, on the structure whose reference axis it is placed from
+/// (AeroDyn + ElastoDyn `PitchAxis`: the pitch axis of a BeamDyn blade; HAWC2 ae + pc: the
+/// half-chord line of a HAWC2 blade, twisted by its `blade.twist_file`), and a table schedule
+/// with its file. Checked before the files are read.
+pub fn check_rotor_keys(p: &Preset) -> Result<()> {
+    let a = &p.aero;
+    let given = |s: &str| !s.trim().is_empty();
+    let aerodyn = given(&a.blade_file) || !a.airfoils.is_empty() || given(&a.pitch_axis_file);
+    let hawc2 = given(&a.ae_file) || given(&a.pc_file);
+    let message = if aerodyn && hawc2 {
+        "aero.blade_file/aero.airfoils/aero.pitch_axis_file (AeroDyn) and aero.ae_file/\
+         aero.pc_file (HAWC2) both describe the blade's aerodynamics; give one set"
+            .to_string()
+    } else if aerodyn
+        && !(given(&a.blade_file) && !a.airfoils.is_empty() && given(&a.pitch_axis_file))
+    {
+        format!(
+            "an AeroDyn aerodynamic description needs all three of aero.blade_file (the AeroDyn 15 \
+             blade file, now \"{}\"), aero.airfoils (its polar files in BlAFID order, now {} \
+             listed) and aero.pitch_axis_file (an ElastoDyn blade file whose PitchAxis places the \
+             pitch axis on the chord, now \"{}\")",
+            a.blade_file,
+            a.airfoils.len(),
+            a.pitch_axis_file
+        )
+    } else if hawc2 && !(given(&a.ae_file) && given(&a.pc_file)) {
+        format!(
+            "a HAWC2 aerodynamic description needs both aero.ae_file (now \"{}\") and \
+             aero.pc_file (now \"{}\")",
+            a.ae_file, a.pc_file
+        )
+    } else if aerodyn && p.blade.source != BladeSource::Beamdyn {
+        format!(
+            "aero.blade_file places the aerodynamic centre from the pitch axis, the reference axis \
+             of a BeamDyn blade; blade.source = \"{}\" has another (set blade.source = \
+             \"beamdyn\", or describe a HAWC2 blade's aerodynamics by aero.ae_file and \
+             aero.pc_file)",
+            p.blade.source.name()
+        )
+    } else if hawc2 && p.blade.source != BladeSource::Hawc2 {
+        format!(
+            "aero.ae_file places the aerodynamic centre from the half-chord line and takes the \
+             twist from blade.twist_file, as a HAWC2 blade (blade.source = \"hawc2\") has them; \
+             blade.source = \"{}\" has neither",
+            p.blade.source.name()
+        )
+    } else {
+        match (p.operating.schedule, given(&p.operating.schedule_file)) {
+            (Schedule::Table, false) => "operating.schedule = \"table\" needs \
+                 operating.schedule_file: a HAWC2 .opt file of wind speed, pitch and rotor speed, \
+                 relative to the preset file"
+                .to_string(),
+            (s @ (Schedule::None | Schedule::Law), true) => format!(
+                "operating.schedule_file = \"{}\" does not apply to operating.schedule = \"{}\" \
+                 (set operating.schedule = \"table\" to run along it)",
+                p.operating.schedule_file,
+                s.name()
+            ),
+            _ => return Ok(()),
+        }
+    };
+    Err(Error::Invalid {
+        origin: p.origin.clone(),
+        message,
+    })
+}
+
+/// `operating.schedule = "law"` needs its parameters and the rotor's aerodynamics (the pitch
+/// above rated comes from the BEM).
+fn law_is_complete(p: &Preset) -> std::result::Result<(), String> {
+    let o = &p.operating;
+    if o.schedule != Schedule::Law {
+        return Ok(());
+    }
+    let missing = [
+        ("operating.rated_power", o.rated_power),
+        ("operating.tip_speed_ratio", o.tip_speed_ratio),
+        ("operating.rotor_speed_max", o.rotor_speed_max),
+    ]
+    .into_iter()
+    .find(|(_, v)| *v <= 0.0);
+    if let Some((key, v)) = missing {
+        return Err(format!(
+            "operating.schedule = \"law\" needs {key} > 0, found {v}"
+        ));
+    }
+    if o.rotor_speed_min > o.rotor_speed_max {
+        return Err(format!(
+            "operating.rotor_speed_min = {} rpm exceeds operating.rotor_speed_max = {} rpm",
+            o.rotor_speed_min, o.rotor_speed_max
+        ));
+    }
+    if p.aero_blade().is_none() {
+        return Err(
+            "operating.schedule = \"law\" pitches to hold operating.rated_power with \
+                    the rotor's aerodynamics: give aero.blade_file (AeroDyn) or aero.ae_file \
+                    (HAWC2)"
+                .to_string(),
+        );
+    }
+    Ok(())
+}
+
 /// Every rule, in the order a user would fix them; the first broken one is the error.
 pub fn check(p: &Preset) -> Result<()> {
     let invalid = |message: String| Error::Invalid {
@@ -57,12 +169,15 @@ pub fn check(p: &Preset) -> Result<()> {
         message,
     };
     length_is_the_files(p).map_err(invalid)?;
-    if p.blade.source.is_tabulated() && p.aero.model != AeroModel::None {
+    law_is_complete(p).map_err(invalid)?;
+    coupling_is_definite(p).map_err(invalid)?;
+    let described = p.rotor_files.as_ref().is_some_and(|r| r.blade.is_some());
+    if p.blade.source.is_tabulated() && p.aero.model != AeroModel::None && !described {
         return Err(invalid(format!(
             "aero.model = \"{}\" with blade.source = \"{}\": strip aerodynamics on a tabulated \
-             blade needs the blade's own aerodynamic description (chord, twist and airfoil polars \
-             along the span), which a preset cannot give yet; set aero.model = \"none\" for the \
-             blade's structural modes and damping",
+             blade needs its aerodynamic description: aero.blade_file, aero.airfoils and \
+             aero.pitch_axis_file (AeroDyn 15) or aero.ae_file and aero.pc_file (HAWC2); or set \
+             aero.model = \"none\" for the blade's structural modes and damping",
             p.aero.model.name(),
             p.blade.source.name()
         )));
@@ -112,6 +227,27 @@ fn length_is_the_files(p: &Preset) -> std::result::Result<(), String> {
         p.blade.length,
         t.source.name(),
         t.file
+    ))
+}
+
+/// A tabulated blade's stations stay positive definite in bending and torsion with
+/// `blade.bend_twist_coupling` added (docs/model.md §11.7), or its strain energy is not.
+fn coupling_is_definite(p: &Preset) -> std::result::Result<(), String> {
+    let (Some(t), alpha) = (&p.tabulated, p.blade.bend_twist_coupling) else {
+        return Ok(());
+    };
+    let Some((k, s)) = indefinite_station(&t.blade.table, alpha) else {
+        return Ok(());
+    };
+    Err(format!(
+        "blade.bend_twist_coupling = {alpha} couples station {} of blade.file = \"{}\" (z = {} \
+         m) more than its stiffnesses can carry: its flap–twist coupling g/√(EI_flap·GJ) = {:.4} \
+         from the file plus α must leave the section's bending–torsion stiffness positive \
+         definite (|g|/√(EI_flap·GJ) < 1 without edge coupling); choose a smaller |α|",
+        k + 1,
+        t.file,
+        s.z,
+        coupling_ratio(&s)
     ))
 }
 

@@ -3,6 +3,8 @@
 
 use super::files::FileBase;
 use crate::physics::blade::source::TabulatedBlade;
+use crate::physics::rotor::schedule::Table as ScheduleTable;
+use crate::physics::rotor::AeroBlade;
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
 
@@ -30,6 +32,21 @@ pub struct Preset {
     /// `blade.source = "uniform"`), so that the files are read once per preset, not per solve.
     #[serde(skip)]
     pub tabulated: Option<Tabulated>,
+    /// The aerodynamic description and operating table read from the `aero.*` and
+    /// `operating.schedule_file` keys when the preset was checked (`None` when it names none).
+    #[serde(skip)]
+    pub rotor_files: Option<RotorFiles>,
+    /// Which of the schedule's outputs an edit (`--set`, `--vary`, the explorer) has set by
+    /// hand: those hold, the schedule gives the rest (docs/model.md §12.3).
+    #[serde(skip)]
+    pub schedule_overrides: ScheduleOverrides,
+}
+
+/// Rotor speed and pitch set by hand while `operating.schedule` runs: overspeed, idling.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct ScheduleOverrides {
+    pub rotor_speed: bool,
+    pub pitch: bool,
 }
 
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
@@ -95,6 +112,10 @@ pub struct Blade {
     pub st_set: usize,
     /// HAWC2 st subset `$N` within the set (hawc2 source).
     pub st_subset: usize,
+    /// α: adds `α·√(EI_flap·GJ)` to the flap–twist coupling of every station of a tabulated
+    /// blade, on top of its files' (docs/model.md §11.7); α > 0 twists toward feather under
+    /// downwind bending. Tabulated blades only.
+    pub bend_twist_coupling: f64,
 }
 
 /// The tabulated blade a preset was checked with, and the keys it was read from: a change of
@@ -238,6 +259,45 @@ pub struct Operating {
     pub twist_root: f64,
     /// Pretwist at the tip (deg), toward feather.
     pub twist_tip: f64,
+    /// Blade count B of the rotor (steady BEM, docs/model.md §12.2).
+    pub blades: usize,
+    /// Where rotor speed and pitch come from when the wind changes (docs/model.md §12.3).
+    pub schedule: Schedule,
+    /// The operating table (`schedule = "table"`): a HAWC2 `.opt` file of wind speed, pitch and
+    /// rotor speed, relative to the preset's directory.
+    pub schedule_file: String,
+    /// Rated aerodynamic power (W), `schedule = "law"`.
+    pub rated_power: f64,
+    /// Lowest rotor speed of the law (rpm).
+    pub rotor_speed_min: f64,
+    /// Highest rotor speed of the law (rpm).
+    pub rotor_speed_max: f64,
+    /// Optimal tip speed ratio of the law below rated.
+    pub tip_speed_ratio: f64,
+    /// The rotor speed margins are quoted against (rpm); 0: none stated.
+    pub rated_rotor_speed: f64,
+}
+
+/// `operating.schedule`: where rotor speed and pitch come from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Schedule {
+    /// Wind, rotor speed and pitch are set independently.
+    None,
+    /// From `operating.schedule_file`, linear in wind speed.
+    Table,
+    /// Optimal tip speed ratio within the rotor-speed limits, pitch to hold rated power above.
+    Law,
+}
+
+impl Schedule {
+    pub fn name(self) -> &'static str {
+        match self {
+            Schedule::None => "none",
+            Schedule::Table => "table",
+            Schedule::Law => "law",
+        }
+    }
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -329,6 +389,51 @@ pub struct Aero {
     /// Profile drag C_D0 for quasi-steady (the paper: 0).
     pub drag_coefficient: f64,
     pub onera: Onera,
+    /// An AeroDyn 15 blade file (chord, twist, airfoil id per node), relative to the preset's
+    /// directory; with `airfoils` and `pitch_axis_file` (docs/model.md §12.1).
+    pub blade_file: String,
+    /// AirfoilInfo polar files in airfoil-id (`BlAFID`) order.
+    pub airfoils: Vec<String>,
+    /// An ElastoDyn blade file whose `PitchAxis` places the pitch axis on the chord.
+    pub pitch_axis_file: String,
+    /// A HAWC2 ae file (chord, relative thickness, pc set along the blade); with `pc_file`.
+    pub ae_file: String,
+    /// The ae set used (1-based).
+    pub ae_set: usize,
+    /// The HAWC2 pc file (profile coefficients by relative thickness).
+    pub pc_file: String,
+}
+
+/// The rotor's files as read when the preset was checked, with the keys they were read from:
+/// an edit of any of them reads the files again.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RotorFiles {
+    /// What was read: (aero keys, `blade.twist_file`, `operating.schedule_file`).
+    pub keys: (Vec<String>, String, String),
+    /// The aerodynamic description (`None` when the preset names no aerodynamic files).
+    pub blade: Option<Arc<AeroBlade>>,
+    /// The operating table (`None` unless `operating.schedule = "table"`).
+    pub table: Option<Arc<ScheduleTable>>,
+}
+
+impl RotorFiles {
+    /// The keys that decide what [`RotorFiles`] holds, in the form it stores them.
+    pub fn keys_of(p: &Preset) -> (Vec<String>, String, String) {
+        let a = &p.aero;
+        let mut aero = vec![
+            a.blade_file.clone(),
+            a.pitch_axis_file.clone(),
+            a.ae_file.clone(),
+            a.ae_set.to_string(),
+            a.pc_file.clone(),
+        ];
+        aero.extend(a.airfoils.iter().cloned());
+        let table = match p.operating.schedule {
+            Schedule::Table => p.operating.schedule_file.clone(),
+            _ => String::new(),
+        };
+        (aero, p.blade.twist_file.clone(), table)
+    }
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -411,6 +516,8 @@ pub enum Selected {
     TunnelSpeed,
     RotorSpeed,
     Pitch,
+    /// `blade.bend_twist_coupling` (tabulated blades).
+    BendTwistCoupling,
 }
 
 impl Selected {
@@ -422,6 +529,7 @@ impl Selected {
             Selected::TunnelSpeed => "operating.tunnel_speed",
             Selected::RotorSpeed => "operating.rotor_speed",
             Selected::Pitch => "operating.pitch",
+            Selected::BendTwistCoupling => "blade.bend_twist_coupling",
         }
     }
 }
@@ -440,6 +548,8 @@ impl Default for Preset {
             origin: "defaults".into(),
             base: FileBase::default(),
             tabulated: None,
+            rotor_files: None,
+            schedule_overrides: ScheduleOverrides::default(),
         }
     }
 }
@@ -454,6 +564,7 @@ impl Default for Blade {
             hub_radius: 0.0,
             st_set: 1,
             st_subset: 1,
+            bend_twist_coupling: 0.0,
         }
     }
 }
@@ -532,6 +643,14 @@ impl Default for Operating {
             inflow: Inflow::Tip,
             twist_root: 0.0,
             twist_tip: 0.0,
+            blades: 3,
+            schedule: Schedule::None,
+            schedule_file: String::new(),
+            rated_power: 0.0,
+            rotor_speed_min: 0.0,
+            rotor_speed_max: 0.0,
+            tip_speed_ratio: 0.0,
+            rated_rotor_speed: 0.0,
         }
     }
 }
@@ -558,6 +677,12 @@ impl Default for Aero {
             stations: 8,
             drag_coefficient: 0.0,
             onera: Onera::default(),
+            blade_file: String::new(),
+            airfoils: Vec::new(),
+            pitch_axis_file: String::new(),
+            ae_file: String::new(),
+            ae_set: 1,
+            pc_file: String::new(),
         }
     }
 }

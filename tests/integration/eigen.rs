@@ -226,13 +226,13 @@ impl StripModel for ApparentMassOnly {
     fn states_per_station(&self) -> usize {
         0
     }
-    fn apparent_mass(&self, s: &Station) -> [[f64; 2]; 2] {
+    fn apparent_mass(&self, s: &Station) -> [[f64; 3]; 3] {
         self.0.apparent_mass(s)
     }
     fn evaluate(&self, _: &Station, _: &Kinematics, _: &[f64], out: &mut StripEval, _: bool) {
         out.clear();
     }
-    fn steady_states(&self, _: &Station, _: f64, _: f64, _: &mut SteadyStates) {}
+    fn steady_states(&self, _: &Station, _: [f64; 3], _: &mut SteadyStates) {}
 }
 
 #[test]

@@ -139,6 +139,7 @@ impl TestEngine {
                 c33: 0.46,
             }),
             stability: test_stability(p),
+            shapes: Vec::new(),
         })
     }
 }
@@ -1056,15 +1057,18 @@ fn a_slow_solve_shows_its_running_time() {
     assert!(!text.contains("solving…"), "{text}");
 }
 
-/// The parameters pane dims what changes nothing for the preset: on a tabulated blade without
-/// aerodynamics the ply angle, the loss factor and the wind and tunnel speeds; on the paper's
-/// blade (table section, quasi-steady aerodynamics) none of them.
+/// The parameters pane offers only the knobs that can change something for the preset's blade
+/// and dims those waiting for another setting: on a tabulated blade without aerodynamics the
+/// bend–twist coupling is offered, the ply angle and the loss factor are not, wind and tunnel
+/// speed are dimmed; on the paper's blade (table section, quasi-steady aerodynamics) the ply
+/// angle is offered and nothing dimmed; the Goland wing's direct stiffnesses have no ply angle.
 #[test]
-fn parameters_that_change_nothing_are_dimmed() {
+fn the_parameters_pane_offers_what_applies_and_dims_what_waits() {
     use ratatui::backend::TestBackend;
     use ratatui::style::Modifier;
     use ratatui::Terminal;
-    let dimmed_rows = |name: &str| -> Vec<String> {
+    // (shown, dimmed) labels of the parameters pane.
+    let rows = |name: &str| -> (Vec<String>, Vec<String>) {
         let p = Preset::load(name, &[]).unwrap();
         let s = settled_state(name, p, &Physics, ViewKind::Main, MarkerKind::Braille);
         let mut terminal = Terminal::new(TestBackend::new(120, 40)).unwrap();
@@ -1072,23 +1076,237 @@ fn parameters_that_change_nothing_are_dimmed() {
             .draw(|f| flutterscope::explorer::ui::render(&s, f))
             .unwrap();
         let buf = frame.buffer;
-        PARAMS
-            .iter()
-            .filter_map(|param| {
-                (0..buf.area.height).find_map(|y| {
-                    let row: String = (0..36).map(|x| buf[(x, y)].symbol()).collect();
-                    let x = row.find(param.label)?;
-                    let cell = &buf[(row[..x].chars().count() as u16, y)];
-                    cell.modifier
-                        .contains(Modifier::DIM)
-                        .then(|| param.label.to_string())
-                })
-            })
-            .collect()
+        let mut shown = Vec::new();
+        let mut dimmed = Vec::new();
+        for param in PARAMS {
+            let found = (0..buf.area.height).find_map(|y| {
+                let row: String = (0..36).map(|x| buf[(x, y)].symbol()).collect();
+                let x = row.find(param.label)?;
+                let cell = &buf[(row[..x].chars().count() as u16, y)];
+                Some(cell.modifier.contains(Modifier::DIM))
+            });
+            if let Some(dim) = found {
+                shown.push(param.label.to_string());
+                if dim {
+                    dimmed.push(param.label.to_string());
+                }
+            }
+        }
+        (shown, dimmed)
+    };
+    let (shown, dimmed) = rows("nrel5mw");
+    assert_eq!(
+        shown,
+        [
+            "bend–twist α",
+            "wind speed",
+            "tunnel speed",
+            "rotor speed",
+            "pitch",
+            "aero model",
+            "modes N"
+        ]
+    );
+    assert_eq!(dimmed, ["wind speed", "tunnel speed"]);
+    let (shown, dimmed) = rows("liu2017");
+    assert!(shown.contains(&"ply angle".to_string()), "{shown:?}");
+    assert!(shown.contains(&"loss factor".to_string()), "{shown:?}");
+    assert!(!shown.contains(&"bend–twist α".to_string()), "{shown:?}");
+    assert!(dimmed.is_empty(), "{dimmed:?}");
+    let (shown, _) = rows("goland");
+    assert!(!shown.contains(&"ply angle".to_string()), "{shown:?}");
+}
+
+/// ↑/↓ walk the offered rows only; on a tabulated blade the coupling knob is one of them and
+/// drags like the others: fine and coarse steps, a re-solve each, the margin searched along it,
+/// and its ends stop without a solve.
+#[test]
+fn the_coupling_knob_is_selected_and_dragged_on_a_real_blade() {
+    let engine = TestEngine::default();
+    let p = Preset::load("nrel5mw", &[]).unwrap();
+    let (entries, index) = preset_entries("nrel5mw", p);
+    let mut s = AppState::new(entries, index, Options::default());
+    let e = s.start();
+    settle(&mut s, &engine, e);
+    assert_eq!(PARAMS[s.focus].label, "rotor speed");
+    // Up past pitch… to the top row: the coupling (the ply angle is not offered).
+    for _ in 0..3 {
+        update(&mut s, Msg::Action(Action::FocusPrev));
+    }
+    assert_eq!(PARAMS[s.focus].label, "bend–twist α");
+    // One more wraps to the last offered row, modes N (no loss factor on a tabulated blade).
+    update(&mut s, Msg::Action(Action::FocusPrev));
+    assert_eq!(PARAMS[s.focus].label, "modes N");
+    update(&mut s, Msg::Action(Action::FocusNext));
+    assert_eq!(s.boundary_key, "blade.bend_twist_coupling");
+    let e = update(&mut s, Msg::Action(Action::Increase));
+    assert_eq!(solve_gens(&e), vec![s.gen]);
+    settle(&mut s, &engine, e);
+    assert_eq!(s.preset.blade.bend_twist_coupling, 0.01);
+    // Coarse steps snap to their grid: 0.01 → 0 → −0.05.
+    let e = update(&mut s, Msg::Action(Action::DecreaseCoarse));
+    settle(&mut s, &engine, e);
+    assert_eq!(s.preset.blade.bend_twist_coupling, 0.0);
+    let e = update(&mut s, Msg::Action(Action::DecreaseCoarse));
+    settle(&mut s, &engine, e);
+    assert_eq!(s.preset.blade.bend_twist_coupling, -0.05);
+    for _ in 0..10 {
+        let e = update(&mut s, Msg::Action(Action::DecreaseCoarse));
+        settle(&mut s, &engine, e);
+    }
+    assert_eq!(s.preset.blade.bend_twist_coupling, -0.3);
+    let e = update(&mut s, Msg::Action(Action::Decrease));
+    assert!(solve_gens(&e).is_empty());
+    assert!(s.notice.as_deref().unwrap_or("").contains("minimum"));
+    assert!(render_text(&s, 120, 40).contains("-0.30"));
+}
+
+/// A preset can open on the coupling (`view.select = "bend-twist-coupling"`); on the uniform
+/// blade, which does not offer it, the explorer falls back to the first offered row and searches
+/// rotor speed.
+#[test]
+fn view_select_can_open_on_the_coupling() {
+    let open = |name: &str| {
+        let p = Preset::load(name, &["view.select=bend-twist-coupling".into()]).unwrap();
+        let (entries, index) = preset_entries(name, p);
+        let s = AppState::new(entries, index, Options::default());
+        (PARAMS[s.focus].label, s.boundary_key)
     };
     assert_eq!(
-        dimmed_rows("nrel5mw"),
-        ["ply angle", "wind speed", "tunnel speed", "loss factor"]
+        open("iea15mw-btc"),
+        ("bend–twist α", "blade.bend_twist_coupling")
     );
-    assert!(dimmed_rows("liu2017").is_empty());
+    assert_eq!(open("liu2017"), ("ply angle", "section.ply_angle"));
+}
+
+/// The mode-shape pane follows the least-damped mode until a mode is picked; `.` and `,` step
+/// through the modes by frequency (opening the pane), the pick survives a parameter change, and
+/// `s` (re)opens the pane on the least-damped mode.
+#[test]
+fn the_shape_pane_starts_on_the_least_damped_mode_and_steps_by_frequency() {
+    let engine = TestEngine::default();
+    let mut s = settled(&engine);
+    // The test engine's flap 1 has σ = −0.05 + 0.01·20 − 0.1 = 0.05 > 0: the least damped.
+    update(&mut s, Msg::Action(Action::ToggleShape));
+    assert_eq!(s.view, ViewMode::Shape);
+    let label = |s: &AppState| {
+        s.shape_index().map(|i| {
+            s.solved.as_ref().unwrap().stability.eigenvalues[i]
+                .label
+                .clone()
+        })
+    };
+    assert_eq!(label(&s).as_deref(), Some("flap 1"));
+    update(&mut s, Msg::Action(Action::NextMode));
+    assert_eq!(label(&s).as_deref(), Some("torsion 1"));
+    update(&mut s, Msg::Action(Action::NextMode));
+    assert_eq!(label(&s).as_deref(), Some("flap 1"));
+    update(&mut s, Msg::Action(Action::PrevMode));
+    assert_eq!(label(&s).as_deref(), Some("torsion 1"));
+    let e = update(&mut s, Msg::Action(Action::Increase));
+    settle(&mut s, &engine, e);
+    assert_eq!(label(&s).as_deref(), Some("torsion 1"));
+    // The test engine has no shapes: the pane says so instead of drawing.
+    assert!(render_text(&s, 120, 40).contains("no mode shapes from this solve"));
+    update(&mut s, Msg::Action(Action::ToggleShape));
+    assert_eq!(s.view, ViewMode::Main);
+    update(&mut s, Msg::Action(Action::ToggleShape));
+    assert_eq!(label(&s).as_deref(), Some("flap 1"));
+    update(&mut s, Msg::Action(Action::Back));
+    assert_eq!(s.view, ViewMode::Main);
+    // Stepping from the main view opens the pane.
+    update(&mut s, Msg::Action(Action::NextMode));
+    assert_eq!(s.view, ViewMode::Shape);
+}
+
+/// The pane draws the real engine's shapes: the mode's name, frequency and damping ratio, the
+/// legend of the components the blade has (no edge on the paper's flap–torsion blade), the span.
+#[test]
+fn the_shape_pane_draws_the_solved_shape() {
+    let text = snapshot_of("liu2017", ViewKind::Shape, 120, 40);
+    assert!(text.contains("Mode shape · flap 1"), "{text}");
+    assert!(
+        text.contains("1.044 Hz  ζ = 0.132") && text.contains("least damped"),
+        "{text}"
+    );
+    assert!(
+        text.contains("F flap 1.0 m") && text.contains("T twist"),
+        "{text}"
+    );
+    assert!(!text.contains("E edge"), "{text}");
+    assert!(text.contains("tip 8.45 m"), "{text}");
+    let text = snapshot_of("nrel5mw", ViewKind::Shape, 120, 40);
+    assert!(
+        text.contains("Mode shape · flap 1") && text.contains("E edge"),
+        "{text}"
+    );
+}
+
+#[test]
+fn snapshot_the_shape_pane_of_every_builtin_preset() {
+    for (name, _) in BUILTIN {
+        for (cols, rows) in [(80, 24), (160, 48)] {
+            let text = snapshot_of(name, ViewKind::Shape, cols, rows);
+            assert!(text.contains("Mode shape · "), "{name}:\n{text}");
+            insta::assert_snapshot!(format!("shape_{name}_{cols}x{rows}"), text);
+        }
+    }
+}
+
+/// Without aerodynamics a tabulated blade's roots are its damped natural modes, so the shape the
+/// solve gives the pane must be the one `modes --shapes` prints (scaled the same way: the
+/// dominant component +1 at its peak), through an independent path (the command's JSON).
+#[test]
+fn the_solved_shape_of_a_structural_root_is_the_natural_mode_shape() {
+    let p = Preset::load("nrel5mw", &[]).unwrap();
+    let solution = flutterscope::analysis::solve::solve(&p).unwrap();
+    let stability = solution.stability().unwrap();
+    let shapes = solution.mode_shapes(&stability);
+    let out = assert_cmd::Command::cargo_bin("flutterscope")
+        .unwrap()
+        .args(["modes", "--preset", "nrel5mw", "--shapes", "--json"])
+        .output()
+        .unwrap();
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    for label in ["flap 1", "edge 1", "flap 2"] {
+        let i = stability
+            .eigenvalues
+            .iter()
+            .position(|m| m.label == label)
+            .unwrap();
+        let shape = &shapes[i];
+        let printed = json["modes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|m| m["label"] == label)
+            .unwrap();
+        let along = |c: &str| -> Vec<f64> {
+            printed["shape"][c]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|v| v.as_f64().unwrap())
+                .collect()
+        };
+        let z = along("z");
+        assert_eq!(z.len(), shape.span.len(), "{label}");
+        for (k, c) in ["flap", "edge"].iter().enumerate() {
+            let printed = along(c);
+            let peak = printed.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+            assert!(
+                (shape.peaks[k] - peak).abs() < 1e-6 * peak.max(1e-3),
+                "{label} {c}: peak {} against {peak}",
+                shape.peaks[k]
+            );
+            for (drawn, value) in shape.components[k].iter().zip(&printed) {
+                assert!(
+                    (drawn * peak - value).abs() < 1e-6,
+                    "{label} {c}: {drawn} × {peak} against {value}"
+                );
+            }
+        }
+        // No coupling in the NREL 5MW file: no twist to draw.
+        assert_eq!(shape.peaks[2], 0.0, "{label}");
+    }
 }

@@ -57,18 +57,28 @@ fn names_are_unique_and_within_their_family_everywhere() {
     assert!(checked >= 30, "only {checked} combinations solved");
 }
 
-/// The unstable demo-blade mode at 80 rpm has one name in `eigen`, `flutter`, `sweep` and the
-/// explorer's status line, and every named track of the 0–200 rpm sweep either moves
-/// continuously or leaves its branch only where re-solving inside the step confirms it.
+/// The unstable demo-blade mode, just past its flutter boundary, has one name in `eigen`,
+/// `flutter`, `sweep` and the explorer's status line, and every named track of the 0–200 rpm
+/// sweep either moves continuously or leaves its branch only where re-solving inside the step
+/// confirms it.
 #[test]
 fn demo_blade_names_agree_and_tracks_are_continuous() {
-    let p = Preset::load("demo-blade", &["operating.rotor_speed=80".into()]).unwrap();
+    let base = Preset::load("demo-blade", &[]).unwrap();
+    let search = flutter_search(&base, "operating.rotor_speed", 0.0, 200.0, 41).unwrap();
+    let critical = search
+        .boundary
+        .critical
+        .expect("demo-blade flutters below 200 rpm");
+    // The first sweep grid point past the boundary.
+    let grid: Vec<f64> = (0..=20).map(|k| 10.0 * k as f64).collect();
+    let at = grid.iter().position(|&v| v > critical).unwrap();
+    let rpm = grid[at];
+    let p = base.with("operating.rotor_speed", rpm).unwrap();
     let eigen = analyse(&p).unwrap();
     let unstable = eigen.critical().unwrap();
     assert!(unstable.re > 0.0 && unstable.family.is_some());
     let name = unstable.label.clone();
 
-    let search = flutter_search(&p, "operating.rotor_speed", 0.0, 200.0, 41).unwrap();
     assert_eq!(search.boundary.mode.as_deref(), Some(name.as_str()));
     assert!(
         search.message.contains(&format!("{name} (flap ")),
@@ -76,13 +86,11 @@ fn demo_blade_names_agree_and_tracks_are_continuous() {
         search.message
     );
 
-    let grid: Vec<f64> = (0..=20).map(|k| 10.0 * k as f64).collect();
     let sweep = track(&p, "operating.rotor_speed", &grid).unwrap();
-    let at80 = grid.iter().position(|&v| v == 80.0).unwrap();
     let growing: Vec<&str> = sweep
         .modes
         .iter()
-        .filter(|m| m.re[at80] > 0.0)
+        .filter(|m| m.re[at] > 0.0)
         .map(|m| m.label.as_str())
         .collect();
     assert_eq!(growing, [name.as_str()]);
@@ -90,7 +98,11 @@ fn demo_blade_names_agree_and_tracks_are_continuous() {
     let out = Command::cargo_bin("flutterscope")
         .unwrap()
         .args(["snapshot", "--preset", "demo-blade", "--set"])
-        .args(["operating.rotor_speed=80", "--size", "160x48"])
+        .args([
+            format!("operating.rotor_speed={rpm}").as_str(),
+            "--size",
+            "160x48",
+        ])
         .output()
         .unwrap();
     let text = String::from_utf8(out.stdout).unwrap();

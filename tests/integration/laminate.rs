@@ -359,7 +359,7 @@ mod cli {
             .args(["--preset", "demo-blade"])
             .assert()
             .success()
-            .stdout(contains("CAS [+15]16 upper"))
+            .stdout(contains("CAS [+15]40 upper"))
             .stdout(contains("lower wall [-15]\n"));
     }
 

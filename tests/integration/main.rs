@@ -1,8 +1,10 @@
 //! The integration tests, one binary (one link on the 2-core CI machine): each module is an
 //! area of the program, driven through the library or the real `flutterscope` binary.
 
+mod bem;
 mod blade;
 mod cli_basic;
+mod coupling;
 mod eigen;
 mod explorer;
 mod formats;
@@ -15,6 +17,7 @@ mod paper_figures;
 mod plot;
 mod presets;
 mod readme;
+mod rotor_aero;
 mod simulate;
 mod stability;
 mod structure;

@@ -502,6 +502,7 @@ use flutterscope::physics::inflow::Station;
 fn paper_station(alpha_r: f64) -> Station {
     let s = paper_strip(alpha_r);
     Station {
+        index: 0,
         x: 6.0,
         weight: 0.7,
         radius: 6.0,
@@ -537,19 +538,20 @@ fn check_model_jacobian(m: &OneraModel, st: &Station, k: Kinematics, z: &[f64]) 
         e
     };
     type KSet = fn(&mut Kinematics, f64);
-    let axes: [(KSet, f64); 4] = [
-        (|k, v| k.phi = v, k.phi),
-        (|k, v| k.u = v, k.u),
-        (|k, v| k.phi_dot = v, k.phi_dot),
-        (|k, v| k.u_dot = v, k.u_dot),
+    // (setter, value, index in the interface's [φ, u, v, φ̇, u̇, v̇]); the paper's blade has no edge.
+    let axes: [(KSet, f64, usize); 4] = [
+        (|k, v| k.phi = v, k.phi, 0),
+        (|k, v| k.u = v, k.u, 1),
+        (|k, v| k.phi_dot = v, k.phi_dot, 3),
+        (|k, v| k.u_dot = v, k.u_dot, 4),
     ];
-    for (j, (set, x0)) in axes.into_iter().enumerate() {
+    for (set, x0, j) in axes {
         let at = |x: f64| {
             let mut kk = k;
             set(&mut kk, x);
             eval(kk, z)
         };
-        for l in 0..2 {
+        for l in 0..3 {
             check_partial(
                 &format!("{} ∂load{l}/∂k{j}", m.name()),
                 exact.dloads_dk[l][j],
@@ -602,6 +604,7 @@ fn strip_model_jacobians_match_central_differences() {
         u: 0.3,
         phi_dot: 2.0,
         u_dot: 0.3,
+        ..Kinematics::default()
     };
     let st = paper_station(0.3);
     let coupled_z = [1e-4, -2e-5, -0.3, 40.0, -0.05, 3.0, 0.06, -7.0];
@@ -628,7 +631,7 @@ fn strip_model_steady_states_are_fixed_points_with_exact_slopes() {
         let st = paper_station(0.3);
         for phi in [-0.2, 0.0, 0.1, 0.2, 0.4] {
             let mut steady = SteadyStates::new(ns);
-            m.steady_states(&st, phi, 0.1, &mut steady);
+            m.steady_states(&st, [phi, 0.1, 0.0], &mut steady);
             let mut e = StripEval::new(ns);
             let k = Kinematics {
                 phi,
@@ -647,13 +650,13 @@ fn strip_model_steady_states_are_fixed_points_with_exact_slopes() {
                     steady.dz_dk[i][0],
                     |x| {
                         let mut s = SteadyStates::new(ns);
-                        m.steady_states(&st, x, 0.1, &mut s);
+                        m.steady_states(&st, [x, 0.1, 0.0], &mut s);
                         s.z[i]
                     },
                     phi,
                     1e-2,
                 );
-                assert_eq!(steady.dz_dk[i][1], 0.0);
+                assert_eq!(steady.dz_dk[i][1..], [0.0, 0.0]);
             }
         }
     }
@@ -675,6 +678,7 @@ fn coupled_model_below_stall_without_drag_equals_theodorsen_model() {
         u: 0.5,
         phi_dot: 1.0,
         u_dot: -0.3,
+        ..Kinematics::default()
     };
     let z = [2e-4, -1e-4, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
     let (mut eo, mut et) = (StripEval::new(8), StripEval::new(2));
@@ -693,7 +697,7 @@ fn coupled_model_below_stall_without_drag_equals_theodorsen_model() {
     // The rigid form has no apparent mass.
     assert_eq!(
         model(OneraForcing::Rigid, defaults()).apparent_mass(&st),
-        [[0.0; 2]; 2]
+        [[0.0; 3]; 3]
     );
 }
 
@@ -710,6 +714,7 @@ fn rigid_model_rates_do_not_depend_on_the_structure() {
         u: 1.0,
         phi_dot: -5.0,
         u_dot: 2.0,
+        ..Kinematics::default()
     };
     m.evaluate(&st, &k, &z, &mut b, true);
     assert_eq!(a.zdot, b.zdot);

@@ -108,6 +108,25 @@ impl Session {
     }
 }
 
+impl Session {
+    /// `q` ends the explorer with status 0, the alternate screen off and none of its panes left
+    /// (the pane's shell prints the exit status: the command line ends with an `echo`).
+    fn quit_cleanly(&self) {
+        self.keys(&["q"]);
+        let after = self.wait_for("explorer exited with");
+        assert!(after.contains("explorer exited with 0"), "{after}");
+        assert_eq!(
+            self.display("#{alternate_on}"),
+            "0",
+            "alternate screen still on"
+        );
+        assert!(
+            !after.contains("Root locus"),
+            "terminal not restored:\n{after}"
+        );
+    }
+}
+
 impl Drop for Session {
     fn drop(&mut self) {
         let _ = Command::new("tmux")
@@ -180,13 +199,62 @@ fn explorer_runs_adjusts_helps_and_quits_cleanly_in_a_terminal() {
 
     // q quits with status 0 and leaves the alternate screen: the shell's line is visible and
     // none of the explorer's panes remain.
-    s.keys(&["q"]);
-    let after = s.wait_for("explorer exited with");
-    assert!(after.contains("explorer exited with 0"), "{after}");
-    assert!(
-        !after.contains("Root locus"),
-        "terminal not restored:\n{after}"
+    s.quit_cleanly();
+}
+
+/// Issue 14: a real blade in a real terminal. `--set` applies to the starting preset (the
+/// coupling opens at 0.10 and comes back with it after cycling away); the coupling knob is
+/// selected and dragged, each step re-solved; the mode-shape pane opens and steps to the next
+/// mode; `q` ends with status 0 and a restored terminal.
+#[test]
+fn a_real_blade_drags_its_coupling_shows_its_modes_and_quits_cleanly() {
+    if !tmux_available() {
+        return;
+    }
+    let cmd = format!(
+        "{} tui --preset nrel5mw --set blade.bend_twist_coupling=0.1; echo \"explorer exited \
+         with $?\"; sleep 30",
+        binary().display()
     );
+    let s = Session::start(120, 40, &cmd);
+    let coupling_row = |screen: &str| -> String {
+        screen
+            .lines()
+            .find(|l| l.contains("bend–twist α"))
+            .unwrap_or_else(|| panic!("no coupling row:\n{screen}"))
+            .to_string()
+    };
+    let screen = s.wait_for_all(&["STABLE", "nrel5mw [5/7]", "bend–twist α"]);
+    assert!(coupling_row(&screen).contains("0.10"), "{screen}");
+    assert!(!screen.contains("ply angle"), "{screen}");
+
+    // Rotor speed is selected at start; three rows up is the coupling (no ply angle here).
+    s.keys(&["Up", "Up", "Up", "Right"]);
+    let screen = s.wait_for("bend–twist α*");
+    assert!(coupling_row(&screen).contains("0.11"), "{screen}");
+    s.keys(&["L"]);
+    s.wait_for("0.15");
+    s.keys(&["H", "H", "H", "H"]);
+    let screen = s.wait_for("-0.05");
+    assert!(coupling_row(&screen).contains("-0.05"), "{screen}");
+    s.wait_for_all(&["STABLE", "margin along bend–twist α"]);
+
+    // The mode-shape pane: the least-damped mode first, `.` steps to the next by frequency.
+    s.keys(&["s"]);
+    s.wait_for_all(&["Mode shape · flap 1", "least damped"]);
+    s.keys(&["."]);
+    s.wait_for("Mode shape · edge 1");
+    s.keys(&["s"]);
+    s.wait_for("Tip response");
+
+    // Away and back: the starting preset keeps its --set.
+    s.keys(&["]"]);
+    s.wait_for("iea15mw [6/7]");
+    s.keys(&["["]);
+    let screen = s.wait_for("nrel5mw [5/7]");
+    assert!(coupling_row(&screen).contains("0.10"), "{screen}");
+
+    s.quit_cleanly();
 }
 
 #[test]
@@ -243,7 +311,7 @@ impl Keys {
 /// the idle measurement knows the explorer is paused).
 const FLOOD_KEYS: &[&str] = &[
     "Left", "Right", "Up", "Down", "h", "l", "j", "-", "+", "H", "L", "S-Left", "S-Right", "Tab",
-    "BTab", "[", "]", "a", "r", "k", "f", "c", "m", "?", "Escape",
+    "BTab", "[", "]", "a", "r", "k", "f", "c", "s", ",", ".", "m", "?", "Escape",
 ];
 
 /// Keys handed to one `tmux send-keys` (one process per batch, not per key).
@@ -334,20 +402,9 @@ fn a_flood_of_keys_and_resizes_ends_cleanly_and_idles() {
         "a paused explorer kept the CPU busy: {idle:?} ticks per 3 s"
     );
 
-    s.keys(&["q"]);
-    let after = s.wait_for("explorer exited with");
+    s.quit_cleanly();
     let history = s.history();
-    assert!(after.contains("explorer exited with 0"), "{after}");
     assert!(!history.contains("panicked"), "{history}");
-    assert_eq!(
-        s.display("#{alternate_on}"),
-        "0",
-        "alternate screen still on"
-    );
-    assert!(
-        !after.contains("Root locus"),
-        "terminal not restored:\n{after}"
-    );
 }
 
 /// With no subcommand in a terminal whose TERM is `dumb`, the explorer is refused with a clear

@@ -25,7 +25,8 @@ pub fn render(theme: &Theme, frame: &mut Frame, area: Rect) {
     for note in [
         " * marks parameters changed from the preset.",
         " The margin comes from a background search along the selected parameter",
-        " (ply angle, wind, tunnel or rotor speed, pitch); presets choose the first.",
+        " (ply angle or bend–twist α, wind, tunnel or rotor speed, pitch); presets",
+        " choose the first.",
         " Root locus: σ on an asinh axis (linear near 0), ω on a log axis.",
     ] {
         lines.push(Line::styled(note, theme.dim()));

@@ -6,6 +6,7 @@ pub mod locus;
 pub mod modes;
 pub mod params;
 pub mod response;
+pub mod shape;
 pub mod status;
 pub mod theme;
 
@@ -43,22 +44,34 @@ pub fn render(state: &AppState, frame: &mut Frame) {
     let left_w = (area.width * 3 / 10).clamp(34, 44);
     let [left, right] =
         Layout::horizontal([Constraint::Length(left_w), Constraint::Min(0)]).areas(body);
-    let [params_area, modes_area] =
-        Layout::vertical([Constraint::Length(params::HEIGHT), Constraint::Min(0)]).areas(left);
+    let [params_area, modes_area] = Layout::vertical([
+        Constraint::Length(params::height(&state.preset)),
+        Constraint::Min(0),
+    ])
+    .areas(left);
     params::render(state, &theme, frame, params_area);
+    modes::render(state, &theme, frame, modes_area);
     match state.view {
-        ViewMode::Main => {
-            modes::render(state, &theme, frame, modes_area);
-            let [locus_area, response_area] =
-                Layout::vertical([Constraint::Percentage(55), Constraint::Percentage(45)])
-                    .areas(right);
+        ViewMode::Main | ViewMode::Shape => {
+            // The shape pane gets half: it needs rows for its legend and its three curves.
+            let locus_share = if state.view == ViewMode::Shape {
+                50
+            } else {
+                55
+            };
+            let [locus_area, lower_area] = Layout::vertical([
+                Constraint::Percentage(locus_share),
+                Constraint::Percentage(100 - locus_share),
+            ])
+            .areas(right);
             locus::render(state, &theme, frame, locus_area);
-            response::render(state, &theme, frame, response_area);
+            if state.view == ViewMode::Shape {
+                shape::render(state, &theme, frame, lower_area);
+            } else {
+                response::render(state, &theme, frame, lower_area);
+            }
         }
-        ViewMode::Campbell => {
-            modes::render(state, &theme, frame, modes_area);
-            campbell::render(state, &theme, frame, right);
-        }
+        ViewMode::Campbell => campbell::render(state, &theme, frame, right),
     }
     status::render(state, &theme, frame, status_area);
     if state.help {

@@ -1,31 +1,30 @@
-//! The parameters pane: the varied parameters with units (the selected one highlighted, the ones
-//! that change nothing for this preset dimmed) and the live section stiffnesses C22, C23, C33, or
-//! for a tabulated blade which blade it is.
+//! The parameters pane: the parameters offered for this preset with units (the selected one
+//! highlighted, the ones that change nothing until another setting changes dimmed) and the live
+//! section stiffnesses C22, C23, C33, or for a tabulated blade which blade it is.
 
 use super::{pane, sig, Theme};
-use crate::explorer::state::{AppState, ParamKind, PARAMS};
+use crate::explorer::state::{offered_rows, AppState, ParamKind, PARAMS};
 use crate::preset::{AeroModel, SectionSource, ValidPreset};
 use ratatui::layout::Rect;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::Paragraph;
 use ratatui::Frame;
 
-/// Rows: the parameters, a blank, the section header and three stiffnesses, plus borders.
-pub const HEIGHT: u16 = PARAMS.len() as u16 + 5 + 2;
+/// Rows for `p`: the offered parameters, a blank, the section header and three stiffnesses (or
+/// the blade's source, span, hub and stations), plus borders.
+pub fn height(p: &ValidPreset) -> u16 {
+    offered_rows(p).len() as u16 + 5 + 2
+}
 
-/// Whether a parameter changes nothing for this preset, so the pane dims it: the ply angle with
-/// direct stiffnesses or on a tabulated blade (its sections come from its files), the loss factor
-/// on a tabulated blade (damped per mode family instead), wind and tunnel speed without
-/// aerodynamics.
+/// Whether an offered parameter changes nothing until another setting changes, so the pane dims
+/// it: wind and tunnel speed without aerodynamics (`a` turns them on). Knobs that can change
+/// nothing for the preset's blade are not offered at all ([`crate::explorer::state::offered`]).
 fn matters_not(p: &ValidPreset, kind: &ParamKind) -> bool {
-    let tabulated = p.tabulated_blade().is_some();
     match kind {
-        ParamKind::Number { key, .. } => match *key {
-            "section.ply_angle" => tabulated || p.section.source == SectionSource::Direct,
-            "structure.loss_factor" => tabulated,
-            "operating.wind_speed" | "operating.tunnel_speed" => p.aero.model == AeroModel::None,
-            _ => false,
-        },
+        ParamKind::Number { key, .. } => {
+            matches!(*key, "operating.wind_speed" | "operating.tunnel_speed")
+                && p.aero.model == AeroModel::None
+        }
         ParamKind::Aero => false,
     }
 }
@@ -42,7 +41,8 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
     let label_w = 12;
     let value_w = inner_w.saturating_sub(label_w + 3);
     let mut lines: Vec<Line> = Vec::new();
-    for (i, p) in PARAMS.iter().enumerate() {
+    for i in offered_rows(&state.preset) {
+        let p = &PARAMS[i];
         let focused = i == state.focus;
         let marker = if focused { "▸ " } else { "  " };
         let value = state.param_text(p);

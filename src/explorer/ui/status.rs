@@ -227,7 +227,7 @@ fn solving_text(state: &AppState) -> String {
 
 /// The key hints, longest first; the first that fits is shown.
 const HINTS: [&str; 3] = [
-    "←→ adjust  S-←→ coarse  ↑↓ select  a aero  k kick  f boundary  c Campbell  space pause  ? help  q quit",
-    "←→ adjust  ↑↓ select  a aero  k kick  f boundary  c Campbell  space pause  ? help  q quit",
-    "←→ adjust ↑↓ select a aero k kick c Campbell ? help q quit",
+    "←→ adjust  S-←→ coarse  ↑↓ select  a aero  k kick  f boundary  c Campbell  s shape  space pause  ? help  q quit",
+    "←→ adjust  ↑↓ select  a aero  k kick  f boundary  c Campbell  s shape  space pause  ? help  q quit",
+    "←→ adjust ↑↓ select a aero k kick c Campbell s shape ? help q quit",
 ];

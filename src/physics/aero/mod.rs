@@ -1,22 +1,27 @@
 //! Strip aerodynamics (docs/model.md §5): one interface, one model per file.
 //!
 //! Every model is a [`StripModel`]: given one strip's rigid flow ([`Station`]), its local
-//! kinematics (twist `φ`, flap `u` and their rates) and its own aerodynamic states `z`, it returns
-//! the loads per unit span — the moment `m_φ` toward feather and the force `f_u` downwind — and the
-//! state rates `ż`, with their exact partial derivatives. Apparent-mass loads (proportional to
-//! `φ̈`, `ü`) are a separate, constant matrix so the system can move them into its mass matrix.
+//! kinematics (twist `φ`, flap `u`, edge `v` and their rates) and its own aerodynamic states `z`,
+//! it returns the loads per unit span — the moment `m_φ` toward feather, the force `f_u` downwind
+//! and the force `f_v` in the rotor plane toward the leading edge — and the state rates `ż`, with
+//! their exact partial derivatives. Apparent-mass loads (proportional to `φ̈`, `ü`, `v̈`) are a
+//! separate, constant matrix so the system can move them into its mass matrix.
 //! The system (`physics::system`) does the spanwise Galerkin projection; a model never sees the
 //! basis functions.
 //!
-//! Ordering convention, used everywhere in this interface: loads `[m_φ, f_u]`, kinematics
-//! `[φ, u, φ̇, u̇]`, apparent-mass inputs `[φ̈, ü]` — torsion first, as in `q = [q_φ; q_u]`.
+//! Ordering convention, used everywhere in this interface: loads `[m_φ, f_u, f_v]`, kinematics
+//! `[φ, u, v, φ̇, u̇, v̇]`, apparent-mass inputs `[φ̈, ü, v̈]` — torsion first, as in
+//! `q = [q_φ; q_u]`. The paper's models (§5.1–§5.3) act on a blade without edge motion and leave
+//! every edge entry zero; the blade-element model of a real blade (§12) fills them.
 //!
 //! Adding a model: implement [`StripModel`] in its own file, including `steady_states` (the
 //! states that make `ż = 0` for a static deflection, with their derivative, so the equilibrium
 //! solve needs no special case) and, if it is not affine and must be simulated as such (ONERA,
 //! §5.3), `nonlinear_support`; then add it to [`model_for`].
 
+pub mod blade_element;
 pub mod onera;
+pub mod polar;
 pub mod quasi_steady;
 pub mod theodorsen;
 
@@ -31,10 +36,46 @@ pub struct Kinematics {
     pub phi: f64,
     /// Flap displacement u (m, downwind).
     pub u: f64,
+    /// Edge displacement v (m, in the rotor plane toward the leading edge: the direction of
+    /// rotation).
+    pub v: f64,
     /// φ̇ (rad/s).
     pub phi_dot: f64,
     /// u̇ (m/s).
     pub u_dot: f64,
+    /// v̇ (m/s).
+    pub v_dot: f64,
+}
+
+/// Loads per strip: `[m_φ, f_u, f_v]`.
+pub const LOADS: usize = 3;
+/// Kinematic inputs per strip: `[φ, u, v, φ̇, u̇, v̇]`; the rates start at [`RATES`].
+pub const KINEMATICS: usize = 6;
+/// Index of φ̇ in the kinematics (φ, u, v come first, their rates in the same order).
+pub const RATES: usize = 3;
+
+impl Kinematics {
+    /// `[φ, u, v, φ̇, u̇, v̇]`.
+    pub fn to_array(&self) -> [f64; KINEMATICS] {
+        [
+            self.phi,
+            self.u,
+            self.v,
+            self.phi_dot,
+            self.u_dot,
+            self.v_dot,
+        ]
+    }
+    pub fn from_array(k: [f64; KINEMATICS]) -> Kinematics {
+        Kinematics {
+            phi: k[0],
+            u: k[1],
+            v: k[2],
+            phi_dot: k[3],
+            u_dot: k[4],
+            v_dot: k[5],
+        }
+    }
 }
 
 /// The per-length section and air data every strip model needs.
@@ -72,16 +113,16 @@ impl StripSection {
 /// model's state count and reused across stations, so the inner loop does not allocate.
 #[derive(Debug, Clone, PartialEq)]
 pub struct StripEval {
-    /// `[m_φ, f_u]` per unit span (N·m/m, N/m), apparent mass excluded.
-    pub loads: [f64; 2],
-    /// ∂loads/∂[φ, u, φ̇, u̇].
-    pub dloads_dk: [[f64; 4]; 2],
+    /// `[m_φ, f_u, f_v]` per unit span (N·m/m, N/m, N/m), apparent mass excluded.
+    pub loads: [f64; LOADS],
+    /// ∂loads/∂[φ, u, v, φ̇, u̇, v̇].
+    pub dloads_dk: [[f64; KINEMATICS]; LOADS],
     /// ∂loads/∂z, `[load][state]`.
-    pub dloads_dz: [Vec<f64>; 2],
+    pub dloads_dz: [Vec<f64>; LOADS],
     /// ż.
     pub zdot: Vec<f64>,
-    /// ∂ż/∂[φ, u, φ̇, u̇], one row per state.
-    pub dzdot_dk: Vec<[f64; 4]>,
+    /// ∂ż/∂[φ, u, v, φ̇, u̇, v̇], one row per state.
+    pub dzdot_dk: Vec<[f64; KINEMATICS]>,
     /// ∂ż/∂z, row-major `states × states`.
     pub dzdot_dz: Vec<f64>,
 }
@@ -89,24 +130,24 @@ pub struct StripEval {
 impl StripEval {
     pub fn new(states: usize) -> StripEval {
         StripEval {
-            loads: [0.0; 2],
-            dloads_dk: [[0.0; 4]; 2],
-            dloads_dz: [vec![0.0; states], vec![0.0; states]],
+            loads: [0.0; LOADS],
+            dloads_dk: [[0.0; KINEMATICS]; LOADS],
+            dloads_dz: std::array::from_fn(|_| vec![0.0; states]),
             zdot: vec![0.0; states],
-            dzdot_dk: vec![[0.0; 4]; states],
+            dzdot_dk: vec![[0.0; KINEMATICS]; states],
             dzdot_dz: vec![0.0; states * states],
         }
     }
 
     /// Zero everything (models then only write their non-zero entries).
     pub fn clear(&mut self) {
-        self.loads = [0.0; 2];
-        self.dloads_dk = [[0.0; 4]; 2];
+        self.loads = [0.0; LOADS];
+        self.dloads_dk = [[0.0; KINEMATICS]; LOADS];
         for row in &mut self.dloads_dz {
             row.fill(0.0);
         }
         self.zdot.fill(0.0);
-        self.dzdot_dk.fill([0.0; 4]);
+        self.dzdot_dk.fill([0.0; KINEMATICS]);
         self.dzdot_dz.fill(0.0);
     }
 }
@@ -114,17 +155,17 @@ impl StripEval {
 /// The steady aerodynamic states of one strip held at a static deflection.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SteadyStates {
-    /// z such that ż = 0 at φ̇ = u̇ = 0.
+    /// z such that ż = 0 with no motion.
     pub z: Vec<f64>,
-    /// ∂z/∂[φ, u], one row per state.
-    pub dz_dk: Vec<[f64; 2]>,
+    /// ∂z/∂[φ, u, v], one row per state.
+    pub dz_dk: Vec<[f64; RATES]>,
 }
 
 impl SteadyStates {
     pub fn new(states: usize) -> SteadyStates {
         SteadyStates {
             z: vec![0.0; states],
-            dz_dk: vec![[0.0; 2]; states],
+            dz_dk: vec![[0.0; RATES]; states],
         }
     }
 }
@@ -132,7 +173,8 @@ impl SteadyStates {
 /// Where a strip model is not affine, for the time stepper (docs/model.md §7): the local inputs its
 /// nonlinear part reads and the local outputs it writes.
 ///
-/// Local inputs are indexed `[φ, u, φ̇, u̇, z_0, z_1, …]`, local outputs `[m_φ, f_u, ż_0, ż_1, …]`
+/// Local inputs are indexed `[φ, u, v, φ̇, u̇, v̇, z_0, z_1, …]`, local outputs
+/// `[m_φ, f_u, f_v, ż_0, ż_1, …]`
 /// (the interface's ordering). The contract: every output not listed is affine in every input
 /// with constant coefficients, and every listed output is affine with constant coefficients in
 /// the inputs not listed. The stepper then treats the listed part implicitly on a few scalars per
@@ -149,18 +191,24 @@ impl NonlinearSupport {
     pub const TWIST: usize = 0;
     /// Input index of u.
     pub const FLAP: usize = 1;
+    /// Input index of v.
+    pub const EDGE: usize = 2;
     /// Input index of φ̇.
-    pub const TWIST_RATE: usize = 2;
+    pub const TWIST_RATE: usize = 3;
     /// Input index of u̇.
-    pub const FLAP_RATE: usize = 3;
+    pub const FLAP_RATE: usize = 4;
+    /// Input index of v̇.
+    pub const EDGE_RATE: usize = 5;
     /// Input index of the first aerodynamic state.
-    pub const FIRST_STATE: usize = 4;
+    pub const FIRST_STATE: usize = KINEMATICS;
     /// Output index of m_φ.
     pub const TWIST_LOAD: usize = 0;
     /// Output index of f_u.
     pub const FLAP_LOAD: usize = 1;
+    /// Output index of f_v.
+    pub const EDGE_LOAD: usize = 2;
     /// Output index of the first state rate.
-    pub const FIRST_RATE: usize = 2;
+    pub const FIRST_RATE: usize = LOADS;
 
     /// True when nothing is listed: the model is simulated linearised.
     pub fn is_affine(&self) -> bool {
@@ -176,19 +224,19 @@ pub trait StripModel: Send + Sync + std::fmt::Debug {
     /// Aerodynamic states per station (0 for quasi-steady).
     fn states_per_station(&self) -> usize;
 
-    /// Apparent-mass loads: `[m_φ, f_u] += M_a · [φ̈, ü]`, `M_a[load][accel]`. Constant in time;
-    /// the system moves it to the left-hand side (mass matrix).
-    fn apparent_mass(&self, _s: &Station) -> [[f64; 2]; 2] {
-        [[0.0; 2]; 2]
+    /// Apparent-mass loads: `[m_φ, f_u, f_v] += M_a · [φ̈, ü, v̈]`, `M_a[load][accel]`. Constant
+    /// in time; the system moves it to the left-hand side (mass matrix).
+    fn apparent_mass(&self, _s: &Station) -> [[f64; RATES]; LOADS] {
+        [[0.0; RATES]; LOADS]
     }
 
     /// Loads and state rates at kinematics `k` and states `z`; partial derivatives too when
     /// `jacobian` is true (otherwise those fields are left as they were).
     fn evaluate(&self, s: &Station, k: &Kinematics, z: &[f64], out: &mut StripEval, jacobian: bool);
 
-    /// The states for which `ż = 0` when the strip is held at twist `phi` and flap `u` with no
-    /// motion, and their derivative with respect to `[φ, u]`.
-    fn steady_states(&self, s: &Station, phi: f64, u: f64, out: &mut SteadyStates);
+    /// The states for which `ż = 0` when the strip is held at `deflection = [φ, u, v]` with no
+    /// motion, and their derivative with respect to `[φ, u, v]`.
+    fn steady_states(&self, s: &Station, deflection: [f64; RATES], out: &mut SteadyStates);
 
     /// Optional scale of each state (its angle-of-attack contribution per unit state). Not used
     /// by the eigen-analysis, which measures structural shares by participation factors (scale
@@ -217,7 +265,7 @@ impl StripModel for NoAero {
     fn evaluate(&self, _: &Station, _: &Kinematics, _: &[f64], out: &mut StripEval, _: bool) {
         out.clear();
     }
-    fn steady_states(&self, _: &Station, _: f64, _: f64, _: &mut SteadyStates) {}
+    fn steady_states(&self, _: &Station, _: [f64; RATES], _: &mut SteadyStates) {}
 }
 
 /// The model a preset selects.
@@ -243,26 +291,32 @@ pub(crate) mod test_support {
         let mut exact = StripEval::new(ns);
         model.evaluate(s, &k, z, &mut exact, true);
         let mut worst: f64 = 0.0;
+        // Central differences of an output `f` carry round-off of about ε|f|/h: a slope far
+        // below the output's own size is compared against that size instead.
+        let output_size = exact
+            .loads
+            .iter()
+            .chain(&exact.zdot)
+            .fold(0.0f64, |m, v| m.max(v.abs()));
         let mut compare = |analytic: f64, numeric: f64| {
-            let scale = analytic.abs().max(numeric.abs()).max(1e-6);
+            let scale = analytic
+                .abs()
+                .max(numeric.abs())
+                .max(1e-6)
+                .max(1e-3 * output_size);
             worst = worst.max((analytic - numeric).abs() / scale);
         };
         let h = 1e-6;
-        for j in 0..4 {
+        for j in 0..KINEMATICS {
             let shifted = |d: f64| {
-                let mut kk = k;
-                match j {
-                    0 => kk.phi += d,
-                    1 => kk.u += d,
-                    2 => kk.phi_dot += d,
-                    _ => kk.u_dot += d,
-                }
+                let mut kk = k.to_array();
+                kk[j] += d;
                 let mut e = StripEval::new(ns);
-                model.evaluate(s, &kk, z, &mut e, false);
+                model.evaluate(s, &Kinematics::from_array(kk), z, &mut e, false);
                 e
             };
             let (p, m) = (shifted(h), shifted(-h));
-            for l in 0..2 {
+            for l in 0..LOADS {
                 compare(exact.dloads_dk[l][j], (p.loads[l] - m.loads[l]) / (2.0 * h));
             }
             for i in 0..ns {
@@ -278,7 +332,7 @@ pub(crate) mod test_support {
                 e
             };
             let (p, m) = (shifted(h), shifted(-h));
-            for l in 0..2 {
+            for l in 0..LOADS {
                 compare(exact.dloads_dz[l][j], (p.loads[l] - m.loads[l]) / (2.0 * h));
             }
             for i in 0..ns {
@@ -293,6 +347,7 @@ pub(crate) mod test_support {
 
     pub fn station() -> Station {
         Station {
+            index: 0,
             x: 3.0,
             weight: 0.5,
             radius: 3.5,

@@ -791,14 +791,14 @@ impl OneraModel {
         let s: [f64; rigid::STATES] = state_array(z);
         let c = &self.coefficients;
         let loads = rigid::loads(c, strip, k.phi, &s);
-        out.loads = [loads.twist, loads.flap];
+        out.loads = [loads.twist, loads.flap, 0.0];
         out.zdot.copy_from_slice(&rigid::rates(c, strip, &s));
         if !jac {
             return;
         }
         let p = rigid::load_partials(c, strip, k.phi, &s);
         write_load_partials(&p, out);
-        // The states never see the structure: ∂ż/∂[φ, u, φ̇, u̇] stays zero.
+        // The states never see the structure: ∂ż/∂[φ, u, v, φ̇, u̇, v̇] stays zero.
         write_rate_jacobian(&rigid::rate_jacobian(c, strip), out);
     }
 
@@ -815,7 +815,7 @@ impl OneraModel {
         let motion = Self::motion(k);
         let w = coupled::downwash(strip, &motion);
         let loads = coupled::loads(c, strip, &motion, &s);
-        out.loads = [loads.twist, loads.flap];
+        out.loads = [loads.twist, loads.flap, 0.0];
         out.zdot.copy_from_slice(&coupled::rates(c, strip, w, &s));
         if !jac {
             return;
@@ -823,7 +823,7 @@ impl OneraModel {
         let p = coupled::load_partials(c, strip, &motion, &s);
         write_load_partials(&p, out);
         let dw = coupled::downwash_partials(strip);
-        let dw_dk = [dw.twist, 0.0, dw.twist_rate, dw.flap_rate];
+        let dw_dk = [dw.twist, 0.0, 0.0, dw.twist_rate, dw.flap_rate, 0.0];
         let dzdot_dw = coupled::rate_downwash_partial(c, strip, w);
         for (row, d) in out.dzdot_dk.iter_mut().zip(dzdot_dw) {
             *row = dw_dk.map(|g| d * g);
@@ -839,12 +839,15 @@ fn state_array<const S: usize>(z: &[f64]) -> [f64; S] {
     s
 }
 
-/// Load partials into the interface's layout: loads `[m_φ, f_u]`, kinematics `[φ, u, φ̇, u̇]`.
+/// Load partials into the interface's layout: loads `[m_φ, f_u, f_v]`, kinematics
+/// `[φ, u, v, φ̇, u̇, v̇]` (the paper's blade has no edge motion: those entries stay zero).
 fn write_load_partials<const S: usize>(p: &LoadPartials<S>, out: &mut StripEval) {
-    let by_kinematics = [p.twist, Loads::default(), p.twist_rate, p.flap_rate];
+    let none = Loads::default();
+    let by_kinematics = [p.twist, none, none, p.twist_rate, p.flap_rate, none];
     out.dloads_dk = [
         by_kinematics.map(|l| l.twist),
         by_kinematics.map(|l| l.flap),
+        [0.0; 6],
     ];
     for (j, l) in p.states.iter().enumerate() {
         out.dloads_dz[0][j] = l.twist;
@@ -868,16 +871,17 @@ impl StripModel for OneraModel {
     }
 
     /// The coupled form carries Theodorsen's apparent mass (§5.2); the rigid form has none.
-    fn apparent_mass(&self, s: &Station) -> [[f64; 2]; 2] {
+    fn apparent_mass(&self, s: &Station) -> [[f64; 3]; 3] {
         match self.forcing {
-            OneraForcing::Rigid => [[0.0; 2]; 2],
+            OneraForcing::Rigid => [[0.0; 3]; 3],
             OneraForcing::Coupled => {
                 let strip = self.strip(s);
                 let z = [0.0; coupled::STATES];
                 let p = coupled::load_partials(&self.coefficients, &strip, &Motion::default(), &z);
                 [
-                    [p.twist_accel.twist, p.flap_accel.twist],
-                    [p.twist_accel.flap, p.flap_accel.flap],
+                    [p.twist_accel.twist, p.flap_accel.twist, 0.0],
+                    [p.twist_accel.flap, p.flap_accel.flap, 0.0],
+                    [0.0; 3],
                 ]
             }
         }
@@ -935,13 +939,13 @@ impl StripModel for OneraModel {
 
     /// Rigid: the states settle on `α_r` whatever the deflection. Coupled: on the static
     /// downwash `w = V0(α_r − φ)`, so they move with the twist.
-    fn steady_states(&self, s: &Station, phi: f64, _u: f64, out: &mut SteadyStates) {
+    fn steady_states(&self, s: &Station, [phi, _, _]: [f64; 3], out: &mut SteadyStates) {
         let strip = self.strip(s);
         let c = &self.coefficients;
         match self.forcing {
             OneraForcing::Rigid => {
                 out.z.copy_from_slice(&rigid::steady(c, &strip));
-                out.dz_dk.fill([0.0; 2]);
+                out.dz_dk.fill([0.0; 3]);
             }
             OneraForcing::Coupled => {
                 let w = coupled::downwash(
@@ -958,7 +962,7 @@ impl StripModel for OneraModel {
                     .iter_mut()
                     .zip(coupled::steady_downwash_partial(c, &strip, w))
                 {
-                    *row = [d * dw_dphi, 0.0];
+                    *row = [d * dw_dphi, 0.0, 0.0];
                 }
             }
         }

@@ -62,9 +62,11 @@ impl StripModel for QuasiSteady {
         let alpha_g = s.alpha_r - k.phi;
         let (sin_g, cos_g) = alpha_g.sin_cos();
         let ea = self.section.ea_offset;
+        // The paper's blade has no edge motion: f_v and every edge slope stay zero.
         out.loads = [
             -ea * (lift * cos_g + drag * sin_g),
             lift * cos_psi + drag * sin_psi,
+            0.0,
         ];
         if jacobian {
             // dα_g/dφ = −1, so d(cos α_g)/dφ = sin α_g and d(sin α_g)/dφ = −cos α_g.
@@ -73,14 +75,17 @@ impl StripModel for QuasiSteady {
                     -ea * (lift_phi * cos_g + lift * sin_g - drag * cos_g),
                     0.0,
                     0.0,
+                    0.0,
                     -ea * lift_udot * cos_g,
+                    0.0,
                 ],
-                [lift_phi * cos_psi, 0.0, 0.0, lift_udot * cos_psi],
+                [lift_phi * cos_psi, 0.0, 0.0, 0.0, lift_udot * cos_psi, 0.0],
+                [0.0; 6],
             ];
         }
     }
 
-    fn steady_states(&self, _: &Station, _: f64, _: f64, _: &mut SteadyStates) {}
+    fn steady_states(&self, _: &Station, _: [f64; 3], _: &mut SteadyStates) {}
 }
 
 #[cfg(test)]
@@ -96,6 +101,7 @@ mod tests {
             u: 0.2,
             phi_dot: 0.4,
             u_dot: -0.7,
+            ..Kinematics::default()
         };
         assert!(jacobian_mismatch(&m, &station(), k, &[]) < 1e-6);
     }
@@ -108,7 +114,7 @@ mod tests {
         m.evaluate(&s, &Kinematics::default(), &[], &mut e, true);
         let f0 = e.loads[1];
         assert!(f0 > 0.0, "positive α_r pushes the blade downwind");
-        assert!(e.dloads_dk[1][0] < 0.0 && e.dloads_dk[1][3] < 0.0);
+        assert!(e.dloads_dk[1][0] < 0.0 && e.dloads_dk[1][4] < 0.0);
         // e_a > 0: the lift's moment is nose-up (negative toward feather), destabilising.
         assert!(e.loads[0] < 0.0 && e.dloads_dk[0][0] > 0.0);
     }

@@ -38,13 +38,13 @@ impl Theodorsen {
         self.section.ea_offset / self.section.semichord() - 0.5
     }
 
-    /// Downwash at three-quarter chord and its slopes `∂w/∂[φ, u, φ̇, u̇]`.
-    fn downwash(&self, s: &Station, k: &Kinematics) -> (f64, [f64; 4]) {
+    /// Downwash at three-quarter chord and its slopes `∂w/∂[φ, u, v, φ̇, u̇, v̇]`.
+    fn downwash(&self, s: &Station, k: &Kinematics) -> (f64, [f64; 6]) {
         let b = self.section.semichord();
         let arm = b * (0.5 - self.elastic_axis());
         let cos_psi = s.psi.cos();
         let w = s.v0 * (s.alpha_r - k.phi) - k.u_dot * cos_psi - arm * k.phi_dot;
-        (w, [-s.v0, 0.0, -arm, -cos_psi])
+        (w, [-s.v0, 0.0, 0.0, -arm, -cos_psi, 0.0])
     }
 }
 
@@ -57,7 +57,7 @@ impl StripModel for Theodorsen {
         JONES.len()
     }
 
-    fn apparent_mass(&self, s: &Station) -> [[f64; 2]; 2] {
+    fn apparent_mass(&self, s: &Station) -> [[f64; 3]; 3] {
         let sec = &self.section;
         let b = sec.semichord();
         let a = self.elastic_axis();
@@ -65,8 +65,9 @@ impl StripModel for Theodorsen {
         let cos_psi = s.psi.cos();
         // ḧ = −ü cos ψ, α̈_T = −φ̈ substituted into L_nc and M_T, then f_u = L cos ψ, m_φ = −M_T.
         [
-            [-prb2 * b * b * (0.125 + a * a), prb2 * b * a * cos_psi],
-            [prb2 * b * a * cos_psi, -prb2 * cos_psi * cos_psi],
+            [-prb2 * b * b * (0.125 + a * a), prb2 * b * a * cos_psi, 0.0],
+            [prb2 * b * a * cos_psi, -prb2 * cos_psi * cos_psi, 0.0],
+            [0.0; 3],
         ]
     }
 
@@ -99,17 +100,22 @@ impl StripModel for Theodorsen {
         let lift_nc = -prb2 * v * k.phi_dot;
         let moment_nc = prb2 * v * b * (0.5 - a) * k.phi_dot;
         let ea = sec.ea_offset; // = b(a + ½)
-        out.loads = [-(moment_nc + ea * lift_c), (lift_c + lift_nc) * cos_psi];
+        out.loads = [
+            -(moment_nc + ea * lift_c),
+            (lift_c + lift_nc) * cos_psi,
+            0.0,
+        ];
         for (i, (_, eps)) in JONES.iter().enumerate() {
             out.zdot[i] = -eps * rate * z[i] + w;
         }
         if jacobian {
-            let dlc_dk: [f64; 4] = std::array::from_fn(|j| circ * direct * dw[j]);
-            let dlnc = [0.0, 0.0, -prb2 * v, 0.0];
-            let dmnc = [0.0, 0.0, prb2 * v * b * (0.5 - a), 0.0];
+            let dlc_dk: [f64; 6] = std::array::from_fn(|j| circ * direct * dw[j]);
+            let dlnc = [0.0, 0.0, 0.0, -prb2 * v, 0.0, 0.0];
+            let dmnc = [0.0, 0.0, 0.0, prb2 * v * b * (0.5 - a), 0.0, 0.0];
             out.dloads_dk = [
                 std::array::from_fn(|j| -(dmnc[j] + ea * dlc_dk[j])),
                 std::array::from_fn(|j| (dlc_dk[j] + dlnc[j]) * cos_psi),
+                [0.0; 6],
             ];
             for (i, (amp, eps)) in JONES.iter().enumerate() {
                 let dlc_dz = circ * rate * amp * eps;
@@ -125,11 +131,11 @@ impl StripModel for Theodorsen {
 
     /// `ż_i = 0` with no motion: `z_i = w b/(ε_i V) = b(α_r − φ)/ε_i`. Written without the
     /// division by V, so it is also the (irrelevant but finite) choice when V = 0.
-    fn steady_states(&self, s: &Station, phi: f64, _u: f64, out: &mut SteadyStates) {
+    fn steady_states(&self, s: &Station, [phi, _, _]: [f64; 3], out: &mut SteadyStates) {
         let b = self.section.semichord();
         for (i, (_, eps)) in JONES.iter().enumerate() {
             out.z[i] = b * (s.alpha_r - phi) / eps;
-            out.dz_dk[i] = [-b / eps, 0.0];
+            out.dz_dk[i] = [-b / eps, 0.0, 0.0];
         }
     }
 }
@@ -148,6 +154,7 @@ mod tests {
             u: 0.2,
             phi_dot: 0.4,
             u_dot: -0.7,
+            ..Kinematics::default()
         };
         assert!(jacobian_mismatch(&m, &station(), k, &[0.3, -0.1]) < 1e-6);
     }
@@ -160,7 +167,7 @@ mod tests {
         let s = station();
         let phi = 0.02;
         let mut st = SteadyStates::new(2);
-        m.steady_states(&s, phi, 0.0, &mut st);
+        m.steady_states(&s, [phi, 0.0, 0.0], &mut st);
         let mut e = StripEval::new(2);
         let k = Kinematics {
             phi,
@@ -178,6 +185,10 @@ mod tests {
     fn apparent_mass_is_symmetric_and_adds_inertia() {
         let m = Theodorsen::new(section());
         let ma = m.apparent_mass(&station());
+        assert!(ma[2]
+            .iter()
+            .chain(ma.iter().map(|r| &r[2]))
+            .all(|&v| v == 0.0));
         assert_eq!(ma[0][1], ma[1][0]);
         // Loads oppose accelerations: negative definite.
         assert!(ma[0][0] < 0.0 && ma[1][1] < 0.0);

@@ -11,6 +11,7 @@
 
 pub mod beamdyn;
 pub mod classical;
+pub mod coupling;
 pub mod fem;
 pub mod hawc2;
 pub mod modal;

@@ -9,6 +9,7 @@
 //! family ([`SourceDamping::PerFamily`]); a file that states none leaves the mode undamped.
 
 use super::beamdyn::from_beamdyn;
+use super::coupling::with_bend_twist_coupling;
 use super::fem::{assemble, Mesh};
 use super::hawc2::{from_hawc2_st, ChordTwist};
 use super::modal::{stiffness_damping, BladeMode, ModalBlade, StiffnessFactors};
@@ -182,7 +183,8 @@ const BASIS_MARGIN: usize = 8;
 #[derive(Debug, Clone)]
 pub struct BladeStructure {
     pub blade: Arc<TabulatedBlade>,
-    /// The blade as the elements see it: the file's sections at the preset's hub radius.
+    /// The blade as the elements see it: the file's sections at the preset's hub radius, with
+    /// the preset's `blade.bend_twist_coupling` added (docs/model.md §11.7).
     pub table: BladeTable,
     pub modal: Arc<ModalBlade>,
     /// K, the modes retained (`structure.modes`).
@@ -196,7 +198,7 @@ pub struct BladeStructure {
 /// `structure.min_elements`, pitch `operating.pitch`, a basis good from rest to
 /// `view.rotor_speed_max` (or the operating speed, if higher).
 ///
-/// Built once per blade, hub radius, pitch, mesh, K, damping and basis range, and kept for the
+/// Built once per blade, coupling α, hub radius, pitch, mesh, K, damping and basis range, and kept for the
 /// next call ([`BUILT`] of them): a change of rotor speed, wind or anything aerodynamic then
 /// costs the reduced eigenproblem only (docs/model.md §11.4), not a re-assembly.
 pub fn blade_structure(p: &ValidPreset) -> Result<Option<Arc<BladeStructure>>> {
@@ -233,6 +235,8 @@ fn lock(cache: &Built) -> std::sync::MutexGuard<'_, Vec<(BuildKey, Arc<BladeStru
 #[derive(Debug, Clone, PartialEq)]
 struct BuildKey {
     blade: Arc<TabulatedBlade>,
+    /// `blade.bend_twist_coupling`: another α is another blade.
+    coupling: f64,
     hub_radius: f64,
     pitch: f64,
     min_elements: usize,
@@ -245,6 +249,7 @@ impl BuildKey {
     fn of(p: &ValidPreset, blade: &Arc<TabulatedBlade>) -> BuildKey {
         BuildKey {
             blade: blade.clone(),
+            coupling: p.blade.bend_twist_coupling,
             hub_radius: p.blade.hub_radius,
             pitch: p.pitch_rad(),
             min_elements: p.structure.min_elements,
@@ -256,11 +261,8 @@ impl BuildKey {
 }
 
 fn build(p: &ValidPreset, blade: Arc<TabulatedBlade>) -> Result<BladeStructure> {
-    let table = BladeTable::new(
-        &blade.table.origin,
-        p.blade.hub_radius,
-        blade.table.sections.clone(),
-    )?;
+    let coupled = with_bend_twist_coupling(&blade.table, p.blade.bend_twist_coupling);
+    let table = BladeTable::new(&coupled.origin, p.blade.hub_radius, coupled.sections)?;
     let mesh = Mesh::following(&table, p.structure.min_elements);
     let pitch = p.pitch_rad();
     let matrices = assemble(&table, &mesh, pitch)?;

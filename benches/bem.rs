@@ -1,0 +1,52 @@
+//! Steady BEM timings (docs/model.md §12.2, README figures): one solve of the IEA 15MW rotor at
+//! 30 stations (its preset's Gauss stations, sections from the HAWC2 ae and pc files) at rated
+//! (10.7 m/s, 7.56 rpm), and the same with the sections looked up afresh (what a caller pays when
+//! the stations change); the NREL 5MW operating point of its preset through the control law
+//! (rated power held by the pitch search at 13 m/s).
+//!
+//! Run: `cargo bench --bench bem`.
+
+use flutterscope::physics::rotor::bem::{solve, Conditions, Rotor, Station};
+use flutterscope::physics::rotor::steady::{for_preset, rotor_of};
+use flutterscope::preset::Preset;
+
+fn main() {
+    divan::main();
+}
+
+fn iea15mw() -> (Rotor, Vec<Station>, Conditions) {
+    let p = Preset::load("iea15mw", &[]).unwrap();
+    let blade = p.aero_blade().unwrap();
+    let rotor = rotor_of(&p, blade);
+    let stations = Station::gauss(blade, 30).unwrap();
+    let at = Conditions {
+        wind_speed: 10.7,
+        rotor_speed: 7.56 * std::f64::consts::PI / 30.0,
+        pitch: 0.0,
+        air_density: 1.225,
+    };
+    (rotor, stations, at)
+}
+
+#[divan::bench]
+fn solve_30_stations(bencher: divan::Bencher) {
+    let (rotor, stations, at) = iea15mw();
+    bencher.bench(|| solve(&rotor, &stations, &[], &at).unwrap());
+}
+
+#[divan::bench]
+fn stations_and_solve_30(bencher: divan::Bencher) {
+    let p = Preset::load("iea15mw", &[]).unwrap();
+    let blade = p.aero_blade().unwrap().clone();
+    let (rotor, _, at) = iea15mw();
+    bencher.bench(|| {
+        let stations = Station::gauss(&blade, 30).unwrap();
+        solve(&rotor, &stations, &[], &at).unwrap()
+    });
+}
+
+#[divan::bench]
+fn nrel5mw_law_above_rated(bencher: divan::Bencher) {
+    let p = Preset::load("nrel5mw", &["operating.wind_speed=13".into()]).unwrap();
+    bencher.bench(|| for_preset(&p).unwrap());
+}

@@ -1,0 +1,43 @@
+//! A real blade in the wind (docs/model.md §12): the IEA 15MW preset (12 modes, 30 stations,
+//! Theodorsen) at 10.7 m/s along its operating table. One operating point is the steady
+//! aeroelastic equilibrium (schedule, BEM passes, structure, strips; target with the eigen-solve
+//! < 3 ms) and the whole stability analysis of it; the Campbell is the 23-point sweep along the
+//! schedule from 3 to 25 m/s (target < 0.2 s on two cores).
+//!
+//! Run: `cargo bench --bench rotor`.
+
+use flutterscope::analysis::eigen::analyse;
+use flutterscope::analysis::sweep::track;
+use flutterscope::physics::aero::blade_element::Unsteadiness;
+use flutterscope::physics::operating::steady;
+use flutterscope::preset::{Preset, ValidPreset};
+
+fn main() {
+    divan::main();
+}
+
+fn preset() -> ValidPreset {
+    Preset::load("iea15mw", &[]).unwrap()
+}
+
+/// The steady aeroelastic operating point alone.
+#[divan::bench]
+fn operating_point(bencher: divan::Bencher) {
+    let p = preset();
+    bencher.bench(|| steady(divan::black_box(&p), Unsteadiness::Theodorsen).unwrap());
+}
+
+/// Operating point, linearisation and eigen-analysis with mode names: what a key press costs.
+#[divan::bench]
+fn stability_at_an_operating_point(bencher: divan::Bencher) {
+    let p = preset();
+    bencher.bench(|| analyse(divan::black_box(&p)).unwrap());
+}
+
+/// The aeroelastic Campbell diagram along the schedule, 3–25 m/s in 1 m/s steps, tracked.
+#[divan::bench(sample_count = 5)]
+fn campbell_along_the_schedule(bencher: divan::Bencher) {
+    let p = preset();
+    let grid: Vec<f64> = (3..=25).map(f64::from).collect();
+    bencher.bench(|| track(divan::black_box(&p), "operating.wind_speed", &grid).unwrap());
+}

@@ -1,0 +1,472 @@
+//! Blade-element strip loads on a real blade in three directions (docs/model.md §12.5): each
+//! station's own chord, aerodynamic centre and polar, the steady inflow with its induction frozen,
+//! and the section's flap, edge and twist motion.
+//!
+//! Inputs per station: the frozen inflow (`V0`, `ψ0` and `α_r` of the [`Station`]: axial
+//! `U_a = V0 sin ψ0`, tangential `U_t = V0 cos ψ0`, built-in angle `θ0 = ψ0 − α_r`, pitch plus
+//! aerodynamic twist), the kinematics `φ, u̇, v̇, φ̇` and, for Theodorsen, two lag states.
+//! - relative flow `U_a − u̇`, `U_t + v̇`: speed `W`, inflow angle `ψ = atan2(U_a − u̇, U_t + v̇)`;
+//! - geometric angle of attack `α_g = ψ − θ0 − φ`; three-quarter-chord angle
+//!   `α_¾ = α_g − d_¾ φ̇ / W` with `d_¾ = c/2 − d_ac` the distance from the reference axis aft
+//!   to the three-quarter chord (`d_ac`: aerodynamic centre ahead of the reference axis);
+//! - the effective angle `α_e`: `α_¾` (quasi-steady), or Jones's two lags on it (Theodorsen):
+//!   `ż_i = −ε_i (V0/b) z_i + α_¾`, `α_e = (1 − A1 − A2) α_¾ + (V0/b) Σ A_i ε_i z_i`;
+//! - `L = ½ρW²c C_l(α_e)`, `D = ½ρW²c C_d(α_e)`, `M_ac = ½ρW²c² C_m(α_e)` from the polar;
+//! - `f_u = L cos ψ + D sin ψ` (downwind), `f_v = L sin ψ − D cos ψ` (toward the leading edge:
+//!   the in-plane terms are the edgewise aerodynamic damping), and toward feather
+//!   `m_φ = −(M_ac + d_ac (L cos α_g + D sin α_g))`;
+//! - every form adds the non-circulatory loads of §5.2 on the plunge normal to the inflow,
+//!   `h = −(u cos ψ0 + v sin ψ0)`, with `α_T = −φ`: the velocity terms in the loads, the
+//!   acceleration terms in [`StripModel::apparent_mass`] (quasi-steady is Theodorsen with
+//!   `C(k) = 1`, as in Hodges & Pierce; without the pitch-rate term of `M_nc` the ¾-chord term
+//!   alone would make the torsion of a blade whose axis lies aft of the quarter chord
+//!   aerodynamically undamped);
+//! - ONERA (the coupled form of §5.3 on the station's own polar) splits the polar into its
+//!   attached line and the static deviation from it, `ΔC_L = a0(α − α0) − C_l(α)`,
+//!   `ΔC_M = C_m(α0) − C_m(α)`, `ΔC_D = C_d(α0) − C_d(α)`: the attached lift runs through the
+//!   Jones lags as Theodorsen's, and each deviation through its second-order stall state
+//!   `C̈2X + a_X ω_r Ċ2X + r_X ω_r² C2X = −r_X ω_r² ΔC_X(α_¾)` (`ω_r = V0/b`); lift
+//!   `L = ½ρW²c (a0(α_e − α0) + C2L)`, moment `½ρW²c² (C_m(α0) + C2M)`, drag
+//!   `½ρW²c (C_d(α0) + C2D)`. Its steady state is the polar exactly.
+//!
+//! Exact partial derivatives come from forward-mode dual numbers (`num-dual`) through the same
+//! code that evaluates the loads, so the state matrix is the Jacobian of the nonlinear right-hand
+//! side by construction (tested against central differences).
+
+use super::polar::Polar;
+use super::theodorsen::JONES;
+use super::{Kinematics, SteadyStates, StripEval, StripModel, KINEMATICS, LOADS, RATES};
+use crate::physics::inflow::Station;
+use nalgebra::{Const, U1};
+use num_dual::{DualNum, DualSVec64};
+use std::f64::consts::PI;
+use std::sync::Arc;
+
+/// One station's aerodynamic section.
+#[derive(Debug, Clone)]
+pub struct ElementSection {
+    /// Chord c (m).
+    pub chord: f64,
+    /// `d_ac`: the aerodynamic centre's distance ahead of the reference axis along the chord (m).
+    pub ac_ahead: f64,
+    pub polar: Arc<Polar>,
+}
+
+impl ElementSection {
+    fn semichord(&self) -> f64 {
+        0.5 * self.chord
+    }
+    /// Distance from the reference axis aft to the three-quarter chord (m).
+    fn three_quarter_arm(&self) -> f64 {
+        0.5 * self.chord - self.ac_ahead
+    }
+    /// Theodorsen's `a`: the reference axis in semichords aft of mid-chord.
+    fn theodorsen_a(&self) -> f64 {
+        self.ac_ahead / self.semichord() - 0.5
+    }
+}
+
+/// The unsteady model on top of the polar.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Unsteadiness {
+    QuasiSteady,
+    Theodorsen,
+    Onera(StallDynamics),
+}
+
+/// ONERA's stall-state coefficients (`aero.onera.a_l`, `r_l`, `a_m`, `r_m`, `a_d`, `r_d`), in the
+/// order lift, moment, drag.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StallDynamics {
+    pub a: [f64; 3],
+    pub r: [f64; 3],
+}
+
+/// Index of the first stall state (`C2L`), after the two Jones lags; each deviation has a
+/// value and a rate state.
+const STALL: usize = 2;
+const ONERA_STATES: usize = STALL + 6;
+
+#[derive(Debug, Clone)]
+pub struct BladeElement {
+    /// One per station, in station order ([`Station::index`]).
+    pub sections: Vec<ElementSection>,
+    pub air_density: f64,
+    pub unsteadiness: Unsteadiness,
+}
+
+/// Inputs of one evaluation: `[φ, u, v, φ̇, u̇, v̇, z…]`.
+const MAX_INPUTS: usize = KINEMATICS + ONERA_STATES;
+
+impl BladeElement {
+    fn lag_states(&self) -> usize {
+        match self.unsteadiness {
+            Unsteadiness::QuasiSteady => 0,
+            Unsteadiness::Theodorsen => JONES.len(),
+            Unsteadiness::Onera(_) => ONERA_STATES,
+        }
+    }
+
+    /// The static deviations `[ΔC_L, ΔC_M, ΔC_D]` of `polar` from its attached flow at `alpha`.
+    fn deviations<T: DualNum<Primitive = f64> + Copy>(polar: &Polar, alpha: T) -> [T; 3] {
+        let line = polar.attached();
+        let at_zero_lift = polar.at(line.zero_lift);
+        let (cl, cd, cm) = coefficients(polar, alpha);
+        [
+            (alpha - line.zero_lift) * line.slope - cl,
+            -cm + at_zero_lift.cm,
+            -cd + at_zero_lift.cd,
+        ]
+    }
+
+    /// Loads `[m_φ, f_u, f_v]` and lag rates at `inputs = [φ, u, v, φ̇, u̇, v̇, z…]`, in any
+    /// dual-number type (plain `f64` for values, dual vectors for partial derivatives).
+    fn strip<T: DualNum<Primitive = f64> + Copy>(
+        &self,
+        s: &Station,
+        inputs: &[T],
+        zdot: &mut [T],
+    ) -> [T; LOADS] {
+        let sec = &self.sections[s.index];
+        let [phi, _, _, phi_dot, u_dot, v_dot] = std::array::from_fn(|i| inputs[i]);
+        let (sin0, cos0) = s.psi.sin_cos();
+        let axial = T::from(s.v0 * sin0) - u_dot;
+        let tangential = T::from(s.v0 * cos0) + v_dot;
+        let w2 = axial * axial + tangential * tangential;
+        let zero = T::from(0.0);
+        if w2.re() <= 0.0 {
+            // No relative flow (a parked blade in still air): no load; the states stay where
+            // they are, as every rate scales with the flow speed.
+            zdot.fill(zero);
+            return [zero; LOADS];
+        }
+        let w = w2.sqrt();
+        let psi = axial.atan2(tangential);
+        let theta0 = s.psi - s.alpha_r;
+        let alpha_g = psi - theta0 - phi;
+        let alpha_34 = alpha_g - phi_dot * sec.three_quarter_arm() / w;
+        let rate = s.v0 / sec.semichord();
+        let alpha_e = match self.unsteadiness {
+            Unsteadiness::QuasiSteady => alpha_34,
+            Unsteadiness::Theodorsen | Unsteadiness::Onera(_) => {
+                let direct = 1.0 - JONES.iter().map(|(a, _)| a).sum::<f64>();
+                let mut alpha_e = alpha_34 * direct;
+                for (i, (amp, eps)) in JONES.iter().enumerate() {
+                    let z = inputs[KINEMATICS + i];
+                    alpha_e += z * (rate * amp * eps);
+                    zdot[i] = alpha_34 - z * (eps * rate);
+                }
+                alpha_e
+            }
+        };
+        let (cl, cd, cm) = match self.unsteadiness {
+            Unsteadiness::Onera(stall) => {
+                let deviation = Self::deviations(&sec.polar, alpha_34);
+                let line = sec.polar.attached();
+                let at_zero_lift = sec.polar.at(line.zero_lift);
+                let z = |k: usize| inputs[KINEMATICS + STALL + k];
+                for x in 0..3 {
+                    let (a, r) = (stall.a[x], stall.r[x]);
+                    let (value, slope) = (z(2 * x), z(2 * x + 1));
+                    zdot[STALL + 2 * x] = slope;
+                    zdot[STALL + 2 * x + 1] =
+                        -(slope * (a * rate)) - (value + deviation[x]) * (r * rate * rate);
+                }
+                (
+                    (alpha_e - line.zero_lift) * line.slope + z(0),
+                    z(4) + at_zero_lift.cd,
+                    z(2) + at_zero_lift.cm,
+                )
+            }
+            _ => coefficients(&sec.polar, alpha_e),
+        };
+        let q = w2 * (0.5 * self.air_density * sec.chord);
+        let (lift, drag, moment_ac) = (q * cl, q * cd, q * cm * sec.chord);
+        let (sin_psi, cos_psi) = (psi.sin(), psi.cos());
+        let normal = lift * alpha_g.cos() + drag * alpha_g.sin();
+        let mut loads = [
+            -(moment_ac + normal * sec.ac_ahead),
+            lift * cos_psi + drag * sin_psi,
+            lift * sin_psi - drag * cos_psi,
+        ];
+        // Velocity parts of the non-circulatory loads (α̇_T = −φ̇), on the frozen inflow.
+        let b = sec.semichord();
+        let a = sec.theodorsen_a();
+        let prb2 = PI * self.air_density * b * b;
+        let lift_nc = phi_dot * (-prb2 * s.v0);
+        let moment_nc = phi_dot * (prb2 * s.v0 * b * (0.5 - a));
+        loads[0] -= moment_nc;
+        loads[1] += lift_nc * cos0;
+        loads[2] += lift_nc * sin0;
+        loads
+    }
+
+    /// Value and exact partials at `inputs`, through dual vectors of `N` = inputs.
+    fn strip_with_partials<const N: usize>(
+        &self,
+        s: &Station,
+        inputs: &[f64],
+        out: &mut StripEval,
+    ) {
+        let duals: Vec<DualSVec64<N>> = inputs
+            .iter()
+            .enumerate()
+            .map(|(i, &x)| DualSVec64::from_re(x).derivative(i))
+            .collect();
+        let mut zdot = [DualSVec64::<N>::from_re(0.0); ONERA_STATES];
+        let ns = self.lag_states();
+        let loads = self.strip(s, &duals, &mut zdot[..ns]);
+        let gradient = |d: &DualSVec64<N>| d.eps.unwrap_generic(Const::<N>, U1);
+        for (l, load) in loads.iter().enumerate() {
+            out.loads[l] = load.re;
+            let g = gradient(load);
+            for j in 0..KINEMATICS {
+                out.dloads_dk[l][j] = g[j];
+            }
+            for i in 0..ns {
+                out.dloads_dz[l][i] = g[KINEMATICS + i];
+            }
+        }
+        for (i, rate) in zdot.iter().take(ns).enumerate() {
+            out.zdot[i] = rate.re;
+            let g = gradient(rate);
+            for j in 0..KINEMATICS {
+                out.dzdot_dk[i][j] = g[j];
+            }
+            for k in 0..ns {
+                out.dzdot_dz[i * ns + k] = g[KINEMATICS + k];
+            }
+        }
+    }
+}
+
+/// `C_l, C_d, C_m` of `polar` at `alpha`: the table's value and slope at α's value, carried to
+/// every input through α's derivative.
+fn coefficients<T: DualNum<Primitive = f64> + Copy>(polar: &Polar, alpha: T) -> (T, T, T) {
+    let c = polar.at(alpha.re());
+    let delta = alpha - alpha.re();
+    (
+        delta * c.dcl + c.cl,
+        delta * c.dcd + c.cd,
+        delta * c.dcm + c.cm,
+    )
+}
+
+impl StripModel for BladeElement {
+    fn name(&self) -> &'static str {
+        match self.unsteadiness {
+            Unsteadiness::QuasiSteady => "quasi-steady",
+            Unsteadiness::Theodorsen => "theodorsen",
+            Unsteadiness::Onera(_) => "onera",
+        }
+    }
+
+    fn states_per_station(&self) -> usize {
+        self.lag_states()
+    }
+
+    /// Theodorsen's apparent mass on the plunge normal to the frozen inflow and the twist.
+    fn apparent_mass(&self, s: &Station) -> [[f64; RATES]; LOADS] {
+        let sec = &self.sections[s.index];
+        let b = sec.semichord();
+        let a = sec.theodorsen_a();
+        let prb2 = PI * self.air_density * b * b;
+        let (sin0, cos0) = s.psi.sin_cos();
+        // ḧ = −(ü cos ψ0 + v̈ sin ψ0), α̈_T = −φ̈ in L_nc and M_T; f = L_nc (cos ψ0, sin ψ0),
+        // m_φ = −M_T.
+        let plunge = [cos0, sin0];
+        let mut ma = [[0.0; RATES]; LOADS];
+        ma[0][0] = -prb2 * b * b * (0.125 + a * a);
+        for (i, p) in plunge.iter().enumerate() {
+            ma[0][1 + i] = prb2 * b * a * p;
+            ma[1 + i][0] = prb2 * b * a * p;
+            for (j, q) in plunge.iter().enumerate() {
+                ma[1 + i][1 + j] = -prb2 * p * q;
+            }
+        }
+        ma
+    }
+
+    fn evaluate(&self, s: &Station, k: &Kinematics, z: &[f64], out: &mut StripEval, jac: bool) {
+        let ns = self.lag_states();
+        let mut inputs = [0.0; MAX_INPUTS];
+        inputs[..KINEMATICS].copy_from_slice(&k.to_array());
+        inputs[KINEMATICS..KINEMATICS + ns].copy_from_slice(&z[..ns]);
+        if jac {
+            match ns {
+                0 => self.strip_with_partials::<KINEMATICS>(s, &inputs[..KINEMATICS], out),
+                2 => self.strip_with_partials::<{ KINEMATICS + 2 }>(
+                    s,
+                    &inputs[..KINEMATICS + 2],
+                    out,
+                ),
+                _ => self.strip_with_partials::<MAX_INPUTS>(s, &inputs, out),
+            }
+        } else {
+            let mut zdot = [0.0; ONERA_STATES];
+            out.loads = self.strip(s, &inputs[..KINEMATICS + ns], &mut zdot[..ns]);
+            out.zdot.copy_from_slice(&zdot[..ns]);
+        }
+    }
+
+    /// `ż = 0` with no motion: `z_i = b α_¾ / (ε_i V0)` with `α_¾ = α_r − φ`; ONERA's stall
+    /// states at `C2X = −ΔC_X(α_¾)`, `Ċ2X = 0`.
+    fn steady_states(&self, s: &Station, [phi, _, _]: [f64; RATES], out: &mut SteadyStates) {
+        out.z.fill(0.0);
+        out.dz_dk.fill([0.0; RATES]);
+        if self.unsteadiness == Unsteadiness::QuasiSteady || s.v0 <= 0.0 {
+            return;
+        }
+        let sec = &self.sections[s.index];
+        let b = sec.semichord();
+        for (i, (_, eps)) in JONES.iter().enumerate() {
+            let gain = b / (eps * s.v0);
+            out.z[i] = gain * (s.alpha_r - phi);
+            out.dz_dk[i] = [-gain, 0.0, 0.0];
+        }
+        if let Unsteadiness::Onera(_) = self.unsteadiness {
+            let alpha = DualSVec64::<1>::from_re(s.alpha_r - phi).derivative(0);
+            for (x, d) in Self::deviations(&sec.polar, alpha).iter().enumerate() {
+                out.z[STALL + 2 * x] = -d.re;
+                // dα/dφ = −1.
+                out.dz_dk[STALL + 2 * x][0] = d.eps.unwrap_generic(Const::<1>, U1)[0];
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::test_support::{jacobian_mismatch, station};
+    use super::*;
+
+    fn model(unsteadiness: Unsteadiness) -> BladeElement {
+        // A cambered thin airfoil that stalls at 10°, with a nose-down moment.
+        let alpha: Vec<f64> = (-30..=30).map(|d| (d as f64).to_radians()).collect();
+        let cl = alpha
+            .iter()
+            .map(|&a| 2.0 * PI * (a.clamp(-0.17, 0.17) + 0.03) - 2.0 * (a.abs() - 0.17).max(0.0))
+            .collect();
+        let cd = alpha.iter().map(|a| 0.008 + 0.5 * a * a).collect();
+        let cm = alpha.iter().map(|a| -0.08 - 0.05 * a).collect();
+        let polar = Arc::new(Polar::new(alpha, cl, cd, cm, "test").unwrap());
+        BladeElement {
+            sections: vec![ElementSection {
+                chord: 0.5,
+                ac_ahead: 0.06,
+                polar,
+            }],
+            air_density: 1.225,
+            unsteadiness,
+        }
+    }
+
+    fn moving() -> Kinematics {
+        Kinematics {
+            phi: 0.03,
+            u: 0.2,
+            v: -0.1,
+            phi_dot: 0.4,
+            u_dot: -0.7,
+            v_dot: 1.3,
+        }
+    }
+
+    #[test]
+    fn partials_match_central_differences() {
+        let qs = model(Unsteadiness::QuasiSteady);
+        assert!(jacobian_mismatch(&qs, &station(), moving(), &[]) < 1e-6);
+        let th = model(Unsteadiness::Theodorsen);
+        assert!(jacobian_mismatch(&th, &station(), moving(), &[0.01, -0.02]) < 1e-6);
+    }
+
+    fn onera() -> Unsteadiness {
+        Unsteadiness::Onera(StallDynamics {
+            a: [0.3, 0.25, 0.25],
+            r: [0.0324, 0.0484, 0.0484],
+        })
+    }
+
+    #[test]
+    fn onera_partials_match_central_differences_in_stall() {
+        let m = model(onera());
+        let mut s = station();
+        for alpha_r in [0.05, 0.25] {
+            s.alpha_r = alpha_r;
+            let z = [0.01, -0.02, -0.3, 0.5, 0.01, -0.2, 0.04, 0.3];
+            let worst = jacobian_mismatch(&m, &s, moving(), &z);
+            assert!(worst < 1e-6, "α_r {alpha_r}: {worst:e}");
+        }
+    }
+
+    #[test]
+    fn steady_states_recover_quasi_steady_loads_attached_and_stalled() {
+        let qs = model(Unsteadiness::QuasiSteady);
+        let mut s = station();
+        for alpha_r in [0.05, 0.25] {
+            s.alpha_r = alpha_r;
+            for unsteady in [Unsteadiness::Theodorsen, onera()] {
+                let m = model(unsteady);
+                let ns = m.states_per_station();
+                let k = Kinematics {
+                    phi: 0.02,
+                    ..Kinematics::default()
+                };
+                let mut st = SteadyStates::new(ns);
+                m.steady_states(&s, [k.phi, 0.0, 0.0], &mut st);
+                let (mut a, mut b) = (StripEval::new(0), StripEval::new(ns));
+                qs.evaluate(&s, &k, &[], &mut a, false);
+                m.evaluate(&s, &k, &st.z, &mut b, false);
+                assert!(
+                    b.zdot.iter().all(|r| r.abs() < 1e-9),
+                    "{unsteady:?}: {:?}",
+                    b.zdot
+                );
+                for l in 0..LOADS {
+                    let scale = a.loads[l].abs().max(1.0);
+                    assert!(
+                        (a.loads[l] - b.loads[l]).abs() <= 1e-12 * scale,
+                        "{unsteady:?}"
+                    );
+                }
+                // The steady states' slope in φ, against central differences.
+                let h = 1e-6;
+                let at = |phi: f64| {
+                    let mut o = SteadyStates::new(ns);
+                    m.steady_states(&s, [phi, 0.0, 0.0], &mut o);
+                    o.z
+                };
+                let (p, q) = (at(k.phi + h), at(k.phi - h));
+                for i in 0..ns {
+                    let numeric = (p[i] - q[i]) / (2.0 * h);
+                    assert!((st.dz_dk[i][0] - numeric).abs() <= 1e-6 * numeric.abs().max(1.0));
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn in_plane_motion_is_damped_and_lift_drives_the_rotor() {
+        let m = model(Unsteadiness::QuasiSteady);
+        let s = station();
+        let mut e = StripEval::new(0);
+        m.evaluate(&s, &Kinematics::default(), &[], &mut e, true);
+        // Positive α_r: lift downwind and forward (the torque that turns the rotor).
+        assert!(e.loads[1] > 0.0 && e.loads[2] > 0.0);
+        // Downwind motion lowers the angle of attack (flap damping); edge damping from the
+        // in-plane force growing against in-plane motion.
+        assert!(e.dloads_dk[1][4] < 0.0);
+        assert!(e.dloads_dk[2][5] < 0.0);
+    }
+
+    #[test]
+    fn apparent_mass_is_symmetric_and_negative_definite() {
+        let m = model(Unsteadiness::QuasiSteady);
+        let ma = nalgebra::Matrix3::from_fn(|i, j| m.apparent_mass(&station())[i][j]);
+        assert_eq!(ma, ma.transpose());
+        // Rank two: plunge normal to the inflow and twist; in-flow motion adds no mass.
+        let eig = ma.symmetric_eigenvalues();
+        assert_eq!(eig.iter().filter(|&&v| v < -1e-12).count(), 2);
+        assert!(eig.iter().all(|&v| v < 1e-12));
+    }
+}

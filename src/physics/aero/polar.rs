@@ -1,0 +1,287 @@
+//! A static airfoil polar: lift, drag and pitching-moment coefficients against angle of attack
+//! (docs/model.md §12.1), looked up linearly as AeroDyn's default `InterpOrd = 1` does, with the
+//! attached-flow line (lift slope and zero-lift angle) fitted from the polar itself.
+//!
+//! Inputs: the tabulated coefficients (α in radians, strictly increasing, covering ±180° for a
+//! full polar). Outputs: the coefficients and their slopes at any α ([`Polar::at`]), and the
+//! attached line `C_l ≈ a0 (α − α0)` ([`Polar::attached`]).
+
+use crate::error::{Error, Result};
+
+/// Coefficients at one angle of attack with their slopes ∂/∂α (1/rad).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Coefficients {
+    pub cl: f64,
+    pub cd: f64,
+    /// About the quarter chord, nose-up positive.
+    pub cm: f64,
+    pub dcl: f64,
+    pub dcd: f64,
+    pub dcm: f64,
+}
+
+/// The attached-flow line fitted to a polar: `C_l ≈ slope (α − zero_lift)`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AttachedLine {
+    /// a0 (1/rad).
+    pub slope: f64,
+    /// α0 (rad).
+    pub zero_lift: f64,
+}
+
+impl AttachedLine {
+    pub fn lift(&self, alpha: f64) -> f64 {
+        self.slope * (alpha - self.zero_lift)
+    }
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Polar {
+    /// α (rad), strictly increasing.
+    alpha: Vec<f64>,
+    cl: Vec<f64>,
+    cd: Vec<f64>,
+    cm: Vec<f64>,
+    attached: AttachedLine,
+}
+
+/// Half-width of the window, around the zero-lift angle, over which the attached line is fitted:
+/// ±4° stays below stall on every thick or thin wind-turbine profile and is wide enough that the
+/// table's own steps (0.5°–1° near zero lift) do not set the slope.
+const ATTACHED_HALF_WINDOW: f64 = 4.0 * std::f64::consts::PI / 180.0;
+
+impl Polar {
+    /// A polar from columns in radians; `origin` names it in errors (file and table).
+    pub fn new(
+        alpha: Vec<f64>,
+        cl: Vec<f64>,
+        cd: Vec<f64>,
+        cm: Vec<f64>,
+        origin: &str,
+    ) -> Result<Polar> {
+        let n = alpha.len();
+        if n < 2 || cl.len() != n || cd.len() != n || cm.len() != n {
+            return Err(Error::numerical(format!(
+                "{origin}: a polar needs at least two rows and equal columns (α {n}, Cl {}, Cd {}, Cm {})",
+                cl.len(),
+                cd.len(),
+                cm.len()
+            )));
+        }
+        if let Some(w) = alpha.windows(2).position(|w| w[1] <= w[0]) {
+            return Err(Error::numerical(format!(
+                "{origin}: angles of attack must increase; row {} ({}°) does not exceed row {} ({}°)",
+                w + 2,
+                alpha[w + 1].to_degrees(),
+                w + 1,
+                alpha[w].to_degrees()
+            )));
+        }
+        let finite = |v: &[f64]| v.iter().all(|x| x.is_finite());
+        if !(finite(&alpha) && finite(&cl) && finite(&cd) && finite(&cm)) {
+            return Err(Error::numerical(format!(
+                "{origin}: the polar has non-finite coefficients"
+            )));
+        }
+        // A section that lifts nowhere (a cylinder at the root: C_l = 0 at every angle) has the
+        // attached line C_l = 0; any other polar must have an attached range.
+        let attached = if cl.iter().all(|&c| c == 0.0) {
+            Some(AttachedLine {
+                slope: 0.0,
+                zero_lift: 0.0,
+            })
+        } else {
+            attached_line(&alpha, &cl)
+        }
+        .ok_or_else(|| {
+            Error::numerical(format!(
+                "{origin}: no attached-flow range: the lift coefficient never rises through zero \
+                 between −30° and 30° (and is not zero throughout, as a cylinder's)"
+            ))
+        })?;
+        Ok(Polar {
+            alpha,
+            cl,
+            cd,
+            cm,
+            attached,
+        })
+    }
+
+    /// A linear polar `C_l = a0 (α − α0)`, constant drag, no moment: the paper's section and the
+    /// uniform test blades.
+    pub fn linear(slope: f64, zero_lift: f64, drag: f64) -> Polar {
+        let alpha = vec![-std::f64::consts::PI, std::f64::consts::PI];
+        let cl = alpha.iter().map(|a| slope * (a - zero_lift)).collect();
+        Polar {
+            alpha,
+            cl,
+            cd: vec![drag; 2],
+            cm: vec![0.0; 2],
+            attached: AttachedLine { slope, zero_lift },
+        }
+    }
+
+    /// Coefficients and slopes at `alpha` (rad): linear between rows, held constant beyond the
+    /// table (slopes zero there).
+    pub fn at(&self, alpha: f64) -> Coefficients {
+        let n = self.alpha.len();
+        let (i, t, inside) = if alpha <= self.alpha[0] {
+            (0, 0.0, false)
+        } else if alpha >= self.alpha[n - 1] {
+            (n - 2, 1.0, false)
+        } else {
+            let i = self.alpha.partition_point(|&a| a <= alpha) - 1;
+            let t = (alpha - self.alpha[i]) / (self.alpha[i + 1] - self.alpha[i]);
+            (i, t, true)
+        };
+        let h = self.alpha[i + 1] - self.alpha[i];
+        let lerp = |v: &[f64]| v[i] + t * (v[i + 1] - v[i]);
+        let slope = |v: &[f64]| {
+            if inside {
+                (v[i + 1] - v[i]) / h
+            } else {
+                0.0
+            }
+        };
+        Coefficients {
+            cl: lerp(&self.cl),
+            cd: lerp(&self.cd),
+            cm: lerp(&self.cm),
+            dcl: slope(&self.cl),
+            dcd: slope(&self.cd),
+            dcm: slope(&self.cm),
+        }
+    }
+
+    /// The attached-flow line fitted to this polar.
+    pub fn attached(&self) -> AttachedLine {
+        self.attached
+    }
+
+    /// Angles of attack (rad) of the rows.
+    pub fn alphas(&self) -> &[f64] {
+        &self.alpha
+    }
+
+    /// The polar whose every coefficient is `(1 − t)·self + t·other` at each angle (the union of
+    /// both tables' angles): HAWC2's interpolation in relative thickness and the blend between
+    /// neighbouring AeroDyn nodes' airfoils.
+    pub fn blend(&self, other: &Polar, t: f64, origin: &str) -> Result<Polar> {
+        let mut alpha: Vec<f64> = self.alpha.iter().chain(&other.alpha).copied().collect();
+        alpha.sort_by(f64::total_cmp);
+        alpha.dedup_by(|a, b| (*a - *b).abs() <= 1e-12);
+        let mix = |f: fn(&Coefficients) -> f64| -> Vec<f64> {
+            alpha
+                .iter()
+                .map(|&a| (1.0 - t) * f(&self.at(a)) + t * f(&other.at(a)))
+                .collect()
+        };
+        let (cl, cd, cm) = (mix(|c| c.cl), mix(|c| c.cd), mix(|c| c.cm));
+        Polar::new(alpha, cl, cd, cm, origin)
+    }
+}
+
+/// The attached line: the zero-lift angle where lift rises through zero nearest α = 0 (within
+/// ±30°), the slope a least-squares fit of the rows within ±[`ATTACHED_HALF_WINDOW`] of it
+/// (the two rows around the crossing when the table is coarser than that).
+fn attached_line(alpha: &[f64], cl: &[f64]) -> Option<AttachedLine> {
+    let limit = 30f64.to_radians();
+    let zero_lift = alpha
+        .windows(2)
+        .zip(cl.windows(2))
+        .filter(|(a, c)| a[0] >= -limit && a[1] <= limit && c[0] <= 0.0 && c[1] > 0.0)
+        .map(|(a, c)| a[0] + (a[1] - a[0]) * (-c[0]) / (c[1] - c[0]))
+        .min_by(|x, y| x.abs().total_cmp(&y.abs()))?;
+    let window: Vec<(f64, f64)> = alpha
+        .iter()
+        .zip(cl)
+        .filter(|(a, _)| (*a - zero_lift).abs() <= ATTACHED_HALF_WINDOW)
+        .map(|(a, c)| (*a, *c))
+        .collect();
+    let slope = if window.len() >= 2 {
+        // Fit through the zero-lift point: C_l = a0 (α − α0).
+        let (num, den) = window.iter().fold((0.0, 0.0), |(n, d), (a, c)| {
+            let x = a - zero_lift;
+            (n + x * c, d + x * x)
+        });
+        num / den
+    } else {
+        let i = alpha
+            .partition_point(|&a| a <= zero_lift)
+            .clamp(1, alpha.len() - 1);
+        (cl[i] - cl[i - 1]) / (alpha[i] - alpha[i - 1])
+    };
+    (slope.is_finite() && slope > 0.0).then_some(AttachedLine { slope, zero_lift })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn thin_airfoil() -> Polar {
+        // Thin-airfoil line 2π(α + 2°) up to ±10°, flat beyond: stall.
+        let alpha: Vec<f64> = (-20..=20).map(|d| (d as f64).to_radians()).collect();
+        let cl = alpha
+            .iter()
+            .map(|&a| 2.0 * std::f64::consts::PI * (a.clamp(-0.17, 0.17) + 2f64.to_radians()))
+            .collect();
+        let cd = alpha.iter().map(|a| 0.01 + a * a).collect();
+        let cm = alpha.iter().map(|a| -0.1 * a).collect();
+        Polar::new(alpha, cl, cd, cm, "test").unwrap()
+    }
+
+    #[test]
+    fn attached_line_is_read_off_the_polar() {
+        let line = thin_airfoil().attached();
+        assert!((line.zero_lift + 2f64.to_radians()).abs() < 1e-12);
+        assert!((line.slope - 2.0 * std::f64::consts::PI).abs() < 1e-9);
+    }
+
+    #[test]
+    fn lookup_is_linear_with_segment_slopes() {
+        let p = thin_airfoil();
+        let a = 0.5f64.to_radians();
+        let c = p.at(a);
+        let expected = 2.0 * std::f64::consts::PI * (a + 2f64.to_radians());
+        assert!((c.cl - expected).abs() < 1e-12);
+        assert!((c.dcl - 2.0 * std::f64::consts::PI).abs() < 1e-9);
+        // Beyond the table: held, no slope.
+        let far = p.at(1.0);
+        assert_eq!(far.dcl, 0.0);
+        assert_eq!(far.cl, p.at(20f64.to_radians()).cl);
+    }
+
+    #[test]
+    fn blend_mixes_coefficients() {
+        let p = thin_airfoil();
+        let q = Polar::linear(5.0, 0.0, 0.02);
+        let m = p.blend(&q, 0.25, "mix").unwrap();
+        let a = 0.05;
+        let expected = 0.75 * p.at(a).cl + 0.25 * q.at(a).cl;
+        assert!((m.at(a).cl - expected).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_cylinder_lifts_nowhere() {
+        let alpha = vec![-std::f64::consts::PI, 0.0, std::f64::consts::PI];
+        let p = Polar::new(alpha, vec![0.0; 3], vec![0.5; 3], vec![0.0; 3], "cyl").unwrap();
+        assert_eq!(p.attached().slope, 0.0);
+        assert_eq!(p.at(0.3).cd, 0.5);
+    }
+
+    #[test]
+    fn a_polar_without_lift_is_refused() {
+        let alpha = vec![-0.1, 0.0, 0.1];
+        let flat = vec![0.0; 3];
+        assert!(Polar::new(
+            alpha.clone(),
+            vec![-0.1; 3],
+            flat.clone(),
+            flat.clone(),
+            "x"
+        )
+        .is_err());
+        assert!(Polar::new(vec![0.0, 0.0, 0.1], flat.clone(), flat.clone(), flat, "x").is_err());
+    }
+}

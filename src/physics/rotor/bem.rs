@@ -1,0 +1,381 @@
+//! Steady blade-element momentum (BEM) theory for a rotor of B identical blades in uniform axial
+//! wind (docs/model.md §12.2): the axial and tangential induction at each station, Prandtl's tip
+//! and hub losses, Buhl's high-induction correction, solved as one residual in the inflow angle
+//! bracketed as Ning (2014) shows, so that every station converges: attached, stalled, near the
+//! hub, with the rotor parked.
+//!
+//! Inputs: the stations (span, quadrature weight, section from [`AeroBlade::section_at`], an
+//! optional extra twist toward feather, e.g. the elastic twist of a static equilibrium), the
+//! rotor (blade count, hub and tip radius) and the operating conditions (wind, rotor speed,
+//! pitch, air density). Outputs: per station the inflow angle, angle of attack, inductions,
+//! velocities and coefficients and the loads per span; the rotor's power, thrust, torque and
+//! tip speed ratio.
+
+use super::{AeroBlade, AeroSection};
+use crate::error::{Error, Result};
+use crate::numeric::root::brent_with_values;
+use crate::physics::basis::gauss_legendre;
+use serde::Serialize;
+use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
+
+/// The rotor around the blades: what the loss factors need.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Rotor {
+    /// Blade count B.
+    pub blades: usize,
+    /// Hub radius r_hub (m): a station's radius is `r_hub + span`.
+    pub hub_radius: f64,
+    /// Tip radius R (m).
+    pub tip_radius: f64,
+}
+
+/// The steady operating conditions (SI).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Conditions {
+    /// Wind speed U (m/s), axial, uniform.
+    pub wind_speed: f64,
+    /// Rotor speed Ω (rad/s).
+    pub rotor_speed: f64,
+    /// Collective pitch θ_p (rad), toward feather.
+    pub pitch: f64,
+    /// Air density ρ (kg/m³).
+    pub air_density: f64,
+}
+
+/// One blade element where the caller wants the flow: a span position with its quadrature weight.
+#[derive(Debug, Clone)]
+pub struct Station {
+    /// Span from the blade root (m).
+    pub span: f64,
+    /// Quadrature weight (m): the totals are `Σ weight · load`.
+    pub weight: f64,
+    pub section: AeroSection,
+}
+
+impl Station {
+    /// The station at `span` with its section from `blade`.
+    pub fn on(blade: &AeroBlade, span: f64, weight: f64) -> Result<Station> {
+        Ok(Station {
+            span,
+            weight,
+            section: blade.section_at(span)?,
+        })
+    }
+
+    /// `count` stations at the Gauss–Legendre points of the blade's described span: the totals
+    /// are then the Gauss quadrature of the load integrals, and no station sits on the hub or
+    /// the tip, where the loss factors vanish.
+    pub fn gauss(blade: &AeroBlade, count: usize) -> Result<Vec<Station>> {
+        let (first, last) = blade.span_range();
+        let half = 0.5 * (last - first);
+        let (nodes, weights) = gauss_legendre(count);
+        nodes
+            .iter()
+            .zip(&weights)
+            .map(|(&xi, &w)| Station::on(blade, first + half * (xi + 1.0), half * w))
+            .collect()
+    }
+}
+
+/// The flow and loads at one station.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct StationFlow {
+    /// Span from the blade root (m).
+    pub span: f64,
+    /// Radius r (m).
+    pub radius: f64,
+    /// Inflow angle φ between the relative wind and the rotor plane (rad).
+    pub inflow_angle: f64,
+    /// Angle of attack α = φ − (θ_twist + θ_p + extra twist) (rad).
+    pub angle_of_attack: f64,
+    /// Axial induction a.
+    pub axial_induction: f64,
+    /// Tangential induction a'.
+    pub tangential_induction: f64,
+    /// Combined Prandtl loss factor F = F_tip F_hub.
+    pub loss_factor: f64,
+    /// Axial velocity through the rotor after induction, U (1 − a) (m/s).
+    pub axial_velocity: f64,
+    /// In-plane velocity after induction, Ω r (1 + a') (m/s).
+    pub tangential_velocity: f64,
+    /// Relative speed W (m/s).
+    pub relative_speed: f64,
+    pub cl: f64,
+    pub cd: f64,
+    /// About the quarter chord, nose-up positive.
+    pub cm: f64,
+    /// Out-of-plane (downwind) load per span (N/m): ½ρW²c (C_l cos φ + C_d sin φ).
+    pub out_of_plane_load: f64,
+    /// In-plane load per span, in the direction of rotation (N/m): ½ρW²c (C_l sin φ − C_d cos φ).
+    pub in_plane_load: f64,
+}
+
+/// The steady operating point of the rotor.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct OperatingState {
+    /// Aerodynamic power Ω Q (W).
+    pub power: f64,
+    /// Thrust along the shaft, all blades (N).
+    pub thrust: f64,
+    /// Aerodynamic torque, all blades (N·m).
+    pub torque: f64,
+    /// Ω R / U (0 without wind).
+    pub tip_speed_ratio: f64,
+    pub stations: Vec<StationFlow>,
+}
+
+/// Angle kept from the bracket ends 0 and π, where the residual's momentum terms divide by
+/// sin φ (rad).
+const EPSILON: f64 = 1e-6;
+/// Tolerance on the inflow angle (rad): far below any polar's resolution.
+const TOLERANCE: f64 = 1e-10;
+/// Smallest loss factor used: at the hub or tip themselves F = 0 and the momentum balance
+/// divides by it; 1e-4 leaves F's effect (the load vanishing there) and keeps the residual finite.
+const MIN_LOSS: f64 = 1e-4;
+
+/// The steady flow at every station and the rotor's totals. `extra_twist` (rad, toward feather,
+/// one per station, or empty for none) adds to each station's twist, e.g. the elastic twist of a
+/// static equilibrium.
+pub fn solve(
+    rotor: &Rotor,
+    stations: &[Station],
+    extra_twist: &[f64],
+    at: &Conditions,
+) -> Result<OperatingState> {
+    if !extra_twist.is_empty() && extra_twist.len() != stations.len() {
+        return Err(Error::numerical(format!(
+            "BEM: {} extra twists given for {} stations",
+            extra_twist.len(),
+            stations.len()
+        )));
+    }
+    let flows = stations
+        .iter()
+        .enumerate()
+        .map(|(i, s)| {
+            let twist = s.section.twist + at.pitch + extra_twist.get(i).copied().unwrap_or(0.0);
+            station_flow(rotor, s, twist, at)
+        })
+        .collect::<Result<Vec<_>>>()?;
+    Ok(totals(rotor, stations, flows, at))
+}
+
+/// Power, thrust and torque from the station loads by the stations' quadrature.
+fn totals(
+    rotor: &Rotor,
+    stations: &[Station],
+    flows: Vec<StationFlow>,
+    at: &Conditions,
+) -> OperatingState {
+    let b = rotor.blades as f64;
+    let (thrust, torque) = stations
+        .iter()
+        .zip(&flows)
+        .fold((0.0, 0.0), |(t, q), (s, f)| {
+            (
+                t + b * s.weight * f.out_of_plane_load,
+                q + b * s.weight * f.in_plane_load * f.radius,
+            )
+        });
+    OperatingState {
+        power: at.rotor_speed * torque,
+        thrust,
+        torque,
+        tip_speed_ratio: if at.wind_speed > 0.0 {
+            at.rotor_speed * rotor.tip_radius / at.wind_speed
+        } else {
+            0.0
+        },
+        stations: flows,
+    }
+}
+
+/// What one station's blade element gives at inflow angle φ: the inductions the momentum
+/// balance asks for and the residual whose root is the steady flow.
+#[derive(Debug, Clone, Copy)]
+struct Element {
+    axial: f64,
+    tangential: f64,
+    loss: f64,
+    residual: f64,
+}
+
+/// The blade element at one station: its solidity, radius, twist and polar.
+struct Blade<'a> {
+    rotor: &'a Rotor,
+    section: &'a AeroSection,
+    radius: f64,
+    /// Local solidity σ' = B c / (2π r).
+    solidity: f64,
+    /// θ_twist + θ_p + extra twist (rad).
+    twist: f64,
+    /// Local speed ratio λ_r = Ω r / U.
+    speed_ratio: f64,
+}
+
+fn station_flow(
+    rotor: &Rotor,
+    station: &Station,
+    twist: f64,
+    at: &Conditions,
+) -> Result<StationFlow> {
+    let radius = rotor.hub_radius + station.span;
+    let axial = at.wind_speed;
+    let in_plane = at.rotor_speed * radius;
+    let blade = Blade {
+        rotor,
+        section: &station.section,
+        radius,
+        solidity: rotor.blades as f64 * station.section.chord / (2.0 * PI * radius),
+        twist,
+        speed_ratio: if axial > 0.0 { in_plane / axial } else { 0.0 },
+    };
+    // No momentum balance without both velocities (parked rotor, or no wind): the element sees
+    // the undisturbed flow, as AeroDyn's BEMT does when either velocity vanishes.
+    if axial <= 0.0 || in_plane <= 0.0 {
+        let phi = axial.atan2(in_plane);
+        return Ok(blade.flow(phi, 0.0, 0.0, blade.loss(phi), at));
+    }
+    let phi = blade.inflow_angle().ok_or_else(|| {
+        Error::numerical(format!(
+            "BEM: no inflow angle balances momentum at span {:.3} m (radius {radius:.3} m) at \
+             wind {axial} m/s, rotor speed {} rad/s, pitch {:.3}°: no sign change of the residual \
+             on (0, π/2], [−π/4, 0) or (π/2, π)",
+            station.span,
+            at.rotor_speed,
+            at.pitch.to_degrees()
+        ))
+    })?;
+    let e = blade.element(phi);
+    Ok(blade.flow(phi, e.axial, e.tangential, e.loss, at))
+}
+
+impl Blade<'_> {
+    /// The root of the residual, from the first of Ning's three brackets with a sign change:
+    /// the windmill region (0, π/2], the propeller brake region [−π/4, 0), and (π/2, π).
+    fn inflow_angle(&self) -> Option<f64> {
+        let brackets = [
+            (EPSILON, FRAC_PI_2),
+            (-FRAC_PI_4, -EPSILON),
+            (FRAC_PI_2, PI - EPSILON),
+        ];
+        let mut residual = |phi: f64| self.element(phi).residual;
+        brackets.iter().find_map(|&(a, b)| {
+            let (fa, fb) = (residual(a), residual(b));
+            (fa.is_finite() && fb.is_finite() && fa * fb <= 0.0)
+                .then(|| brent_with_values(&mut residual, a, fa, b, fb, TOLERANCE))
+                .flatten()
+        })
+    }
+
+    /// Prandtl's tip and hub loss factors at inflow angle φ:
+    /// `F = (2/π) acos(exp(−B(R − r)/(2 r |sin φ|))) · (2/π) acos(exp(−B(r − r_hub)/(2 r_hub |sin φ|)))`.
+    fn loss(&self, phi: f64) -> f64 {
+        let b = self.rotor.blades as f64;
+        let s = phi.sin().abs().max(1e-12);
+        let prandtl = |f: f64| 2.0 / PI * (-f.max(0.0)).exp().acos();
+        let tip = prandtl(0.5 * b * (self.rotor.tip_radius - self.radius) / (self.radius * s));
+        let hub = if self.rotor.hub_radius > 0.0 {
+            prandtl(0.5 * b * (self.radius - self.rotor.hub_radius) / (self.rotor.hub_radius * s))
+        } else {
+            1.0
+        };
+        tip * hub
+    }
+
+    /// The element at inflow angle φ: normal and tangential force coefficients from the polar,
+    /// the inductions momentum theory gives for them (Buhl's relation beyond a = 0.4), and
+    /// Ning's residual (docs/model.md §12.2).
+    fn element(&self, phi: f64) -> Element {
+        let (s, c) = phi.sin_cos();
+        let coeff = self.section.polar.at(phi - self.twist);
+        let cn = coeff.cl * c + coeff.cd * s;
+        let ct = coeff.cl * s - coeff.cd * c;
+        let loss = self.loss(phi).max(MIN_LOSS);
+        let k = self.solidity * cn / (4.0 * loss * s * s);
+        let kp = self.solidity * ct / (4.0 * loss * s * c);
+        let tangential = kp / (1.0 - kp);
+        let (axial, residual) = if phi > 0.0 {
+            let a = axial_induction(k, loss);
+            (a, s / (1.0 - a) - c / self.speed_ratio * (1.0 - kp))
+        } else {
+            // Propeller brake: the residual in the form that stays finite there.
+            let a = if k > 1.0 { k / (k - 1.0) } else { 0.0 };
+            (a, s * (1.0 - k) - c / self.speed_ratio * (1.0 - kp))
+        };
+        Element {
+            axial,
+            tangential,
+            loss,
+            residual,
+        }
+    }
+
+    /// The reported flow at inflow angle φ with inductions `a`, `a'`.
+    fn flow(
+        &self,
+        phi: f64,
+        axial_induction: f64,
+        tangential_induction: f64,
+        loss: f64,
+        at: &Conditions,
+    ) -> StationFlow {
+        let u = at.wind_speed * (1.0 - axial_induction);
+        let v = at.rotor_speed * self.radius * (1.0 + tangential_induction);
+        let w = u.hypot(v);
+        let alpha = phi - self.twist;
+        let coeff = self.section.polar.at(alpha);
+        let (s, c) = phi.sin_cos();
+        let q = 0.5 * at.air_density * w * w * self.section.chord;
+        StationFlow {
+            span: self.radius - self.rotor.hub_radius,
+            radius: self.radius,
+            inflow_angle: phi,
+            angle_of_attack: alpha,
+            axial_induction,
+            tangential_induction,
+            loss_factor: loss,
+            axial_velocity: u,
+            tangential_velocity: v,
+            relative_speed: w,
+            cl: coeff.cl,
+            cd: coeff.cd,
+            cm: coeff.cm,
+            out_of_plane_load: q * (coeff.cl * c + coeff.cd * s),
+            in_plane_load: q * (coeff.cl * s - coeff.cd * c),
+        }
+    }
+}
+
+/// Axial induction from `k = σ' C_n / (4 F sin²φ)`: momentum theory `a = k/(1 + k)` up to
+/// a = 0.4 (k = 2/3), Buhl's quadratic empirical thrust beyond it, which meets momentum theory
+/// with equal slope at a = 0.4 and reaches C_T = 2 at a = 1 (F = 1).
+fn axial_induction(k: f64, loss: f64) -> f64 {
+    if k <= 2.0 / 3.0 {
+        return k / (1.0 + k);
+    }
+    let g1 = 2.0 * loss * k - (10.0 / 9.0 - loss);
+    let g2 = (2.0 * loss * k - loss * (4.0 / 3.0 - loss)).max(0.0);
+    let g3 = 2.0 * loss * k - (25.0 / 9.0 - 2.0 * loss);
+    if g3.abs() < 1e-6 {
+        1.0 - 1.0 / (2.0 * g2.sqrt())
+    } else {
+        (g1 - g2.sqrt()) / g3
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn buhl_meets_momentum_theory_at_a_04() {
+        let below = axial_induction(2.0 / 3.0, 1.0);
+        let above = axial_induction(2.0 / 3.0 + 1e-9, 1.0);
+        assert!((below - 0.4).abs() < 1e-12);
+        assert!((above - 0.4).abs() < 1e-6, "{above}");
+        // Monotonic in k beyond.
+        assert!(axial_induction(1.0, 1.0) > 0.4);
+        assert!(axial_induction(2.0, 1.0) > axial_induction(1.0, 1.0));
+    }
+}
