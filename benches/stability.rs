@@ -120,3 +120,13 @@ fn part_natural_modes_n5(b: divan::Bencher) {
     let s = flutterscope::physics::structure::assemble(&p).unwrap();
     b.bench(|| divan::black_box(&s).natural_modes().unwrap());
 }
+
+/// Breakdown: the eigendecomposition alone (right and left vectors) of the 52-state theodorsen
+/// system, without identification: `part_eigen_theodorsen_n5_16_stations` minus this is what
+/// naming the roots costs (docs/model.md §6.2).
+#[divan::bench]
+fn part_decompose_theodorsen_n5_16_stations(b: divan::Bencher) {
+    let p = preset("demo-blade", &["structure.modes=5", "aero.stations=16"]);
+    let ls = flutterscope::analysis::eigen::linear_system(&p).unwrap();
+    b.bench(|| flutterscope::numeric::decompose(divan::black_box(&ls.a), true).unwrap());
+}

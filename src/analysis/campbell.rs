@@ -95,6 +95,8 @@ mod tests {
             label: label.into(),
             damping_ratio: vec![0.01; f.len()],
             re: vec![-0.1; f.len()],
+            second_re: vec![f64::NAN; f.len()],
+            switches: Vec::new(),
             frequency_hz: f,
         }
     }

@@ -2,21 +2,22 @@
 //!
 //! Input: the state matrix `A` at equilibrium ([`LinearSystem`]). Output: every root
 //! `λ = σ ± iω` (one entry per conjugate pair) with frequency `ω/2π`, damping ratio `ζ = −σ/|λ|`,
-//! a label from its eigenvector's Galerkin coefficients, its structural share (the participation
-//! of `q, q̇` in the root, from left and right eigenvectors; roots with share < ½ are aero lags,
-//! reported apart), and the stability verdict.
+//! its structural share (the participation of `q, q̇` in the root, from left and right
+//! eigenvectors), its name and family from [`crate::analysis::identify`] (structural modes, an
+//! overdamped pair as one mode; aerodynamic roots reported apart), and the stability verdict.
 //!
 //! The eigenvalues and eigenvectors come from [`crate::numeric::decompose`] (balancing, QR,
 //! inverse iteration, faer's fallback), where every failure is an
 //! [`Error::Numerical`](crate::error::Error::Numerical), never a hang or a panic; this module gives
 //! the roots their aeroelastic meaning.
 
+use crate::analysis::identify::{identify, Identified};
 use crate::error::Result;
-use crate::numeric::{decompose, hungarian, shares};
-use crate::physics::structure::Structure;
+use crate::numeric::decompose;
+use crate::physics::structure::{Family, Shares};
 use crate::physics::system::{LinearSystem, System};
 use crate::preset::ValidPreset;
-use nalgebra::{Complex, DVector};
+use nalgebra::Complex;
 use serde::Serialize;
 
 /// The stability verdict of one operating point.
@@ -41,15 +42,76 @@ pub struct Mode {
     pub frequency_hz: f64,
     /// ζ = −σ/|λ|.
     pub damping_ratio: f64,
-    /// `flap k` / `torsion k` from the eigenvector's Galerkin coefficients; `aero lag k` for
-    /// aerodynamic-state roots.
+    /// `flap k` / `edge k` / `torsion k`: the in-vacuo natural mode the root is named after
+    /// ([`crate::analysis::identify`]); `aero lag k` for aerodynamic-state roots.
     pub label: String,
+    /// The family of that natural mode (none for an aerodynamic root).
+    pub family: Option<Family>,
+    /// Kinetic-energy shares of flap, edge and twist in the root's motion (docs/model.md §6.2).
+    pub shares: Shares,
+    /// Frequency (Hz) of the in-vacuo natural mode the root is named after.
+    pub in_vacuo_hz: Option<f64>,
+    /// An overdamped mode (two real roots): σ of its more stable root; `re` is the other.
+    pub second_re: Option<f64>,
     /// Share of the eigenvector's energy in the structural coordinates (0…1).
     pub structural_share: f64,
-    /// Galerkin coefficients q = [q_φ; q_u] (2N) of the eigenvector, unit norm; used for MAC
-    /// tracking and mode shapes.
+    /// Structural coordinates q of the right eigenvector, unit norm; used for tracking and mode
+    /// shapes.
     #[serde(skip)]
     pub shape: Vec<Complex<f64>>,
+    /// Structural coordinates of the left eigenvector, unit norm (empty without aerodynamic
+    /// states, where only right vectors are computed); used for tracking.
+    #[serde(skip)]
+    pub left_shape: Vec<Complex<f64>>,
+}
+
+impl Mode {
+    /// A bare root `λ = re + i·im` (im ≥ 0) with its frequency and damping ratio, not yet named.
+    pub fn root(re: f64, im: f64) -> Mode {
+        let magnitude = re.hypot(im);
+        Mode {
+            re,
+            im,
+            frequency_hz: im / std::f64::consts::TAU,
+            damping_ratio: if magnitude > 0.0 {
+                -re / magnitude
+            } else {
+                0.0
+            },
+            label: String::new(),
+            family: None,
+            shares: Shares::from_energies(0.0, 0.0, 0.0),
+            in_vacuo_hz: None,
+            second_re: None,
+            structural_share: 1.0,
+            shape: Vec::new(),
+            left_shape: Vec::new(),
+        }
+    }
+
+    /// The name with the shares of its motion, as every command and pane reports a mode:
+    /// `torsion 1 (flap 38 %, twist 60 %)`; families below 0.5 % are left out.
+    pub fn described(&self) -> String {
+        let parts: Vec<String> = [
+            ("flap", self.shares.flap),
+            ("edge", self.shares.edge),
+            ("twist", self.shares.twist),
+        ]
+        .iter()
+        .filter(|(_, s)| *s >= 0.005)
+        .map(|(name, s)| format!("{name} {:.0} %", 100.0 * s))
+        .collect();
+        if parts.is_empty() || self.family.is_none() {
+            self.label.clone()
+        } else {
+            format!("{} ({})", self.label, parts.join(", "))
+        }
+    }
+
+    /// Whether the mode is an overdamped pair of real roots.
+    pub fn overdamped(&self) -> bool {
+        self.second_re.is_some()
+    }
 }
 
 /// All eigenvalues of one operating point.
@@ -99,188 +161,65 @@ pub fn linear_system(p: &ValidPreset) -> Result<LinearSystem> {
 pub fn analyse_system(ls: &LinearSystem) -> Result<Stability> {
     let roots = decompose(&ls.a, ls.n_aero > 0)?;
     let nq = ls.nq;
+    let structure = ls.structure.as_ref();
     let scale = roots.values.iter().map(|l| l.norm()).fold(1.0, f64::max);
     let tol = NEUTRAL_TOLERANCE * scale;
-    let mut structural: Vec<Mode> = Vec::new();
-    let mut lags: Vec<Mode> = Vec::new();
-    for (k, lambda) in roots.values.iter().enumerate() {
-        let v = roots.vectors.column(k);
-        let q: Vec<Complex<f64>> = v.rows(0, nq).iter().copied().collect();
-        // Structural states are q and q̇, the first 2·nq.
-        let share: f64 = if roots.left.ncols() == 0 {
-            1.0
-        } else {
-            roots.participation(k)[..2 * nq].iter().sum()
-        };
-        let im = if lambda.im.abs() <= tol {
-            0.0
-        } else {
-            lambda.im
-        };
-        let magnitude = lambda.norm();
-        let mode = Mode {
-            re: lambda.re,
-            im,
-            frequency_hz: im / std::f64::consts::TAU,
-            damping_ratio: if magnitude > 0.0 {
-                -lambda.re / magnitude
+    let all: Vec<Mode> = roots
+        .values
+        .iter()
+        .enumerate()
+        .map(|(k, lambda)| {
+            let q: Vec<Complex<f64>> = roots
+                .vectors
+                .column(k)
+                .rows(0, nq)
+                .iter()
+                .copied()
+                .collect();
+            let left: Vec<Complex<f64>> = if roots.left.ncols() == 0 {
+                Vec::new()
             } else {
+                roots.left.column(k).rows(0, nq).iter().copied().collect()
+            };
+            // Structural states are q and q̇, the first 2·nq.
+            let share: f64 = if roots.left.ncols() == 0 {
+                1.0
+            } else {
+                roots.participation(k)[..2 * nq].iter().sum()
+            };
+            let im = if lambda.im.abs() <= tol {
                 0.0
-            },
-            label: String::new(),
-            structural_share: share,
-            shape: normalised_shape(&q),
-        };
-        if share >= 0.5 {
-            structural.push(mode);
-        } else {
-            lags.push(mode);
-        }
-    }
-    label_structural_roots(&mut structural, ls.structure.as_ref())?;
-    structural.sort_by(|a, b| b.re.total_cmp(&a.re));
+            } else {
+                lambda.im
+            };
+            Mode {
+                // ζ from the exact λ: a root within the tolerance of the real axis is still
+                // damped as its true |λ| says.
+                damping_ratio: Mode::root(lambda.re, lambda.im).damping_ratio,
+                shares: structure.shares(&q),
+                structural_share: share,
+                shape: normalised_shape(&q),
+                left_shape: normalised_shape(&left),
+                ..Mode::root(lambda.re, im)
+            }
+        })
+        .collect();
+    let Identified {
+        structural: mut named,
+        aero: mut lags,
+    } = identify(all, nq, structure)?;
+    named.sort_by(|a, b| b.re.total_cmp(&a.re));
     lags.sort_by(|a, b| b.re.total_cmp(&a.re));
     for (k, m) in lags.iter_mut().enumerate() {
         m.label = format!("aero lag {}", k + 1);
     }
-    let verdict = verdict_of(structural.iter().chain(&lags), tol);
+    let verdict = verdict_of(named.iter().chain(&lags), tol);
     Ok(Stability {
         stable: verdict == Verdict::Stable,
         verdict,
-        eigenvalues: structural,
+        eigenvalues: named,
         aero_lags: lags,
     })
-}
-
-/// Suffix of a structural root left over after the one-to-one assignment (there are more
-/// structural roots than natural modes only when some mode is non-oscillatory: an overdamped
-/// or divergent mode has two real roots). The least stable of a mode's real roots carries the
-/// plain label; the other is primed, `"torsion 4'"` (short, so it survives the explorer's narrow
-/// modes column, where a longer suffix would be cut to a duplicate of the plain label).
-pub const SECOND_ROOT_SUFFIX: &str = "'";
-
-/// Labels structural roots by the in-vacuo natural modes of (M, K_e + K_c) at the same rotor
-/// speed (docs/model.md §6): each root's q-part is expanded on the mass-normalised natural modes,
-/// η = Φᵀ M q, and roots are assigned to modes one-to-one maximising the summed energy share
-/// |η_k|² / Σ|η|² (Kuhn–Munkres), so no label repeats and none names a mode that does not
-/// exist. Reading the label off the natural modes rather than off the root's own torsion
-/// share matters on blades whose aerodynamic torsional stiffness dwarfs the structural one
-/// (the paper's blade): there the torsion roots' shapes and frequencies move far from the
-/// in-vacuo torsion modes, but their modal content still identifies them. For the weak
-/// (symmetric) form η are the exact modal coordinates; for the strong form an M-weighted
-/// projection, which is all the assignment needs.
-fn label_structural_roots(roots: &mut [Mode], structure: &dyn Structure) -> Result<()> {
-    if roots.is_empty() {
-        return Ok(());
-    }
-    let natural = structure.natural_modes()?;
-    let mass = structure.mass();
-    // Columns of W = M Φ̂ with Φ̂ mass-normalised: η_k = W_kᵀ q.
-    let weights: Vec<DVector<f64>> = natural
-        .iter()
-        .map(|m| {
-            let mphi = mass * &m.shape;
-            let modal_mass = m.shape.dot(&mphi);
-            if modal_mass > 0.0 {
-                mphi / modal_mass.sqrt()
-            } else {
-                mphi
-            }
-        })
-        .collect();
-    let shares: Vec<Vec<f64>> = roots
-        .iter()
-        .map(|r| {
-            let energy: Vec<f64> = weights
-                .iter()
-                .map(|w| {
-                    w.iter()
-                        .zip(&r.shape)
-                        .map(|(wi, qi)| qi * *wi)
-                        .sum::<Complex<f64>>()
-                        .norm_sqr()
-                })
-                .collect();
-            shares(energy)
-        })
-        .collect();
-    let size = roots.len().max(natural.len());
-    let cost: Vec<Vec<f64>> = (0..size)
-        .map(|i| {
-            (0..size)
-                .map(|k| match (shares.get(i), natural.get(k)) {
-                    (Some(s), Some(_)) => -s[k],
-                    _ => 0.0,
-                })
-                .collect()
-        })
-        .collect();
-    let assigned = hungarian(&cost);
-    let mut owner: Vec<Option<usize>> = vec![None; natural.len()];
-    let mut mode_of: Vec<Option<usize>> = (0..roots.len())
-        .map(|i| Some(assigned[i]).filter(|&k| k < natural.len()))
-        .collect();
-    for (i, k) in mode_of.iter().enumerate() {
-        if let Some(k) = k {
-            owner[*k] = Some(i);
-        }
-    }
-    // Left-over roots (more structural roots than modes): the second real root of an
-    // overdamped or divergent mode. Pair them, again one-to-one by share, with the modes whose
-    // assigned root is real (aerodynamic coupling can leave such a root with little of its own
-    // mode's shape, so its best share alone would misname it); any still left take the mode
-    // they share most with.
-    let leftover: Vec<usize> = (0..roots.len()).filter(|&i| mode_of[i].is_none()).collect();
-    let real_modes: Vec<usize> = (0..natural.len())
-        .filter(|&k| owner[k].is_some_and(|j| roots[j].im == 0.0))
-        .collect();
-    let mut second: Vec<Option<usize>> = vec![None; roots.len()];
-    let size = leftover.len().max(real_modes.len());
-    let cost: Vec<Vec<f64>> = (0..size)
-        .map(|a| {
-            (0..size)
-                .map(|b| match (leftover.get(a), real_modes.get(b)) {
-                    (Some(&i), Some(&k)) if roots[i].im == 0.0 => -shares[i][k],
-                    (Some(_), Some(_)) => 1.0,
-                    _ => 0.0,
-                })
-                .collect()
-        })
-        .collect();
-    for (a, b) in hungarian(&cost).into_iter().enumerate() {
-        if let (Some(&i), Some(&k)) = (leftover.get(a), real_modes.get(b)) {
-            if roots[i].im == 0.0 {
-                second[i] = Some(k);
-            }
-        }
-    }
-    for &i in &leftover {
-        if second[i].is_none() {
-            second[i] = (0..natural.len()).max_by(|&a, &b| shares[i][a].total_cmp(&shares[i][b]));
-        }
-    }
-    // Of a mode's two real roots the less stable one carries the plain label: it is the one
-    // that decides stability (and the flutter search reports).
-    for &i in &leftover {
-        if let Some(k) = second[i] {
-            if let Some(j) = owner[k] {
-                if roots[i].im == 0.0 && roots[j].im == 0.0 && roots[i].re > roots[j].re {
-                    mode_of[i] = Some(k);
-                    mode_of[j] = None;
-                    second[j] = Some(k);
-                    owner[k] = Some(i);
-                }
-            }
-        }
-    }
-    for (i, root) in roots.iter_mut().enumerate() {
-        root.label = match (mode_of[i], second[i]) {
-            (Some(k), _) => natural[k].label.clone(),
-            (None, Some(k)) => format!("{}{SECOND_ROOT_SUFFIX}", natural[k].label),
-            (None, None) => "structural".to_string(),
-        };
-    }
-    Ok(())
 }
 
 fn verdict_of<'a>(roots: impl Iterator<Item = &'a Mode>, tol: f64) -> Verdict {

@@ -7,8 +7,8 @@
 //! Bisection rather than Brent: `σ_max` is the upper envelope of several roots, so it has kinks
 //! where the critical mode changes, and a guaranteed halving per step is worth the few extra
 //! solves (≈ 10 for a 40-point grid). The kind (flutter or divergence) and frequency come from
-//! the critical root just past the crossing; its mode label is the one it had at the start of the
-//! range, tracked by MAC along the grid.
+//! the critical root just past the crossing, and so does its name: the one the identification
+//! ([`crate::analysis::identify`]) gives it there, as `eigen` would, with the shares of its motion.
 //!
 //! A grid point that cannot be solved (a numerical failure, e.g. no static equilibrium) is
 //! skipped, counted and named in the result's message: one unconvergent point says nothing
@@ -19,8 +19,8 @@
 use crate::analysis::cancel::Cancel;
 use crate::analysis::eigen::{analyse, Mode, Stability, NEUTRAL_TOLERANCE};
 use crate::analysis::sweep::{failed_points, point_result, FailedPoint, PointResult};
-use crate::analysis::tracking::track_modes;
 use crate::error::{Error, Result};
+use crate::physics::structure::Shares;
 use crate::preset::{key_spec, ValidPreset};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -43,8 +43,12 @@ pub struct Boundary {
     pub critical: Option<f64>,
     pub frequency_hz: Option<f64>,
     pub kind: Option<BoundaryKind>,
-    /// Label of the crossing mode.
+    /// Name of the crossing mode ([`crate::analysis::identify`], read at the unstable end of the
+    /// final bracket: the name `eigen` gives the root there).
     pub mode: Option<String>,
+    /// Kinetic-energy shares of flap, edge and twist in the crossing mode's motion (none for an
+    /// aerodynamic root).
+    pub shares: Option<Shares>,
 }
 
 /// A boundary with the result in plain words (also when there is no crossing: stable throughout,
@@ -190,6 +194,7 @@ pub fn search(p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<S
             frequency_hz: None,
             kind: None,
             mode: None,
+            shares: None,
         },
         message: message + &skipped,
         max_re,
@@ -211,7 +216,6 @@ pub fn search(p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<S
     };
     let (mut lo, mut hi) = (solved[first - 1].0, solved[first].0);
     let (mut s_lo, mut s_hi) = (solved[first - 1].1.clone(), solved[first].1.clone());
-    let stable_side: Vec<Stability> = solved[..first].iter().map(|(_, s)| (*s).clone()).collect();
     let scale = (to - from).abs();
     for _ in 0..MAX_BISECTIONS {
         if (hi - lo).abs() <= RELATIVE_TOLERANCE * lo.abs().max(hi.abs()).max(1e-3 * scale) {
@@ -240,11 +244,10 @@ pub fn search(p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<S
     } else {
         hi
     };
-    let mut crossing = s_hi
+    let crossing = s_hi
         .critical()
         .cloned()
         .ok_or_else(|| Error::numerical(format!("flutter: no roots at {key} = {hi}{unit}")))?;
-    crossing.label = tracked_label(&stable_side, &s_hi, &crossing);
     let kind = if crossing.im > 0.0 {
         BoundaryKind::Flutter
     } else {
@@ -253,12 +256,13 @@ pub fn search(p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<S
     let what = match kind {
         BoundaryKind::Flutter => format!(
             "flutter at {key} = {critical:.6}{unit}: {} at {:.4} Hz",
-            crossing.label, crossing.frequency_hz
+            crossing.described(),
+            crossing.frequency_hz
         ),
         BoundaryKind::Divergence => {
             format!(
                 "static divergence at {key} = {critical:.6}{unit}: {}",
-                crossing.label
+                crossing.described()
             )
         }
     };
@@ -268,6 +272,7 @@ pub fn search(p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<S
             critical: Some(critical),
             frequency_hz: Some(crossing.frequency_hz),
             kind: Some(kind),
+            shares: crossing.family.map(|_| crossing.shares),
             mode: Some(crossing.label),
         },
         message: what + &skipped,
@@ -276,29 +281,11 @@ pub fn search(p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<S
     })
 }
 
-/// The crossing mode's label where the search started: near a coalescence the two flutter
-/// partners mix and a label read off the eigenvector there is ambiguous, so the mode is tracked
-/// by MAC from the first grid point (well separated modes) to the crossing.
-fn tracked_label(stable_side: &[Stability], crossing_point: &Stability, crossing: &Mode) -> String {
-    let Some(index) = crossing_point
-        .eigenvalues
-        .iter()
-        .position(|m| m.re == crossing.re && m.im == crossing.im)
-    else {
-        // An aero-lag root: no structural identity to track.
-        return crossing.label.clone();
-    };
-    let mut lists: Vec<Vec<Mode>> = stable_side.iter().map(|s| s.eigenvalues.clone()).collect();
-    lists.push(crossing_point.eigenvalues.clone());
-    track_modes(&lists)
-        .into_iter()
-        .find(|t| t.index.last() == Some(&Some(index)))
-        .map_or_else(|| crossing.label.clone(), |t| t.label)
-}
-
 fn describe(m: &Mode) -> String {
     format!(
         "{}: σ = {:.4} 1/s at {:.4} Hz (neutral tolerance {NEUTRAL_TOLERANCE:e} of |λ|)",
-        m.label, m.re, m.frequency_hz
+        m.described(),
+        m.re,
+        m.frequency_hz
     )
 }

@@ -14,7 +14,7 @@
 
 use crate::analysis::cancel::Cancel;
 use crate::analysis::eigen::{analyse, Mode, Stability};
-use crate::analysis::tracking::track_modes;
+use crate::analysis::tracking::{follow, Point, REFINEMENT_DEPTH};
 use crate::error::{Error, Result};
 use crate::preset::{key_spec, ValidPreset};
 use rayon::prelude::*;
@@ -24,15 +24,19 @@ use std::ops::Range;
 /// One tracked mode along a one-dimensional sweep.
 #[derive(Debug, Clone, Serialize)]
 pub struct TrackedMode {
-    /// Label where the track starts (its first solved point, or where its root first appears),
-    /// kept through crossings by MAC tracking; a label an earlier track already has is followed
-    /// by ` (from VALUE)`, the key's value where this one starts.
+    /// The mode's name: at every point, the root that `eigen` gives this name.
     pub label: String,
     /// NaN where the mode has no root: the point failed ([`TrackedSweep::failed`]), or the mode
     /// has not appeared yet or has merged with another there.
     pub frequency_hz: Vec<f64>,
     pub damping_ratio: Vec<f64>,
+    /// σ where the mode is one root (or the less stable root of an overdamped pair).
     pub re: Vec<f64>,
+    /// σ of the more stable root where the mode is overdamped (two real roots), NaN elsewhere.
+    pub second_re: Vec<f64>,
+    /// Parameter values (midpoints of grid steps) where the name moves to another root branch:
+    /// a veering swapped the content of two modes, confirmed by re-solving within the step.
+    pub switches: Vec<f64>,
 }
 
 /// A grid point that could not be solved (a numerical failure such as no static equilibrium).
@@ -87,7 +91,13 @@ pub fn track_cancellable(
             point_result(p.with(key, v).and_then(|q| analyse(&q)))
         })
         .collect::<Result<_>>()?;
-    Ok(tracked_with_gaps(key, grid, &points))
+    let resolve = |v: f64| {
+        p.with(key, v)
+            .and_then(|q| analyse(&q))
+            .ok()
+            .map(|s| s.eigenvalues)
+    };
+    Ok(tracked_with_gaps(key, grid, &points, &resolve))
 }
 
 /// A point's result, keeping a numerical failure as that point's result; any other error (bad
@@ -100,33 +110,55 @@ pub fn point_result(r: Result<Stability>) -> Result<PointResult> {
     }
 }
 
-/// Track through points some of which failed (no modes there; the tracks cross them).
-pub fn tracked_with_gaps(key: &str, grid: &[f64], points: &[PointResult]) -> TrackedSweep {
-    let lists: Vec<Vec<Mode>> = points
+/// A re-solve of one value of the tracked key (for refinement between grid points): the point's
+/// structural modes, or none if it cannot be solved.
+pub type Resolve<'a> = dyn Fn(f64) -> Option<Vec<Mode>> + Sync + 'a;
+
+/// Tracks through points some of which failed (no modes there; the tracks cross them).
+///
+/// A track is a mode *name* ([`crate::analysis::identify`]): at every point it is the root that
+/// carries that name there, so a sweep names each root exactly as `eigen` does at that point.
+/// Between consecutive points each track is checked against its branch ([`follow`]: eigenvector
+/// correlation and eigenvalue continuity, re-solving midpoints through `resolve` where the match
+/// is ambiguous); where the name has moved to another branch (a veering that swaps the modes'
+/// content) the track records where, in [`TrackedMode::switches`].
+pub fn tracked_with_gaps(
+    key: &str,
+    grid: &[f64],
+    points: &[PointResult],
+    resolve: &Resolve,
+) -> TrackedSweep {
+    let lists: Vec<&[Mode]> = points
         .iter()
-        .map(|s| {
-            s.as_ref()
-                .map_or_else(|_| Vec::new(), |s| s.eigenvalues.clone())
-        })
+        .map(|s| s.as_ref().map_or(&[][..], |s| s.eigenvalues.as_slice()))
         .collect();
-    let mut labels: Vec<String> = Vec::new();
-    let modes = track_modes(&lists)
+    let mut names: Vec<&str> = Vec::new();
+    for m in lists.iter().flat_map(|l| l.iter()) {
+        if !names.contains(&m.label.as_str()) {
+            names.push(&m.label);
+        }
+    }
+    let modes = names
         .into_iter()
-        .map(|t| {
+        .map(|name| {
+            let index: Vec<Option<usize>> = lists
+                .iter()
+                .map(|l| l.iter().position(|m| m.label == name))
+                .collect();
             let pick = |f: fn(&Mode) -> f64| -> Vec<f64> {
-                t.index
+                index
                     .iter()
                     .zip(&lists)
                     .map(|(i, modes)| i.map_or(f64::NAN, |i| f(&modes[i])))
                     .collect()
             };
-            let label = unique_label(&labels, &t.label, grid[t.start]);
-            labels.push(label.clone());
             TrackedMode {
-                label,
+                label: name.to_string(),
                 frequency_hz: pick(|m| m.frequency_hz),
                 damping_ratio: pick(|m| m.damping_ratio),
                 re: pick(|m| m.re),
+                second_re: pick(|m| m.second_re.unwrap_or(f64::NAN)),
+                switches: branch_switches(grid, &lists, &index, resolve),
             }
         })
         .collect();
@@ -136,6 +168,37 @@ pub fn tracked_with_gaps(key: &str, grid: &[f64], points: &[PointResult]) -> Tra
         modes,
         failed: failed_points(grid, points),
     }
+}
+
+/// Where a named track leaves its branch: between consecutive points holding the name, the
+/// midpoint of each step over which the name's root is not the branch continuation of its root
+/// before.
+fn branch_switches(
+    grid: &[f64],
+    lists: &[&[Mode]],
+    index: &[Option<usize>],
+    resolve: &Resolve,
+) -> Vec<f64> {
+    let held: Vec<(usize, usize)> = index
+        .iter()
+        .enumerate()
+        .filter_map(|(k, i)| i.map(|i| (k, i)))
+        .collect();
+    held.windows(2)
+        .filter(|w| {
+            let ((k, i), (l, j)) = (w[0], w[1]);
+            let a = Point {
+                value: grid[k],
+                modes: lists[k],
+            };
+            let b = Point {
+                value: grid[l],
+                modes: lists[l],
+            };
+            follow(&a, i, &b, REFINEMENT_DEPTH, resolve) != Some(j)
+        })
+        .map(|w| 0.5 * (grid[w[0].0] + grid[w[1].0]))
+        .collect()
 }
 
 /// The points of `grid` whose result is an error, with the error.
@@ -152,22 +215,6 @@ pub fn failed_points(grid: &[f64], points: &[PointResult]) -> Vec<FailedPoint> {
             })
         })
         .collect()
-}
-
-/// `label`, or when an earlier track has it (a root that appeared later and was labelled like
-/// one already tracked), `label (from VALUE)`, numbered if even that is taken.
-fn unique_label(taken: &[String], label: &str, start: f64) -> String {
-    if !taken.iter().any(|t| t == label) {
-        return label.to_string();
-    }
-    let base = format!("{label} (from {start})");
-    let mut name = base.clone();
-    let mut k = 2;
-    while taken.contains(&name) {
-        name = format!("{base} #{k}");
-        k += 1;
-    }
-    name
 }
 
 /// Slice `index` (1-based) of `count` of a grid sweep.
@@ -306,9 +353,11 @@ impl Grid {
 pub enum RowStatus {
     /// The mode's frequency, damping ratio and σ at this point.
     Ok,
-    /// The point was solved but this mode has no root there: it appears further along the line,
-    /// or its root merged with another (two real roots became one oscillating pair).
+    /// The point was solved but no root carries this mode's name there (it is named elsewhere
+    /// along the line).
     NoRoot,
+    /// The mode is overdamped here: two real roots; `re` is the less stable one's σ.
+    Overdamped,
     /// The point could not be solved ([`SweepRow::error`] says why): one row, no mode.
     Failed,
 }
@@ -319,6 +368,7 @@ impl RowStatus {
         match self {
             RowStatus::Ok => "ok",
             RowStatus::NoRoot => "no-root",
+            RowStatus::Overdamped => "overdamped",
             RowStatus::Failed => "failed",
         }
     }
@@ -358,7 +408,7 @@ pub struct SweepSummary {
 impl SweepSummary {
     fn count(&mut self, r: &SweepRow) {
         let (n, first) = match r.status {
-            RowStatus::Ok => return,
+            RowStatus::Ok | RowStatus::Overdamped => return,
             RowStatus::Failed => (&mut self.failed, &mut self.first_failed),
             RowStatus::NoRoot => (&mut self.no_root, &mut self.first_no_root),
         };
@@ -426,7 +476,20 @@ pub fn grid_sweep(
                 .clone()
                 .map(|i| grid.values(i)[grid.keys.len() - 1])
                 .collect();
-            let tracked = tracked_with_gaps(&grid.keys[grid.keys.len() - 1], &axis, pts);
+            let line_start = grid.values(r.start);
+            let resolve = |v: f64| {
+                let mut values = line_start.clone();
+                if let Some(last) = values.last_mut() {
+                    *last = v;
+                }
+                let keyed: Vec<(&str, f64)> =
+                    grid.keys.iter().map(String::as_str).zip(values).collect();
+                p.with_all(&keyed)
+                    .and_then(|q| analyse(&q))
+                    .ok()
+                    .map(|s| s.eigenvalues)
+            };
+            let tracked = tracked_with_gaps(&grid.keys[grid.keys.len() - 1], &axis, pts, &resolve);
             for (k, i) in r.clone().enumerate() {
                 if !own.contains(&i) {
                     continue;
@@ -447,6 +510,8 @@ pub fn grid_sweep(
                 for m in &tracked.modes {
                     let status = if m.re[k].is_nan() {
                         RowStatus::NoRoot
+                    } else if !m.second_re[k].is_nan() {
+                        RowStatus::Overdamped
                     } else {
                         RowStatus::Ok
                     };
@@ -532,17 +597,6 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("100000 × 100000 points"), "{e}");
-    }
-
-    #[test]
-    fn a_label_already_tracked_names_where_its_track_starts() {
-        let taken = vec!["flap 1".to_string(), "flap 1 (from 50)".to_string()];
-        assert_eq!(unique_label(&taken, "flap 2", 50.0), "flap 2");
-        assert_eq!(
-            unique_label(&taken[..1], "flap 1", 50.0),
-            "flap 1 (from 50)"
-        );
-        assert_eq!(unique_label(&taken, "flap 1", 50.0), "flap 1 (from 50) #2");
     }
 
     #[test]

@@ -1,20 +1,19 @@
-//! Mode tracking along a swept parameter by eigenvector correlation (MAC; docs/model.md §6.2).
+//! Mode tracking along a swept parameter (docs/model.md §6.2): which root at the next parameter
+//! value continues a root's branch.
 //!
-//! Input: the structural modes at consecutive parameter values (each with its Galerkin shape); a
-//! point that could not be solved has none. Output: tracks — for each mode, the index of the same
-//! physical mode at every point, or none where it has no root: before it appears, at a point that
-//! could not be solved, or where its root merged with another (two real roots of an overdamped
-//! mode becoming one oscillating pair). A track starts wherever a root is left unclaimed by the
-//! tracks so far: the modes of the first solved point, and any root that appears later (a pair
-//! splitting into two real roots), so a failed first point or a growing root count drops nothing.
+//! Consecutive points are matched by the assignment (Kuhn–Munkres, [`hungarian`]) minimising the
+//! summed cost `1 − C + |λa − λb| / (|λa| + |λb|)`, where `C` is the correlation of the two roots'
+//! eigenvectors: the Modal Assurance Criterion `MAC(a, b) = |aᴴb|² / (|a|²|b|²)` of the right
+//! vectors, times that of the left vectors where both roots have them (the left vector is what
+//! a root responds to, so two roots with alike shapes but different excitations are told apart),
+//! and the second term the eigenvalue's continuity. Why not greedy best-MAC: at a crossing or
+//! veering two candidates have similar costs, and a greedy pick for one root can steal the
+//! partner the other needs; the optimal assignment looks at both together.
 //!
-//! Consecutive points are matched by the assignment that maximises the total Modal Assurance
-//! Criterion `MAC(a, b) = |aᴴb|² / (|a|²|b|²)`, solved exactly by the Hungarian algorithm
-//! ([`hungarian`]). Why not greedy best-MAC: at a crossing or veering two candidates have similar
-//! MACs, and a greedy pick for one mode can steal the partner the other mode needs, swapping
-//! identities; the optimal assignment looks at both together. With at most a few dozen modes the
-//! O(n³) cost is negligible next to the eigen-solve. Each track compares with the last shape it
-//! was matched to, so a mode that rotates slowly through a veering keeps its identity.
+//! A match is **ambiguous** when another partner would cost almost as much (within
+//! [`AMBIGUITY_MARGIN`]) or when it swaps frequency order with another match (a crossing, or a
+//! veering narrower than the step); then [`follow`] re-solves the midpoint and follows the branch over the
+//! two half steps, down to [`REFINEMENT_DEPTH`] halvings, rather than guess.
 
 use crate::analysis::eigen::Mode;
 use crate::numeric::hungarian;
@@ -32,7 +31,118 @@ pub fn mac(a: &[Complex<f64>], b: &[Complex<f64>]) -> f64 {
     }
 }
 
-/// One tracked mode: its label where it starts and its index in each point's mode list.
+/// Correlation of two roots (0…1): MAC of their right vectors, times MAC of their left vectors
+/// when both have one.
+pub fn correlation(a: &Mode, b: &Mode) -> f64 {
+    let right = mac(&a.shape, &b.shape);
+    if a.left_shape.is_empty() || b.left_shape.is_empty() {
+        right
+    } else {
+        right * mac(&a.left_shape, &b.left_shape)
+    }
+}
+
+/// Relative distance of two roots' eigenvalues (0…1).
+fn distance(a: &Mode, b: &Mode) -> f64 {
+    let la = Complex::new(a.re, a.im);
+    let lb = Complex::new(b.re, b.im);
+    (la - lb).norm() / (la.norm() + lb.norm()).max(f64::MIN_POSITIVE)
+}
+
+/// Cost of matching `a` with `b` (0 for the same root; at most 2).
+pub fn cost(a: &Mode, b: &Mode) -> f64 {
+    1.0 - correlation(a, b) + distance(a, b)
+}
+
+/// A match is ambiguous when its best alternative costs less than this much more.
+pub const AMBIGUITY_MARGIN: f64 = 0.25;
+
+/// Halvings of a step at most when following an ambiguous match (1/16 of the step).
+pub const REFINEMENT_DEPTH: usize = 4;
+
+/// The optimal matching of two points' roots.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Matching {
+    /// For each root of the first point, its partner in the second, if any.
+    pub partner: Vec<Option<usize>>,
+    /// Whether each root's match is ambiguous (another partner nearly as good).
+    pub ambiguous: Vec<bool>,
+}
+
+/// For each root of `previous`, its partner in `next` (optimal total cost), or none.
+pub fn match_modes(previous: &[Mode], next: &[Mode]) -> Matching {
+    let (n, m) = (previous.len(), next.len());
+    let size = n.max(m);
+    // Padding (unmatched) costs more than any real pairing (real costs are ≤ 2).
+    let mut c = vec![vec![3.0; size]; size];
+    for (i, a) in previous.iter().enumerate() {
+        for (j, b) in next.iter().enumerate() {
+            c[i][j] = cost(a, b);
+        }
+    }
+    let assigned = hungarian(&c);
+    let partner: Vec<Option<usize>> = (0..n)
+        .map(|i| Some(assigned[i]).filter(|&j| j < m))
+        .collect();
+    let ambiguous = partner
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let Some(j) = *p else { return false };
+            let row = (0..m).filter(|&k| k != j).map(|k| c[i][k]);
+            let column = (0..n).filter(|&k| k != i).map(|k| c[k][j]);
+            let rival = row.chain(column).fold(f64::INFINITY, f64::min);
+            rival - c[i][j] < AMBIGUITY_MARGIN || crosses(previous, next, &partner, i)
+        })
+        .collect();
+    Matching { partner, ambiguous }
+}
+
+/// Whether root `i`'s match swaps frequency order with another matched root: a crossing within
+/// the step, which a veering narrower than the step looks like too (the shapes swap over the
+/// veering, so a coarse step matches them across it); only a finer step tells the two apart.
+fn crosses(previous: &[Mode], next: &[Mode], partner: &[Option<usize>], i: usize) -> bool {
+    let Some(j) = partner[i] else { return false };
+    partner.iter().enumerate().any(|(k, p)| {
+        p.is_some_and(|l| {
+            k != i && (previous[i].im - previous[k].im) * (next[j].im - next[l].im) < 0.0
+        })
+    })
+}
+
+/// The roots of one solved point along the parameter.
+pub struct Point<'a> {
+    pub value: f64,
+    pub modes: &'a [Mode],
+}
+
+/// The root of `b` that root `index` of `a` reaches along its branch: the optimal match, and
+/// where that is ambiguous, the branch followed through re-solved midpoints (`solve`, none if
+/// the midpoint cannot be solved), at most `depth` halvings deep.
+pub fn follow(
+    a: &Point,
+    index: usize,
+    b: &Point,
+    depth: usize,
+    solve: &dyn Fn(f64) -> Option<Vec<Mode>>,
+) -> Option<usize> {
+    let m = match_modes(a.modes, b.modes);
+    if depth == 0 || !m.ambiguous[index] {
+        return m.partner[index];
+    }
+    let value = 0.5 * (a.value + b.value);
+    let Some(modes) = solve(value) else {
+        return m.partner[index];
+    };
+    let mid = Point {
+        value,
+        modes: &modes,
+    };
+    let at_mid = follow(a, index, &mid, depth - 1, solve)?;
+    follow(&mid, at_mid, b, depth - 1, solve)
+}
+
+/// One tracked branch: its label where it starts and its index in each point's mode list.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Track {
     pub label: String,
@@ -41,18 +151,14 @@ pub struct Track {
     pub index: Vec<Option<usize>>,
 }
 
-/// Weight of the eigenvalue distance in the matching cost. It only breaks ties between shapes
-/// that MAC cannot tell apart (e.g. exactly repeated roots); shape similarity decides everything
-/// else.
-const EIGENVALUE_TIE_BREAK: f64 = 1e-3;
-
-/// Track the modes through `points`, starting a track at every root no earlier track claims.
+/// Follow every branch through `points` (no refinement), starting a track at every root no
+/// earlier track claims: the roots of the first solved point, and any root that appears later.
 pub fn track_modes(points: &[Vec<Mode>]) -> Vec<Track> {
     let mut tracks: Vec<Track> = Vec::new();
-    // Reference (last matched) mode of each track.
+    // Reference (last matched) root of each track.
     let mut reference: Vec<Mode> = Vec::new();
     for (k, modes) in points.iter().enumerate() {
-        let assignment = match_modes(&reference, modes);
+        let assignment = match_modes(&reference, modes).partner;
         let mut claimed = vec![false; modes.len()];
         for ((t, r), a) in tracks.iter_mut().zip(&mut reference).zip(&assignment) {
             t.index.push(*a);
@@ -75,39 +181,15 @@ pub fn track_modes(points: &[Vec<Mode>]) -> Vec<Track> {
     tracks
 }
 
-/// For each mode of `previous`, its partner in `next` (optimal total MAC), or none.
-pub fn match_modes(previous: &[Mode], next: &[Mode]) -> Vec<Option<usize>> {
-    let (n, m) = (previous.len(), next.len());
-    let size = n.max(m);
-    // Padding (unmatched) costs more than any real pairing: real costs are ≤ 1 + tie-break.
-    let mut cost = vec![vec![2.0; size]; size];
-    for (i, a) in previous.iter().enumerate() {
-        for (j, b) in next.iter().enumerate() {
-            let la = Complex::new(a.re, a.im);
-            let lb = Complex::new(b.re, b.im);
-            let distance = (la - lb).norm() / (la.norm() + lb.norm()).max(f64::MIN_POSITIVE);
-            cost[i][j] = 1.0 - mac(&a.shape, &b.shape) + EIGENVALUE_TIE_BREAK * distance;
-        }
-    }
-    let assigned = hungarian(&cost);
-    (0..n)
-        .map(|i| Some(assigned[i]).filter(|&j| j < m))
-        .collect()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
     fn mode(label: &str, freq: f64, shape: &[f64]) -> Mode {
         Mode {
-            re: -0.1,
-            im: freq,
-            frequency_hz: freq / std::f64::consts::TAU,
-            damping_ratio: 0.0,
             label: label.into(),
-            structural_share: 1.0,
             shape: shape.iter().map(|&x| Complex::new(x, 0.0)).collect(),
+            ..Mode::root(-0.1, freq)
         }
     }
 
@@ -170,5 +252,69 @@ mod tests {
         assert_eq!(tracks[0].index, vec![None, Some(0), Some(0)]);
         assert_eq!((tracks[1].label.as_str(), tracks[1].start), ("b", 2));
         assert_eq!(tracks[1].index, vec![None, None, Some(1)]);
+    }
+
+    /// The two modes of `M = I`, `K = [[1 + p, c], [c, 2 − p]]` at `p`, lightly damped: their
+    /// uncoupled frequencies cross at p = ½; coupling `c` turns the crossing into a veering.
+    fn two_modes(p: f64, c: f64) -> Vec<Mode> {
+        let k = nalgebra::Matrix2::new(1.0 + p, c, c, 2.0 - p);
+        let eig = k.symmetric_eigen();
+        (0..2)
+            .map(|j| {
+                let omega = eig.eigenvalues[j].sqrt();
+                let v = eig.eigenvectors.column(j);
+                let shape: Vec<Complex<f64>> = v.iter().map(|&x| Complex::new(x, 0.0)).collect();
+                Mode {
+                    label: format!("mode {j}"),
+                    left_shape: shape.clone(),
+                    shape,
+                    ..Mode::root(-0.01 * omega, omega)
+                }
+            })
+            .collect()
+    }
+
+    fn lower(modes: &[Mode]) -> usize {
+        if modes[0].im < modes[1].im {
+            0
+        } else {
+            1
+        }
+    }
+
+    #[test]
+    fn a_crossing_keeps_each_shape_and_a_veering_keeps_each_branch() {
+        // Coarse steps straddling p = ½, where the matching is ambiguous: the branch is
+        // followed through re-solved midpoints.
+        for (c, crosses) in [(0.0, true), (0.1, false)] {
+            let solve = |p: f64| Some(two_modes(p, c));
+            let a_modes = two_modes(0.3, c);
+            let b_modes = two_modes(0.7, c);
+            let a = Point {
+                value: 0.3,
+                modes: &a_modes,
+            };
+            let b = Point {
+                value: 0.7,
+                modes: &b_modes,
+            };
+            let from = lower(&a_modes);
+            let to = follow(&a, from, &b, REFINEMENT_DEPTH, &solve).unwrap();
+            // Uncoupled: the lower mode's shape crosses to the upper frequency. Coupled: the
+            // lower branch stays lower, its shape turning through the veering.
+            assert_eq!(to != lower(&b_modes), crosses, "c = {c}");
+            // And the frequency it lands on is continuous with a fine sweep's.
+            let mut here = (0.3, from, a_modes.clone());
+            for step in 1..=40 {
+                let p = 0.3 + 0.01 * step as f64;
+                let next = two_modes(p, c);
+                let j = match_modes(&here.2, &next).partner[here.1].unwrap();
+                here = (p, j, next);
+            }
+            assert_eq!(
+                here.1, to,
+                "c = {c}: refinement disagrees with a fine sweep"
+            );
+        }
     }
 }

@@ -48,27 +48,52 @@ pub fn render(p: &ValidPreset, s: &Stability) -> String {
         (Verdict::Stable, None) => "STABLE: no roots\n".to_string(),
         (Verdict::Flutter, Some(m)) => format!(
             "UNSTABLE (flutter): {} grows at σ = {:.4} 1/s, oscillating at {:.4} Hz\n",
-            m.label, m.re, m.frequency_hz
+            m.described(),
+            m.re,
+            m.frequency_hz
         ),
         (Verdict::Divergence, Some(m)) => format!(
             "UNSTABLE (static divergence): {} grows at σ = {:.4} 1/s without oscillating\n",
-            m.label, m.re
+            m.described(),
+            m.re
         ),
         (_, None) => "UNSTABLE\n".to_string(),
     };
     out
 }
 
+/// One row per root: the root, its structural share, and for a structural mode the in-vacuo
+/// frequency of the mode it is named after, the shares of its motion, and an overdamped mode's
+/// second decay rate.
 fn table(modes: &[Mode]) -> String {
     let mut out = format!(
-        "{:<14} {:>13} {:>13} {:>12} {:>10} {:>7}\n",
-        "mode", "σ (1/s)", "ω (rad/s)", "f (Hz)", "ζ", "struct"
+        "{:<14} {:>13} {:>13} {:>12} {:>10} {:>7} {:>11}  {:>5} {:>5} {:>5}\n",
+        "mode",
+        "σ (1/s)",
+        "ω (rad/s)",
+        "f (Hz)",
+        "ζ",
+        "struct",
+        "in vacuo",
+        "flap",
+        "edge",
+        "twist"
     );
     for m in modes {
         out += &format!(
-            "{:<14} {:>13.5} {:>13.5} {:>12.5} {:>10.5} {:>7.3}\n",
+            "{:<14} {:>13.5} {:>13.5} {:>12.5} {:>10.5} {:>7.3}",
             m.label, m.re, m.im, m.frequency_hz, m.damping_ratio, m.structural_share
         );
+        if let Some(f0) = m.in_vacuo_hz {
+            out += &format!(
+                " {:>11.5}  {:>5.3} {:>5.3} {:>5.3}",
+                f0, m.shares.flap, m.shares.edge, m.shares.twist
+            );
+        }
+        if let Some(s2) = m.second_re {
+            out += &format!("  overdamped, second root σ = {s2:.5}");
+        }
+        out += "\n";
     }
     out
 }

@@ -106,9 +106,9 @@ pub fn warnings(keys: &[String], s: &SweepSummary) -> Vec<String> {
     }
     if let Some(r) = &s.first_no_root {
         out.push(format!(
-            "note: {} row(s) have no values because that mode has no root at that point (status \
-             `no-root`: it appears further along the sweep, or two of its real roots merged into \
-             one oscillating pair); the first: {} at {}",
+            "note: {} row(s) have no values because no root carries that mode's name at that \
+             point (status `no-root`: the structure has more modes than structural roots there); \
+             the first: {} at {}",
             s.no_root,
             r.mode.as_deref().unwrap_or(""),
             at(r)

@@ -137,6 +137,7 @@ pub fn tracked_from_rows(key: &str, rows: &[SweepRow]) -> TrackedSweep {
                 m.frequency_hz.push(f64::NAN);
                 m.damping_ratio.push(f64::NAN);
                 m.re.push(f64::NAN);
+                m.second_re.push(f64::NAN);
             }
         }
         let n = values.len();
@@ -156,6 +157,9 @@ pub fn tracked_from_rows(key: &str, rows: &[SweepRow]) -> TrackedSweep {
                     frequency_hz: vec![f64::NAN; n],
                     damping_ratio: vec![f64::NAN; n],
                     re: vec![f64::NAN; n],
+                    // Grid rows carry neither a second decay rate nor branch switches.
+                    second_re: vec![f64::NAN; n],
+                    switches: Vec::new(),
                 });
                 modes.len() - 1
             }

@@ -47,15 +47,9 @@ struct TestEngine {
 }
 
 fn mode(label: &str, re: f64, im: f64) -> Mode {
-    let abs = (re * re + im * im).sqrt();
     Mode {
-        re,
-        im,
-        frequency_hz: im / (2.0 * std::f64::consts::PI),
-        damping_ratio: -re / abs,
         label: label.into(),
-        structural_share: 1.0,
-        shape: Vec::new(),
+        ..Mode::root(re, im)
     }
 }
 
@@ -188,6 +182,7 @@ impl Engine for TestEngine {
             frequency_hz: critical.map(|_| 1.0),
             kind: critical.map(|_| BoundaryKind::Flutter),
             mode: critical.map(|_| "flap 1".into()),
+            shares: None,
         })
     }
 
@@ -210,6 +205,8 @@ impl Engine for TestEngine {
                         .map(|s| s.eigenvalues[k].damping_ratio)
                         .collect(),
                     re: stab.iter().map(|s| s.eigenvalues[k].re).collect(),
+                    second_re: vec![f64::NAN; stab.len()],
+                    switches: Vec::new(),
                 }
             })
             .collect();

@@ -9,6 +9,7 @@ mod eigen;
 mod explorer;
 mod formats;
 mod hostile;
+mod identify;
 mod laminate;
 mod modes;
 mod onera;

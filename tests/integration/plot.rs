@@ -447,6 +447,8 @@ mod from_results {
         let re = z.iter().map(|z| -z).collect();
         TrackedMode {
             label: label.into(),
+            second_re: vec![f64::NAN; f.len()],
+            switches: Vec::new(),
             frequency_hz: f,
             damping_ratio: z,
             re,
@@ -603,6 +605,7 @@ mod from_results {
                 frequency_hz: Some(2.5),
                 kind: Some(BoundaryKind::Flutter),
                 mode: Some("flap 2".into()),
+                shares: None,
             },
             message: "flutter at 33.25 m/s".into(),
             max_re: 0.4,
@@ -634,6 +637,7 @@ mod from_results {
                 frequency_hz: None,
                 kind: None,
                 mode: None,
+                shares: None,
             },
             message: "stable throughout".into(),
             max_re: -0.1,

@@ -104,14 +104,24 @@ fn sweep_json_shape_and_errors() {
     ] {
         assert!(rows.iter().all(|r| r.get(key).is_some()), "{key}");
     }
-    // The goland wing flutters between 120 and 140 m/s: its torsion-1 track turns unstable.
-    let torsion: Vec<f64> = rows
+    // The goland wing flutters between 120 and 140 m/s: one named track turns unstable, and
+    // it carries the name `eigen` gives the growing root at 140 m/s.
+    let unstable: Vec<&str> = rows
         .iter()
-        .filter(|r| r["mode"] == "torsion 1")
+        .filter(|r| r["values"][0] == 140.0 && r["re"].as_f64().is_some_and(|re| re > 0.0))
+        .map(|r| r["mode"].as_str().unwrap())
+        .collect();
+    let p = flutterscope::preset::Preset::load("goland", &["operating.tunnel_speed=140".into()])
+        .unwrap();
+    let eigen = flutterscope::analysis::eigen::analyse(&p).unwrap();
+    assert_eq!(unstable, [eigen.critical().unwrap().label.as_str()]);
+    let track: Vec<f64> = rows
+        .iter()
+        .filter(|r| r["mode"] == unstable[0])
         .map(|r| r["re"].as_f64().unwrap())
         .collect();
-    assert_eq!(torsion.len(), 3);
-    assert!(torsion[0] < 0.0 && torsion[2] > 0.0);
+    assert_eq!(track.len(), 3);
+    assert!(track[0] < 0.0 && track[2] > 0.0);
     for bad in [&["--shard", "5/4"][..], &["--plot", "sweep.txt"][..]] {
         Command::cargo_bin("flutterscope")
             .unwrap()
@@ -235,7 +245,7 @@ fn a_failed_point_keeps_the_rest_of_its_line_csv() {
         let cols: Vec<&str> = l.split(',').collect();
         assert_eq!(cols.len(), 7, "{l}");
         let empty = cols[3..6].iter().all(|c| c.is_empty());
-        assert_eq!(empty, cols[6] != "ok", "{l}");
+        assert_eq!(empty, !["ok", "overdamped"].contains(&cols[6]), "{l}");
     }
     assert!(
         r.stderr.contains("1 of 6 grid point(s)")
@@ -246,11 +256,12 @@ fn a_failed_point_keeps_the_rest_of_its_line_csv() {
     );
 }
 
-/// Nothing failed, yet some rows are empty: a mode whose two real roots at 0 rpm merged into
-/// one oscillating pair has no root of its own further on. Those rows say `no-root` and a note
-/// counts them; nothing is called a failure.
+/// An overdamped mode keeps its name and its row: liu2017's torsion modes are two real roots
+/// each at rest (one mode, status `overdamped`, with values) and oscillate further on under the
+/// same names. No row goes empty and nothing is called a failure (before identification merged
+/// the pair, `torsion 1` had no root of its own at 50 rpm and its rows said `no-root`).
 #[test]
-fn rows_without_a_root_are_explained_not_called_failures() {
+fn overdamped_modes_keep_their_rows() {
     let r = run(&[
         "sweep",
         "--preset",
@@ -259,17 +270,24 @@ fn rows_without_a_root_are_explained_not_called_failures() {
         "operating.rotor_speed=0:100:50",
     ]);
     assert_eq!(r.code, Some(0), "{}", r.stderr);
-    let empty: Vec<&str> = r.stdout.lines().filter(|l| l.contains(",,,")).collect();
-    assert!(!empty.is_empty());
-    assert!(empty.iter().all(|l| l.ends_with(",no-root")), "{empty:?}");
-    assert!(r.stdout.contains("50,torsion 1,,,,no-root"), "{}", r.stdout);
-    assert!(!r.stderr.contains("warning"), "{}", r.stderr);
+    assert!(!r.stdout.lines().any(|l| l.contains(",,,")), "{}", r.stdout);
+    assert!(r.stdout.contains("0,torsion 1,0,"), "{}", r.stdout);
     assert!(
-        r.stderr
-            .contains(&format!("note: {} row(s) have no values", empty.len())),
+        r.stdout
+            .lines()
+            .any(|l| l.starts_with("0,torsion 1,") && l.ends_with(",overdamped")),
         "{}",
-        r.stderr
+        r.stdout
     );
+    assert!(
+        r.stdout
+            .lines()
+            .any(|l| l.starts_with("100,torsion 1,") && l.ends_with(",ok")),
+        "{}",
+        r.stdout
+    );
+    assert!(!r.stderr.contains("warning"), "{}", r.stderr);
+    assert!(!r.stderr.contains("no values"), "{}", r.stderr);
 }
 
 /// Bad input is found before the first line of output: no CSV header above the error.

@@ -165,15 +165,14 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
 
     let guide = theme.guide();
     let dim = theme.dim();
-    let label_styles: Vec<Style> = (0..poles.len())
-        .map(|i| {
-            if poles[i].0 >= 0.0 {
-                theme.flutter()
-            } else if theme.colored() {
-                Style::new().fg(theme.series(i))
-            } else {
-                Style::new()
-            }
+    // Letters (F, E, T) and, with colour, the family's colour tell flap, edge and torsion apart.
+    let label_styles: Vec<Style> = stab
+        .eigenvalues
+        .iter()
+        .map(|m| match m.family {
+            _ if m.re >= 0.0 => theme.flutter(),
+            Some(f) if theme.colored() => Style::new().fg(theme.family(f)),
+            _ => Style::new(),
         })
         .collect();
     let labels: Vec<String> = stab

@@ -1,5 +1,7 @@
-//! The modes table: frequency, damping ratio and growth rate of each structural mode, its label,
-//! and the trend (↑ ↓) since the last parameter change. The least-damped mode is highlighted.
+//! The modes table: each structural mode's name (in its family's colour), frequency with the
+//! in-vacuo frequency of the mode it is named after beside it (so a root far shifted by the air
+//! still reads naturally), damping ratio, and the trend (↑ ↓) since the last parameter change.
+//! An overdamped mode shows no frequency. The least-damped mode is highlighted.
 
 use super::{pane, sig, Theme};
 use crate::analysis::eigen::Mode;
@@ -54,13 +56,14 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
     };
     let block = pane(title, theme);
     let mut modes: Vec<&Mode> = stab.eigenvalues.iter().collect();
-    // Oscillatory modes by frequency, then the real (overdamped or divergent) roots.
+    // In the order of the in-vacuo modes they are named after (flap 1, flap 2, torsion 1, … by
+    // in-vacuo frequency): a row keeps its place while the air shifts its root, and a root far
+    // from its in-vacuo frequency still sits among its family. Unnamed roots last.
     modes.sort_by(|a, b| {
-        let real = |m: &Mode| m.frequency_hz <= 0.0;
-        real(a)
-            .cmp(&real(b))
+        let f0 = |m: &Mode| m.in_vacuo_hz.unwrap_or(f64::INFINITY);
+        f0(a)
+            .total_cmp(&f0(b))
             .then(a.frequency_hz.total_cmp(&b.frequency_hz))
-            .then(b.re.total_cmp(&a.re))
     });
     let critical = stab
         .eigenvalues
@@ -69,8 +72,7 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
         .fold(f64::NEG_INFINITY, f64::max);
     let rows: Vec<Row> = modes
         .iter()
-        .enumerate()
-        .map(|(i, m)| {
+        .map(|m| {
             let p = previous(&state.prev_modes, m);
             let style = if m.re >= 0.0 {
                 theme.flutter()
@@ -79,37 +81,45 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
             } else {
                 Style::new()
             };
-            let swatch = if theme.colored() {
-                Style::new().fg(theme.series(i))
-            } else {
-                Style::new()
+            let swatch = match m.family {
+                Some(f) if theme.colored() => Style::new().fg(theme.family(f)),
+                _ => Style::new(),
             };
+            let frequency = if m.overdamped() {
+                "—".to_string()
+            } else {
+                sig(m.frequency_hz, 4)
+            };
+            let f_trend = trend(m.frequency_hz, p.map(|p| p.frequency_hz), true);
+            let z_trend = trend(m.damping_ratio, p.map(|p| p.damping_ratio), false);
             Row::new(vec![
                 Cell::from(Line::styled(m.label.clone(), swatch)),
-                Cell::from(Line::from(sig(m.frequency_hz, 4)).right_aligned()),
-                Cell::from(trend(m.frequency_hz, p.map(|p| p.frequency_hz), true)),
-                Cell::from(Line::from(sig(m.damping_ratio, 3)).right_aligned()),
-                Cell::from(trend(m.damping_ratio, p.map(|p| p.damping_ratio), false)),
+                Cell::from(Line::from(format!("{frequency}{f_trend}")).right_aligned()),
+                Cell::from(
+                    Line::from(m.in_vacuo_hz.map(|f| sig(f, 3)).unwrap_or_default())
+                        .right_aligned(),
+                ),
+                Cell::from(
+                    Line::from(format!("{}{z_trend}", sig(m.damping_ratio, 3))).right_aligned(),
+                ),
             ])
             .style(style)
         })
         .collect();
     let header = Row::new(vec![
         Cell::from("mode"),
-        Cell::from(Line::from("f Hz").right_aligned()),
-        Cell::from(""),
-        Cell::from(Line::from("ζ").right_aligned()),
-        Cell::from(""),
+        Cell::from(Line::from("f Hz ").right_aligned()),
+        Cell::from(Line::from("f₀").right_aligned()),
+        Cell::from(Line::from("ζ ").right_aligned()),
     ])
     .style(theme.dim());
     let table = Table::new(
         rows,
         [
             Constraint::Min(9),
-            Constraint::Length(9),
-            Constraint::Length(1),
-            Constraint::Length(9),
-            Constraint::Length(1),
+            Constraint::Length(8),
+            Constraint::Length(6),
+            Constraint::Length(8),
         ],
     )
     .header(header)

@@ -134,32 +134,44 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
             Verdict::Divergence => (" DIVERGENCE ", theme.divergence()),
         },
     };
-    let least = match (&state.solved, &state.solve_error) {
-        // A non-oscillatory root has no frequency and ζ = 1 by definition: its decay rate σ is
-        // what tells how stable it is.
-        (Some(s), None) => least_damped(&s.stability).map(|m| {
-            if m.im == 0.0 {
-                (
-                    format!(
-                        " least damped: {} (real root) σ = {} 1/s",
-                        m.label,
-                        sig(m.re, 3)
-                    ),
-                    format!(" {} σ = {} 1/s", m.label, sig(m.re, 2)),
-                )
-            } else {
-                (
-                    format!(
-                        " least damped: {} {} Hz, ζ = {}",
-                        m.label,
-                        sig(m.frequency_hz, 3),
-                        sig(m.damping_ratio, 2)
-                    ),
-                    format!(" {} ζ = {}", m.label, sig(m.damping_ratio, 2)),
-                )
-            }
-        }),
-        _ => None,
+    // Longest first, the first that fits is shown: the mode named with the shares of its motion
+    // (as `eigen` and `flutter` report it), then by name alone, then name and ζ only. A
+    // non-oscillatory root has no frequency and ζ ≥ 1: its decay rate σ tells how stable it is.
+    let least: Vec<String> = match (&state.solved, &state.solve_error) {
+        (Some(s), None) => least_damped(&s.stability)
+            .map(|m| {
+                let forms = [m.described(), m.label.clone()];
+                if m.im == 0.0 {
+                    let kind = if m.overdamped() {
+                        "overdamped"
+                    } else {
+                        "real root"
+                    };
+                    let mut v: Vec<String> = forms
+                        .iter()
+                        .map(|name| {
+                            format!(" least damped: {name} ({kind}) σ = {} 1/s", sig(m.re, 3))
+                        })
+                        .collect();
+                    v.push(format!(" {} σ = {} 1/s", m.label, sig(m.re, 2)));
+                    v
+                } else {
+                    let mut v: Vec<String> = forms
+                        .iter()
+                        .map(|name| {
+                            format!(
+                                " least damped: {name} {} Hz, ζ = {}",
+                                sig(m.frequency_hz, 3),
+                                sig(m.damping_ratio, 2)
+                            )
+                        })
+                        .collect();
+                    v.push(format!(" {} ζ = {}", m.label, sig(m.damping_ratio, 2)));
+                    v
+                }
+            })
+            .unwrap_or_default(),
+        _ => Vec::new(),
     };
     let margin = margin_text(state).map(|m| format!("margin along {m}"));
     let solving = (state.solving() && state.solved.is_some()).then(|| solving_text(state));
@@ -168,12 +180,11 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
         + margin.as_ref().map_or(0, |m| m.chars().count() + 5)
         + solving.as_ref().map_or(0, |t| t.chars().count());
     let mut spans = vec![Span::styled(badge, style.add_modifier(Modifier::REVERSED))];
-    if let Some((long, short)) = least {
-        if used + long.chars().count() <= width {
-            spans.push(Span::raw(long));
-        } else if used + short.chars().count() <= width {
-            spans.push(Span::raw(short));
-        }
+    if let Some(text) = least
+        .into_iter()
+        .find(|t| used + t.chars().count() <= width)
+    {
+        spans.push(Span::raw(text));
     }
     if let Some(margin) = margin {
         spans.push(Span::styled("  │  ", theme.dim()));

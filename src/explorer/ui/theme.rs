@@ -2,6 +2,7 @@
 //! (safe over any SSH link); `none` uses no colour at all, only bold, dim, reversed, underline.
 
 use crate::explorer::display::ColorMode;
+use crate::physics::structure::Family;
 use ratatui::style::{Color, Modifier, Style};
 
 #[derive(Debug, Clone, Copy)]
@@ -104,6 +105,17 @@ impl Theme {
     pub fn series(&self, i: usize) -> Color {
         let (c16, c256, rgb) = SERIES[i % SERIES.len()];
         self.pick(c16, c256, rgb)
+    }
+
+    /// Colour of a mode family (root-locus markers, the modes table): three of the basic 16
+    /// colours, so they survive the 16-colour theme, and none of them the red of flutter or the
+    /// green of a stable verdict.
+    pub fn family(&self, f: Family) -> Color {
+        match f {
+            Family::Flap => self.pick(Color::Cyan, 44, (0, 200, 215)),
+            Family::Edge => self.pick(Color::Yellow, 220, (240, 200, 40)),
+            Family::Torsion => self.pick(Color::Magenta, 170, (210, 90, 210)),
+        }
     }
 
     /// Plain foreground colour for plot lines that are neither series nor warnings.

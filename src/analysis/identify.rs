@@ -1,0 +1,237 @@
+//! Mode identification: which roots of the aeroelastic system are the blade's structural modes,
+//! and which structural mode each one is (docs/model.md §6.2). The one routine behind every name
+//! a root carries: `eigen`, `flutter`, `sweep`, the explorer's panes and the plots all read the
+//! labels [`identify`] gives, so the same root has the same name everywhere.
+//!
+//! Input: every root with its structural participation and the structural part of its right
+//! eigenvector, and the structure's in-vacuo natural modes at the same rotor speed. Output: the
+//! structural modes, named `flap k` / `edge k` / `torsion k` after the natural mode they were
+//! assigned to (one-to-one), with the in-vacuo frequency of that mode; an overdamped mode's two
+//! real roots as one mode with both decay rates; and the aerodynamic roots apart.
+//!
+//! Three rules, in order:
+//! 1. **Which roots are structural.** The structure has `n_q` degrees of freedom, so `2 n_q`
+//!    state dimensions. The roots that hold them are those with the largest structural
+//!    participation (a complex pair fills two dimensions, a real root one); the rest are
+//!    aerodynamic. Counting instead of a fixed threshold keeps the number of structural roots equal
+//!    to what the structure can have, so none is left without a mode to be named after.
+//! 2. **Names.** A root's family is the family of the largest share of its motion's kinetic energy
+//!    (flap, edge, twist; [`Structure::shares`], the measure that names the natural modes too).
+//!    Roots are assigned to natural modes one-to-one (Kuhn–Munkres) maximising the summed modal
+//!    energy share `|η_k|²/Σ|η|²`, `η = Φ̂ᵀMq` on the mass-normalised natural modes, with a
+//!    penalty of one whole share for a natural mode of another family: a root takes a name of its
+//!    own family whenever the family has one left, and among those the one whose in-vacuo mode
+//!    it holds most of. The oscillating roots are named first; the natural modes left take the
+//!    real roots, two each (two slots per mode, filled one-to-one by the same cost): a mode
+//!    that aerodynamic damping has made non-oscillatory is one mode with two decay rates.
+
+use crate::analysis::eigen::Mode;
+use crate::error::Result;
+use crate::numeric::{hungarian, shares};
+use crate::physics::structure::{NaturalMode, Structure};
+use nalgebra::{Complex, DVector};
+
+/// Cost of naming a root after a natural mode of another family, in units of modal energy share:
+/// more than any difference of shares between two modes of the root's own family.
+const FAMILY_PENALTY: f64 = 1.0;
+
+/// Structural modes and aerodynamic roots of one operating point.
+pub struct Identified {
+    /// Named structural modes (an overdamped pair as one).
+    pub structural: Vec<Mode>,
+    /// Roots that are mostly aerodynamic state, unnamed.
+    pub aero: Vec<Mode>,
+}
+
+/// Split `roots` (each with its structural share and shape) into named structural modes and
+/// aerodynamic roots. `nq` is the number of structural coordinates.
+pub fn identify(roots: Vec<Mode>, nq: usize, structure: &dyn Structure) -> Result<Identified> {
+    let (structural, mut aero) = split_structural(roots, nq);
+    if structural.is_empty() {
+        return Ok(Identified { structural, aero });
+    }
+    let natural = structure.natural_modes()?;
+    let content = modal_content(&structural, &natural, structure);
+    let (groups, left) = assign(&structural, &content, &natural);
+    let mut named: Vec<Mode> = Vec::new();
+    for (k, group) in groups {
+        let mut modes: Vec<Mode> = group.iter().map(|&i| structural[i].clone()).collect();
+        let mut m = merged(&mut modes);
+        let n = &natural[k];
+        m.label = n.label.clone();
+        m.family = Some(n.family);
+        m.in_vacuo_hz = Some(n.frequency_hz);
+        named.push(m);
+    }
+    // More structural roots than the natural modes can take: reported with the aerodynamic
+    // roots rather than under a borrowed name.
+    aero.extend(left.into_iter().map(|i| structural[i].clone()));
+    Ok(Identified {
+        structural: named,
+        aero,
+    })
+}
+
+/// Rule 1: the roots filling the `2 nq` structural state dimensions, largest structural share
+/// first; the rest are aerodynamic.
+fn split_structural(roots: Vec<Mode>, nq: usize) -> (Vec<Mode>, Vec<Mode>) {
+    let mut order: Vec<usize> = (0..roots.len()).collect();
+    order.sort_by(|&a, &b| {
+        roots[b]
+            .structural_share
+            .total_cmp(&roots[a].structural_share)
+    });
+    let mut room = 2 * nq;
+    let mut is_structural = vec![false; roots.len()];
+    for i in order {
+        let dims = if roots[i].im > 0.0 { 2 } else { 1 };
+        if dims <= room && roots[i].structural_share > 0.0 {
+            is_structural[i] = true;
+            room -= dims;
+        }
+    }
+    let (mut structural, mut aero) = (Vec::new(), Vec::new());
+    for (m, s) in roots.into_iter().zip(is_structural) {
+        if s {
+            structural.push(m)
+        } else {
+            aero.push(m)
+        }
+    }
+    (structural, aero)
+}
+
+/// Modal energy shares `|η_k|²/Σ|η|²` of each root on the natural modes, `η = Φ̂ᵀ M q` with `Φ̂`
+/// mass-normalised (exact modal coordinates for the symmetric structures; an M-weighted
+/// projection, all the assignment needs, for the strong form).
+fn modal_content(
+    roots: &[Mode],
+    natural: &[NaturalMode],
+    structure: &dyn Structure,
+) -> Vec<Vec<f64>> {
+    let mass = structure.mass();
+    let weights: Vec<DVector<f64>> = natural
+        .iter()
+        .map(|m| {
+            let mphi = mass * &m.shape;
+            let modal_mass = m.shape.dot(&mphi);
+            if modal_mass > 0.0 {
+                mphi / modal_mass.sqrt()
+            } else {
+                mphi
+            }
+        })
+        .collect();
+    roots
+        .iter()
+        .map(|r| {
+            shares(
+                weights
+                    .iter()
+                    .map(|w| {
+                        w.iter()
+                            .zip(&r.shape)
+                            .map(|(wi, qi)| qi * *wi)
+                            .sum::<Complex<f64>>()
+                            .norm_sqr()
+                    })
+                    .collect(),
+            )
+        })
+        .collect()
+}
+
+/// Rules 2 and 3: the natural mode each structural root is named after. First the oscillating
+/// roots, one-to-one; then the real roots, two to each natural mode left (its overdamped pair),
+/// each mode's two slots filled one-to-one by the same cost. Returns the roots of each named
+/// mode with the mode's index; roots left without a mode are returned apart.
+fn assign(
+    roots: &[Mode],
+    content: &[Vec<f64>],
+    natural: &[NaturalMode],
+) -> (Vec<(usize, Vec<usize>)>, Vec<usize>) {
+    let cost = |i: usize, k: usize| -> f64 {
+        let penalty = if roots[i].shares.family() == natural[k].family {
+            0.0
+        } else {
+            FAMILY_PENALTY
+        };
+        penalty - content[i][k]
+    };
+    let oscillating: Vec<usize> = (0..roots.len()).filter(|&i| roots[i].im > 0.0).collect();
+    let real: Vec<usize> = (0..roots.len()).filter(|&i| roots[i].im == 0.0).collect();
+    let modes: Vec<usize> = (0..natural.len()).collect();
+    let mut named: Vec<(usize, Vec<usize>)> = Vec::new();
+    let mut left: Vec<usize> = Vec::new();
+    let first = one_to_one(&oscillating, &modes, &cost);
+    let mut free: Vec<usize> = modes.clone();
+    for (&i, k) in oscillating.iter().zip(first) {
+        match k {
+            Some(k) => {
+                named.push((k, vec![i]));
+                free.retain(|&f| f != k);
+            }
+            None => left.push(i),
+        }
+    }
+    let slots: Vec<usize> = free.iter().flat_map(|&k| [k, k]).collect();
+    let second = one_to_one(&real, &slots, &cost);
+    let mut pairs: Vec<(usize, Vec<usize>)> = Vec::new();
+    for (&i, k) in real.iter().zip(second) {
+        match k {
+            Some(k) => match pairs.iter_mut().find(|(m, _)| *m == k) {
+                Some((_, r)) => r.push(i),
+                None => pairs.push((k, vec![i])),
+            },
+            None => left.push(i),
+        }
+    }
+    named.extend(pairs);
+    (named, left)
+}
+
+/// For each row, the column it is assigned to (minimum total `cost`), or none when there are
+/// more rows than columns.
+fn one_to_one(
+    rows: &[usize],
+    columns: &[usize],
+    cost: &dyn Fn(usize, usize) -> f64,
+) -> Vec<Option<usize>> {
+    let size = rows.len().max(columns.len());
+    if size == 0 {
+        return Vec::new();
+    }
+    let matrix: Vec<Vec<f64>> = (0..size)
+        .map(|a| {
+            (0..size)
+                .map(|b| match (rows.get(a), columns.get(b)) {
+                    (Some(&i), Some(&k)) => cost(i, k),
+                    _ => 0.0,
+                })
+                .collect()
+        })
+        .collect();
+    let assigned = hungarian(&matrix);
+    (0..rows.len())
+        .map(|a| columns.get(assigned[a]).copied())
+        .collect()
+}
+
+/// One mode from a candidate's roots: the root itself, or for an overdamped pair the less stable
+/// root (it decides stability) carrying the other's decay rate and the pair's damping ratio
+/// `ζ = −(σ₁ + σ₂) / (2√(σ₁σ₂))` (the roots of `s² + 2ζω s + ω²`; −sign σ when one grows).
+fn merged(modes: &mut [Mode]) -> Mode {
+    modes.sort_by(|a, b| b.re.total_cmp(&a.re));
+    let mut m = modes[0].clone();
+    if let Some(other) = modes.get(1) {
+        let (s1, s2) = (m.re, other.re);
+        m.second_re = Some(s2);
+        m.damping_ratio = if s1 * s2 > 0.0 {
+            -(s1 + s2) / (2.0 * (s1 * s2).sqrt())
+        } else {
+            -s1.signum()
+        };
+        m.structural_share = 0.5 * (m.structural_share + other.structural_share);
+    }
+    m
+}
