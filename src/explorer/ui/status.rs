@@ -64,6 +64,14 @@ pub fn margin_text(state: &AppState) -> Option<String> {
                 } else {
                     String::new()
                 };
+                // Overspeed: a real blade's margin is a multiple of its rated rotor speed.
+                let rated = state.preset.operating.rated_rotor_speed;
+                let overspeed = (job.key == "operating.rotor_speed" && rated > 0.0)
+                    .then(|| format!("{:.2}× rated, ", c / rated));
+                if let (Some(times), false) = (&overspeed, job.unstable) {
+                    let mode = b.mode.as_ref().map(|m| format!(", {m}")).unwrap_or_default();
+                    return Some(format!("{label}: {kind} at {times}{}{mode}", with_unit(c)));
+                }
                 if job.unstable {
                     // The search ran up from the slider's low end, so its mode label is the
                     // mode's identity there; the verdict beside this already names the mode
