@@ -22,6 +22,9 @@ pub struct Solved {
     /// `shapes[i]` is the span shape of `stability.eigenvalues[i]` (empty when the engine
     /// computes none).
     pub shapes: Vec<ModeShape>,
+    /// The rotor speed (rpm) and pitch (deg) the solve ran at when the preset's schedule set
+    /// either (`None` without a schedule): the parameters pane shows them as following it.
+    pub setting: Option<(f64, f64)>,
 }
 
 /// What one solve gives the explorer: the analysis and the tip simulation started from the same
@@ -68,6 +71,19 @@ impl Stream for Simulator {
 
 impl Engine for Physics {
     fn solve(&self, p: &ValidPreset, cancel: &Cancel) -> Solve {
+        // The schedule once, here: the solve and the simulation run at its setting.
+        let scheduled = match crate::physics::operating::on_schedule(p) {
+            Ok(q) => q,
+            Err(e) => {
+                return Solve {
+                    solved: Err(e.clone()),
+                    stream: Err(e),
+                }
+            }
+        };
+        let setting = (p.operating.schedule != crate::preset::Schedule::None)
+            .then(|| (scheduled.operating.rotor_speed, scheduled.operating.pitch));
+        let p = &scheduled;
         let solution = cancel
             .check()
             .and_then(|_| crate::analysis::solve::solve(p));
@@ -79,6 +95,7 @@ impl Engine for Physics {
                         section: solution.section().copied(),
                         shapes: solution.mode_shapes(&stability),
                         stability,
+                        setting,
                     })
                 });
                 let stream = cancel

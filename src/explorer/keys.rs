@@ -19,6 +19,8 @@ pub enum Action {
     CycleAero,
     TogglePause,
     Reset,
+    /// Rotor speed and pitch follow the preset's operating schedule again.
+    FollowSchedule,
     Kick,
     Boundary,
     ToggleCampbell,
@@ -162,6 +164,12 @@ pub static BINDINGS: &[Binding] = &[
         shown: "r",
         action: Action::Reset,
         help: "reset the parameters to the preset and restart the response",
+    },
+    Binding {
+        keys: &[ch('o')],
+        shown: "o",
+        action: Action::FollowSchedule,
+        help: "rotor speed and pitch back on the operating schedule (after overriding them)",
     },
     Binding {
         keys: &[ch('k')],

@@ -401,12 +401,52 @@ impl AppState {
             ParamKind::Number { key, decimals, .. } => {
                 let v = self.preset.get(key).unwrap_or(f64::NAN);
                 let u = unit(key);
+                if let Some(v) = self.scheduled_value(key) {
+                    // ↻: the schedule sets it at this wind speed.
+                    return format!("↻ {v:.decimals$} {u}");
+                }
                 if u.is_empty() {
                     format!("{v:.decimals$}")
                 } else {
                     format!("{v:.decimals$} {u}")
                 }
             }
+        }
+    }
+
+    /// Rotor speed and pitch follow the preset's schedule again (`o`).
+    fn follow_schedule(&mut self) -> Vec<Effect> {
+        let p = &self.preset;
+        if p.operating.schedule == crate::preset::Schedule::None {
+            self.notice =
+                Some("this preset has no operating schedule (operating.schedule = none)".into());
+            return Vec::new();
+        }
+        if p.schedule_overrides == crate::preset::ScheduleOverrides::default() {
+            self.notice = Some("rotor speed and pitch already follow the schedule".into());
+            return Vec::new();
+        }
+        match p.edited(|q| q.follow_schedule()) {
+            Ok(p) => {
+                self.preset = p;
+                self.changed()
+            }
+            Err(e) => {
+                self.notice = Some(e.to_string());
+                Vec::new()
+            }
+        }
+    }
+
+    /// The value the schedule gives `key` (rotor speed or pitch) at the last solve, when the
+    /// preset runs on a schedule and no edit has overridden it.
+    pub fn scheduled_value(&self, key: &str) -> Option<f64> {
+        let (rpm, pitch) = self.solved.as_ref()?.setting?;
+        let held = self.preset.schedule_overrides;
+        match key {
+            "operating.rotor_speed" if !held.rotor_speed => Some(rpm),
+            "operating.pitch" if !held.pitch => Some(pitch),
+            _ => None,
         }
     }
 
@@ -556,7 +596,11 @@ impl AppState {
                 ..
             } => {
                 let step = if coarse { coarse_step } else { step };
-                let Ok(v) = self.preset.get(key) else {
+                // A scheduled value steps from where the schedule has it.
+                let Some(v) = self
+                    .scheduled_value(key)
+                    .or_else(|| self.preset.get(key).ok())
+                else {
                     return Vec::new();
                 };
                 let (lo, hi) = param_bounds(&self.preset, key);
@@ -642,6 +686,7 @@ impl AppState {
                 vec![Effect::Pause(self.paused)]
             }
             Action::Reset => self.load_entry(self.preset_index),
+            Action::FollowSchedule => self.follow_schedule(),
             Action::Kick => {
                 if self.response.diverging {
                     self.notice = Some("the response diverged; press r to restart it".into());

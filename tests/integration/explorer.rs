@@ -125,6 +125,7 @@ impl TestEngine {
             ));
         }
         Ok(Solved {
+            setting: None,
             section: Some(SectionProps {
                 m: 0.06,
                 i: 2e-6,
@@ -1311,4 +1312,33 @@ fn the_solved_shape_of_a_structural_root_is_the_natural_mode_shape() {
         // No coupling in the NREL 5MW file: no twist to draw.
         assert_eq!(shape.peaks[2], 0.0, "{label}");
     }
+}
+
+/// Along the turbine's schedule (issue 14 item 2): a real blade's rotor speed and pitch are the
+/// schedule's at the wind speed and shown as following it (↻); dragging the rotor speed
+/// overrides it (overspeed) while the pitch still follows; `o` puts both back on the schedule.
+#[test]
+fn rotor_speed_and_pitch_follow_the_schedule_until_overridden() {
+    let p = Preset::load("iea15mw", &[]).unwrap();
+    let mut s = settled_state("iea15mw", p, &Physics, ViewKind::Main, MarkerKind::Braille);
+    let row = |s: &AppState, label: &str| {
+        let i = PARAMS.iter().position(|p| p.label == label).unwrap();
+        s.param_text(&PARAMS[i])
+    };
+    // 10.7 m/s on the IEA 15MW table: 7.56 rpm.
+    assert_eq!(row(&s, "rotor speed"), "↻ 8 rpm");
+    assert!(row(&s, "pitch").starts_with("↻ "), "{}", row(&s, "pitch"));
+    assert_eq!(PARAMS[s.focus].label, "rotor speed");
+    headless::press(&mut s, &Physics, &[Action::IncreaseCoarse]);
+    assert_eq!(row(&s, "rotor speed"), "10 rpm");
+    assert!(row(&s, "pitch").starts_with("↻ "), "{}", row(&s, "pitch"));
+    let solved = s.solved.as_ref().unwrap();
+    assert_eq!(solved.setting.map(|(rpm, _)| rpm), Some(10.0));
+    headless::press(&mut s, &Physics, &[Action::FollowSchedule]);
+    assert_eq!(row(&s, "rotor speed"), "↻ 8 rpm");
+    let solved = s.solved.as_ref().unwrap();
+    assert!((solved.setting.unwrap().0 - 7.56).abs() < 1e-3);
+    // Nothing left to return to: said so.
+    headless::press(&mut s, &Physics, &[Action::FollowSchedule]);
+    assert!(s.notice.as_deref().unwrap_or("").contains("already follow"));
 }

@@ -69,7 +69,11 @@ pub fn margin_text(state: &AppState) -> Option<String> {
                 let overspeed = (job.key == "operating.rotor_speed" && rated > 0.0)
                     .then(|| format!("{:.2}× rated, ", c / rated));
                 if let (Some(times), false) = (&overspeed, job.unstable) {
-                    let mode = b.mode.as_ref().map(|m| format!(", {m}")).unwrap_or_default();
+                    let mode = b
+                        .mode
+                        .as_ref()
+                        .map(|m| format!(", {m}"))
+                        .unwrap_or_default();
                     return Some(format!("{label}: {kind} at {times}{}{mode}", with_unit(c)));
                 }
                 if job.unstable {
