@@ -76,7 +76,12 @@ pub fn run(
     }
     if let Some(path) = plot {
         let tracked = crate::plot::from_results::tracked_from_rows(&grid.keys[0], &plotted);
-        let fig = crate::plot::from_results::sweep(p.display_name(), &tracked);
+        let fig = match schedule_rotor_speeds(p, &tracked)? {
+            Some(rpm) => {
+                crate::plot::from_results::campbell_along_schedule(p.display_name(), &tracked, &rpm)
+            }
+            None => crate::plot::from_results::sweep(p.display_name(), &tracked),
+        };
         crate::plot::write(&fig, path)?;
         eprintln!("plot written to {}", path.display());
     }
@@ -171,4 +176,26 @@ fn progress_bar(total: u64) -> ProgressBar {
         bar.set_style(style);
     }
     bar
+}
+
+/// Along the wind speed on a preset with an operating schedule: the schedule's rotor speed (rpm)
+/// at every swept wind speed, for the plot's rotor harmonics; `None` for any other sweep.
+fn schedule_rotor_speeds(
+    p: &ValidPreset,
+    tracked: &crate::analysis::sweep::TrackedSweep,
+) -> Result<Option<Vec<f64>>> {
+    if tracked.parameter != "operating.wind_speed"
+        || p.operating.schedule == crate::preset::Schedule::None
+    {
+        return Ok(None);
+    }
+    tracked
+        .values
+        .iter()
+        .map(|&u| {
+            let at = crate::physics::operating::on_schedule(&p.with("operating.wind_speed", u)?)?;
+            Ok(at.operating.rotor_speed)
+        })
+        .collect::<Result<Vec<f64>>>()
+        .map(Some)
 }

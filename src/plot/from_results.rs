@@ -91,6 +91,48 @@ pub fn sweep(preset: &str, s: &TrackedSweep) -> Figure {
     Figure::new(title).with_panel(freq).with_panel(damp)
 }
 
+/// The aeroelastic Campbell diagram along a turbine's operating schedule (docs/model.md §12.6), as
+/// HAWCStab2 draws it: frequency and damping ratio of every tracked mode against wind speed, with
+/// the 1P, 3P and 6P lines of the schedule's rotor speed (`rotor_speed_rpm`, one per wind speed).
+pub fn campbell_along_schedule(preset: &str, s: &TrackedSweep, rotor_speed_rpm: &[f64]) -> Figure {
+    let mut fig = sweep(preset, s);
+    fig.title = format!("Aeroelastic Campbell diagram along the operating schedule — {preset}");
+    let points: Vec<(f64, f64)> = s
+        .values
+        .iter()
+        .zip(rotor_speed_rpm)
+        .map(|(&u, &rpm)| (u, rpm))
+        .filter(|(u, rpm)| u.is_finite() && rpm.is_finite())
+        .collect();
+    // From 0 Hz, so the harmonics of a slow rotor (1P near 0.1 Hz on a 15 MW) are on the axes.
+    let top = fig.panels[0]
+        .series
+        .iter()
+        .flat_map(|series| series.points.iter().map(|p| p.1))
+        .chain(points.iter().map(|p| 6.0 * p.1 / 60.0))
+        .filter(|f| f.is_finite())
+        .fold(0.0f64, f64::max);
+    if top > 0.0 {
+        fig.panels[0].y_range = Some((0.0, 1.05 * top));
+    }
+    for n in [1.0, 3.0, 6.0] {
+        for (k, w) in points.windows(2).enumerate() {
+            // The label once, on the last piece of the line.
+            let label = if k + 2 == points.len() {
+                format!("{n}P")
+            } else {
+                String::new()
+            };
+            fig.panels[0].guides.push(Guide::segment(
+                (w[0].0, n * w[0].1 / 60.0),
+                (w[1].0, n * w[1].1 / 60.0),
+                label,
+            ));
+        }
+    }
+    fig
+}
+
 /// Tip twist above, tip flap below, against time; a diverging run is marked where it stopped.
 pub fn tip_response(preset: &str, aero: &str, r: &Response) -> Figure {
     let twist: Vec<(f64, f64)> =

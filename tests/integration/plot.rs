@@ -479,6 +479,32 @@ mod from_results {
         }
     }
 
+    /// Along a schedule the harmonics follow the schedule's rotor speed, piece by piece, each
+    /// labelled once, and the frequency axis starts at 0 Hz so a slow rotor's 1P shows.
+    #[test]
+    fn campbell_along_the_schedule_draws_harmonics_of_the_scheduled_rotor_speed() {
+        let mut sweep = rotor_sweep();
+        sweep.parameter = "operating.wind_speed".into();
+        sweep.values = (0..sweep.values.len()).map(|i| 3.0 + i as f64).collect();
+        // Region 2 then rated: 5 rpm rising to 7.5 rpm at the fifth point, then held.
+        let rpm: Vec<f64> = (0..sweep.values.len())
+            .map(|i| (5.0 + 0.625 * i as f64).min(7.5))
+            .collect();
+        let fig = from_results::campbell_along_schedule("test", &sweep, &rpm);
+        let freq = &fig.panels[0];
+        let pieces = sweep.values.len() - 1;
+        assert_eq!(freq.guides.len(), 3 * pieces);
+        let labels: Vec<&str> = freq
+            .guides
+            .iter()
+            .map(|g| g.label.as_str())
+            .filter(|l| !l.is_empty())
+            .collect();
+        assert_eq!(labels, ["1P", "3P", "6P"]);
+        assert_eq!(freq.y_range.map(|r| r.0), Some(0.0));
+        assert!(fig.title.contains("operating schedule"));
+    }
+
     #[test]
     fn campbell_has_1p_3p_lines_and_leaves_far_modes_off_the_frequency_scale() {
         let fig = from_results::sweep("test", &rotor_sweep());
