@@ -426,7 +426,14 @@ impl AppState {
             self.notice = Some("rotor speed and pitch already follow the schedule".into());
             return Vec::new();
         }
-        match p.edited(|q| q.follow_schedule()) {
+        // Back to the starting preset's own values too, so nothing reads as changed by hand.
+        let start = &self.presets[self.preset_index].preset.operating;
+        let (rpm, pitch) = (start.rotor_speed, start.pitch);
+        match p.edited(|q| {
+            q.follow_schedule();
+            q.operating.rotor_speed = rpm;
+            q.operating.pitch = pitch;
+        }) {
             Ok(p) => {
                 self.preset = p;
                 self.changed()

@@ -1336,6 +1336,9 @@ fn rotor_speed_and_pitch_follow_the_schedule_until_overridden() {
     assert_eq!(solved.setting.map(|(rpm, _)| rpm), Some(10.0));
     headless::press(&mut s, &Physics, &[Action::FollowSchedule]);
     assert_eq!(row(&s, "rotor speed"), "↻ 8 rpm");
+    // Nothing reads as changed by hand any more (no `*`).
+    let start = &s.presets[s.preset_index].preset;
+    assert_eq!(s.preset.operating.rotor_speed, start.operating.rotor_speed);
     let solved = s.solved.as_ref().unwrap();
     assert!((solved.setting.unwrap().0 - 7.56).abs() < 1e-3);
     // Nothing left to return to: said so.
