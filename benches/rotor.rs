@@ -2,7 +2,8 @@
 //! Theodorsen) at 10.7 m/s along its operating table. One operating point is the steady
 //! aeroelastic equilibrium (schedule, BEM passes, structure, strips; target with the eigen-solve
 //! < 3 ms) and the whole stability analysis of it; the Campbell is the 23-point sweep along the
-//! schedule from 3 to 25 m/s (target < 0.2 s on two cores).
+//! schedule from 3 to 25 m/s (target < 0.2 s on two cores); ONERA at 30 stations (target
+//! < 50 ms a point).
 //!
 //! Run: `cargo bench --bench rotor`.
 
@@ -31,6 +32,13 @@ fn operating_point(bencher: divan::Bencher) {
 #[divan::bench]
 fn stability_at_an_operating_point(bencher: divan::Bencher) {
     let p = preset();
+    bencher.bench(|| analyse(divan::black_box(&p)).unwrap());
+}
+
+/// The same with ONERA's stall states on every station's own polar (target < 50 ms a point).
+#[divan::bench]
+fn stability_at_an_operating_point_onera(bencher: divan::Bencher) {
+    let p = Preset::load("iea15mw", &["aero.model=onera".to_string()]).unwrap();
     bencher.bench(|| analyse(divan::black_box(&p)).unwrap());
 }
 

@@ -132,14 +132,30 @@ pub fn tracked_with_gaps(
         .iter()
         .map(|s| s.as_ref().map_or(&[][..], |s| s.eigenvalues.as_slice()))
         .collect();
+    // Every name checks its branch over the same steps, so a midpoint one name re-solves the
+    // next needs too: solve each once (a real blade's re-solve rebuilds its operating point).
+    let solved: std::sync::Mutex<std::collections::HashMap<u64, Option<Vec<Mode>>>> =
+        Default::default();
+    let once = |value: f64| -> Option<Vec<Mode>> {
+        let known = solved.lock().ok()?.get(&value.to_bits()).cloned();
+        known.unwrap_or_else(|| {
+            let modes = resolve(value);
+            if let Ok(mut cache) = solved.lock() {
+                cache.insert(value.to_bits(), modes.clone());
+            }
+            modes
+        })
+    };
+    let resolve: &Resolve = &once;
     let mut names: Vec<&str> = Vec::new();
     for m in lists.iter().flat_map(|l| l.iter()) {
         if !names.contains(&m.label.as_str()) {
             names.push(&m.label);
         }
     }
+    // Names in parallel: their branch checks re-solve midpoints independently.
     let modes = names
-        .into_iter()
+        .into_par_iter()
         .map(|name| {
             let index: Vec<Option<usize>> = lists
                 .iter()
