@@ -429,20 +429,12 @@ impl AppState {
         // Back to the starting preset's own values too, so nothing reads as changed by hand.
         let start = &self.presets[self.preset_index].preset.operating;
         let (rpm, pitch) = (start.rotor_speed, start.pitch);
-        match p.edited(|q| {
+        let edited = p.edited(|q| {
             q.follow_schedule();
             q.operating.rotor_speed = rpm;
             q.operating.pitch = pitch;
-        }) {
-            Ok(p) => {
-                self.preset = p;
-                self.changed()
-            }
-            Err(e) => {
-                self.notice = Some(e.to_string());
-                Vec::new()
-            }
-        }
+        });
+        self.apply(edited)
     }
 
     /// The value the schedule gives `key` (rotor speed or pitch) at the last solve, when the
@@ -577,10 +569,9 @@ impl AppState {
         })
     }
 
-    /// The next (or previous) aerodynamic model.
-    fn cycle_aero(&mut self, forward: bool) -> Vec<Effect> {
-        let model = self.preset.aero.model.cycle(forward);
-        match self.preset.edited(|p| p.aero.model = model) {
+    /// Take an edited preset and re-solve, or keep the current one and say why the edit failed.
+    fn apply(&mut self, edited: crate::error::Result<ValidPreset>) -> Vec<Effect> {
+        match edited {
             Ok(p) => {
                 self.preset = p;
                 self.changed()
@@ -590,6 +581,13 @@ impl AppState {
                 Vec::new()
             }
         }
+    }
+
+    /// The next (or previous) aerodynamic model.
+    fn cycle_aero(&mut self, forward: bool) -> Vec<Effect> {
+        let model = self.preset.aero.model.cycle(forward);
+        let edited = self.preset.edited(|p| p.aero.model = model);
+        self.apply(edited)
     }
 
     /// Step the focused parameter by `steps` fine or coarse steps.
@@ -628,16 +626,8 @@ impl AppState {
                     ));
                     return Vec::new();
                 }
-                match self.preset.with(key, next) {
-                    Ok(p) => {
-                        self.preset = p;
-                        self.changed()
-                    }
-                    Err(e) => {
-                        self.notice = Some(e.to_string());
-                        Vec::new()
-                    }
-                }
+                let edited = self.preset.with(key, next);
+                self.apply(edited)
             }
         }
     }

@@ -67,11 +67,20 @@ pub fn on_schedule(p: &ValidPreset) -> Result<ValidPreset> {
     }
     let blade = aero_blade_of(p)?;
     let rotor = rotor_of(p, blade);
-    let stations = bem::Station::gauss(blade, p.aero.stations)?;
+    // Built only if the law's pitch search asks for power: a table needs none, and the
+    // stations' polar blends are most of a BEM point's cost.
+    let stations = std::cell::OnceCell::new();
     let power = |s: crate::physics::rotor::schedule::Setting| {
+        let stations = match stations.get() {
+            Some(built) => built,
+            None => {
+                let built = bem::Station::gauss(blade, p.aero.stations)?;
+                stations.get_or_init(|| built)
+            }
+        };
         bem::solve(
             &rotor,
-            &stations,
+            stations,
             &[],
             &Conditions {
                 wind_speed: p.operating.wind_speed,

@@ -170,10 +170,8 @@ impl Preset {
         // A rotor speed or pitch set on the command line holds against the schedule, as an
         // edit does ([`Preset::set`]).
         for ov in overrides {
-            match ov.split('=').next().map(str::trim) {
-                Some("operating.rotor_speed") => preset.schedule_overrides.rotor_speed = true,
-                Some("operating.pitch") => preset.schedule_overrides.pitch = true,
-                _ => {}
+            if let Some(key) = ov.split('=').next() {
+                preset.hold_against_schedule(key.trim());
             }
         }
         preset.check_ranges()?;
@@ -371,12 +369,17 @@ impl Preset {
         let spec = key_spec(key)?;
         spec.check(&self.origin, value)?;
         (spec.set)(self, value);
+        self.hold_against_schedule(key);
+        Ok(())
+    }
+
+    /// A rotor speed or pitch set by hand holds against the schedule ([`ScheduleOverrides`]).
+    fn hold_against_schedule(&mut self, key: &str) {
         match key {
             "operating.rotor_speed" => self.schedule_overrides.rotor_speed = true,
             "operating.pitch" => self.schedule_overrides.pitch = true,
             _ => {}
         }
-        Ok(())
     }
 
     /// Rotor speed and pitch follow `operating.schedule` again.
