@@ -401,6 +401,9 @@ pub struct SweepRow {
     pub frequency_hz: f64,
     pub damping_ratio: f64,
     pub re: f64,
+    /// σ of the more stable root of an overdamped pair (status overdamped only; NaN, empty in
+    /// CSV and null in JSON, otherwise).
+    pub second_re: f64,
     pub status: RowStatus,
     /// Why the point could not be solved (failed rows only).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -419,6 +422,17 @@ pub struct SweepSummary {
     /// Rows of solved points where a mode has no root (status no-root).
     pub no_root: usize,
     pub first_no_root: Option<SweepRow>,
+    /// Where a tracked name moved to another root branch within a step (a veering,
+    /// [`TrackedMode::switches`]), in grid order.
+    pub switches: Vec<NameSwitch>,
+}
+
+/// A mode's name moving to another root branch between two grid points of a line.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct NameSwitch {
+    /// Values of the grid keys there, in key order (the last is where, within the step).
+    pub values: Vec<f64>,
+    pub mode: String,
 }
 
 impl SweepSummary {
@@ -506,6 +520,18 @@ pub fn grid_sweep(
                     .map(|s| s.eigenvalues)
             };
             let tracked = tracked_with_gaps(&grid.keys[grid.keys.len() - 1], &axis, pts, &resolve);
+            for m in &tracked.modes {
+                summary.switches.extend(m.switches.iter().map(|&at| {
+                    let mut values = line_start.clone();
+                    if let Some(last) = values.last_mut() {
+                        *last = at;
+                    }
+                    NameSwitch {
+                        values,
+                        mode: m.label.clone(),
+                    }
+                }));
+            }
             for (k, i) in r.clone().enumerate() {
                 if !own.contains(&i) {
                     continue;
@@ -518,6 +544,7 @@ pub fn grid_sweep(
                         frequency_hz: f64::NAN,
                         damping_ratio: f64::NAN,
                         re: f64::NAN,
+                        second_re: f64::NAN,
                         status: RowStatus::Failed,
                         error: Some(f.error.clone()),
                     });
@@ -537,6 +564,7 @@ pub fn grid_sweep(
                         frequency_hz: m.frequency_hz[k],
                         damping_ratio: m.damping_ratio[k],
                         re: m.re[k],
+                        second_re: m.second_re[k],
                         status,
                         error: None,
                     });

@@ -50,6 +50,7 @@ pub fn run(
                 "points": summary.points,
                 "failed_points": summary.failed,
                 "no_root_rows": summary.no_root,
+                "switches": summary.switches,
                 "rows": rows,
             }))
             .map(|()| summary)
@@ -91,13 +92,14 @@ pub fn run(
 /// What the rows without values mean, counted: failed points (a warning, with the first one's
 /// values and error) and modes without a root at a solved point (a note: physics, not failure).
 pub fn warnings(keys: &[String], s: &SweepSummary) -> Vec<String> {
-    let at = |r: &SweepRow| {
+    let at_values = |values: &[f64]| {
         keys.iter()
-            .zip(&r.values)
+            .zip(values)
             .map(|(k, v)| format!("{k} = {v}"))
             .collect::<Vec<_>>()
             .join(", ")
     };
+    let at = |r: &SweepRow| at_values(&r.values);
     let mut out = Vec::new();
     if let Some(r) = &s.first_failed {
         out.push(format!(
@@ -117,6 +119,27 @@ pub fn warnings(keys: &[String], s: &SweepSummary) -> Vec<String> {
             s.no_root,
             r.mode.as_deref().unwrap_or(""),
             at(r)
+        ));
+    }
+    if !s.switches.is_empty() {
+        const SHOWN: usize = 5;
+        let listed: Vec<String> = s
+            .switches
+            .iter()
+            .take(SHOWN)
+            .map(|w| format!("{} at {}", w.mode, at_values(&w.values)))
+            .collect();
+        let more = s.switches.len().saturating_sub(SHOWN);
+        out.push(format!(
+            "note: {} time(s) a mode's name moved to another root branch within a step (a \
+             veering: the name follows the motion's content, and the rows follow the name): {}{}",
+            s.switches.len(),
+            listed.join("; "),
+            if more > 0 {
+                format!("; {more} more in --json")
+            } else {
+                String::new()
+            }
         ));
     }
     out
@@ -143,7 +166,14 @@ pub fn parse_grid(vary: &[String]) -> Result<Grid> {
 
 pub fn csv_header(keys: &[String]) -> String {
     let mut cols: Vec<&str> = keys.iter().map(String::as_str).collect();
-    cols.extend(["mode", "frequency_hz", "damping_ratio", "re", "status"]);
+    cols.extend([
+        "mode",
+        "frequency_hz",
+        "damping_ratio",
+        "re",
+        "second_re",
+        "status",
+    ]);
     cols.join(",")
 }
 
@@ -159,7 +189,12 @@ pub fn csv_row(r: &SweepRow) -> String {
     };
     let mut cols: Vec<String> = r.values.iter().map(|v| format!("{v}")).collect();
     cols.push(r.mode.clone().unwrap_or_default());
-    cols.extend([num(r.frequency_hz), num(r.damping_ratio), num(r.re)]);
+    cols.extend([
+        num(r.frequency_hz),
+        num(r.damping_ratio),
+        num(r.re),
+        num(r.second_re),
+    ]);
     cols.push(r.status.name().to_string());
     cols.join(",")
 }

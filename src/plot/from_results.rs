@@ -199,8 +199,8 @@ pub fn tracked_from_rows(key: &str, rows: &[SweepRow]) -> TrackedSweep {
                     frequency_hz: vec![f64::NAN; n],
                     damping_ratio: vec![f64::NAN; n],
                     re: vec![f64::NAN; n],
-                    // Grid rows carry neither a second decay rate nor branch switches.
                     second_re: vec![f64::NAN; n],
+                    // Grid rows do not carry the branch switches.
                     switches: Vec::new(),
                 });
                 modes.len() - 1
@@ -210,6 +210,7 @@ pub fn tracked_from_rows(key: &str, rows: &[SweepRow]) -> TrackedSweep {
         m.frequency_hz[n - 1] = r.frequency_hz;
         m.damping_ratio[n - 1] = r.damping_ratio;
         m.re[n - 1] = r.re;
+        m.second_re[n - 1] = r.second_re;
     }
     TrackedSweep {
         parameter: key.to_string(),

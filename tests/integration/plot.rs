@@ -580,6 +580,7 @@ mod from_results {
             frequency_hz: f,
             damping_ratio: 0.1 * f,
             re: -f,
+            second_re: f64::NAN,
             status: RowStatus::Ok,
             error: None,
         };
@@ -596,6 +597,7 @@ mod from_results {
                 frequency_hz: f64::NAN,
                 damping_ratio: f64::NAN,
                 re: f64::NAN,
+                second_re: f64::NAN,
                 status: RowStatus::Failed,
                 error: Some("numerical: no equilibrium".into()),
             },

@@ -54,11 +54,11 @@ fn csv_shards_merge_like_the_readme_says() {
     let mut lines = whole.lines();
     assert_eq!(
         lines.next().unwrap(),
-        "operating.rotor_speed,mode,frequency_hz,damping_ratio,re,status"
+        "operating.rotor_speed,mode,frequency_hz,damping_ratio,re,second_re,status"
     );
     let first = lines.next().unwrap();
     assert!(
-        first.starts_with("0,") && first.split(',').count() == 6,
+        first.starts_with("0,") && first.split(',').count() == 7,
         "{first}"
     );
     // Header from the first shard, body of every shard.
@@ -229,9 +229,9 @@ fn a_failed_point_keeps_the_rest_of_its_line_csv() {
     let lines: Vec<&str> = r.stdout.lines().collect();
     assert_eq!(
         lines[0],
-        "operating.wind_speed,operating.rotor_speed,mode,frequency_hz,damping_ratio,re,status"
+        "operating.wind_speed,operating.rotor_speed,mode,frequency_hz,damping_ratio,re,second_re,status"
     );
-    assert!(lines.contains(&"20,0,,,,,failed"), "{}", r.stdout);
+    assert!(lines.contains(&"20,0,,,,,,failed"), "{}", r.stdout);
     for rpm in ["50", "100"] {
         assert!(
             lines
@@ -243,9 +243,11 @@ fn a_failed_point_keeps_the_rest_of_its_line_csv() {
     }
     for l in &lines[1..] {
         let cols: Vec<&str> = l.split(',').collect();
-        assert_eq!(cols.len(), 7, "{l}");
+        assert_eq!(cols.len(), 8, "{l}");
         let empty = cols[3..6].iter().all(|c| c.is_empty());
-        assert_eq!(empty, !["ok", "overdamped"].contains(&cols[6]), "{l}");
+        assert_eq!(empty, !["ok", "overdamped"].contains(&cols[7]), "{l}");
+        // The second decay rate is there exactly on overdamped rows.
+        assert_eq!(cols[6].is_empty(), cols[7] != "overdamped", "{l}");
     }
     assert!(
         r.stderr.contains("1 of 6 grid point(s)")
@@ -272,13 +274,17 @@ fn overdamped_modes_keep_their_rows() {
     assert_eq!(r.code, Some(0), "{}", r.stderr);
     assert!(!r.stdout.lines().any(|l| l.contains(",,,")), "{}", r.stdout);
     assert!(r.stdout.contains("0,torsion 1,0,"), "{}", r.stdout);
-    assert!(
-        r.stdout
-            .lines()
-            .any(|l| l.starts_with("0,torsion 1,") && l.ends_with(",overdamped")),
-        "{}",
-        r.stdout
-    );
+    let at_rest = r
+        .stdout
+        .lines()
+        .find(|l| l.starts_with("0,torsion 1,"))
+        .unwrap_or_else(|| panic!("no torsion 1 row at rest:\n{}", r.stdout));
+    let cols: Vec<&str> = at_rest.split(',').collect();
+    assert_eq!(cols.last(), Some(&"overdamped"), "{at_rest}");
+    // Both real roots are in the row: `re` the less stable, `second_re` the other.
+    let re: f64 = cols[4].parse().unwrap();
+    let second: f64 = cols[5].parse().unwrap();
+    assert!(second < re, "{at_rest}");
     assert!(
         r.stdout
             .lines()
@@ -329,4 +335,50 @@ fn input_errors_come_before_any_output() {
         r.stderr
     );
     assert_eq!(r.stdout, "");
+}
+
+/// A veering that moves a name to the other branch is reported, not hidden: demo-blade's flap 1
+/// and flap 2 swap content between 170 and 180 rpm. stderr names both, JSON lists them with
+/// where (inside the step), and every listed name is a tracked mode of the rows.
+#[test]
+fn name_switches_are_reported() {
+    let args = [
+        "sweep",
+        "--preset",
+        "demo-blade",
+        "--vary",
+        "operating.rotor_speed=0:200:10",
+    ];
+    let r = run(&args);
+    assert_eq!(r.code, Some(0), "{}", r.stderr);
+    let note = r
+        .stderr
+        .lines()
+        .find(|l| l.contains("moved to another root branch"))
+        .unwrap_or_else(|| panic!("no switch note:\n{}", r.stderr));
+    let v: serde_json::Value =
+        serde_json::from_str(&stdout(&[&args[..], &["--json"]].concat())).unwrap();
+    let switches = v["switches"].as_array().unwrap();
+    assert!(!switches.is_empty());
+    assert!(
+        note.starts_with(&format!("note: {} time(s)", switches.len())),
+        "{note}"
+    );
+    let modes: Vec<&str> = v["rows"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(|row| row["mode"].as_str())
+        .collect();
+    for s in switches {
+        let mode = s["mode"].as_str().unwrap();
+        let at = s["values"][0].as_f64().unwrap();
+        assert!(modes.contains(&mode), "{s}");
+        assert!(
+            note.contains(&format!("{mode} at operating.rotor_speed = {at}")),
+            "{note}"
+        );
+        // Strictly inside a step: a switch is found between two grid points, never on one.
+        assert!(at > 0.0 && at < 200.0 && at % 10.0 != 0.0, "{s}");
+    }
 }
