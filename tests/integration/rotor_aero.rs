@@ -217,3 +217,38 @@ fn the_campbell_along_the_schedule_solves_every_wind_speed() {
         }
     }
 }
+
+/// With the air taken away the aeroelastic eigenvalues are the structure's own: every root of
+/// a real blade at its scheduled rotor speed and pitch has the natural frequency (|λ|/2π) and
+/// modal damping ratio of one of the blade's rotating modes there, one to one (issue 17).
+#[test]
+fn without_air_the_roots_are_the_structural_modes() {
+    use flutterscope::analysis::eigen::analyse;
+    use flutterscope::physics::blade::source::blade_structure;
+    use flutterscope::physics::operating::on_schedule;
+    for name in ["nrel5mw", "iea15mw"] {
+        let p = Preset::load(name, &["aero.model=none".to_string()]).unwrap();
+        let s = analyse(&p).unwrap();
+        assert!(s.aero_lags.is_empty(), "{name}");
+        let at = on_schedule(&p).unwrap();
+        let built = blade_structure(&at).unwrap().unwrap();
+        let mut natural: Vec<(f64, f64)> = built
+            .modes(at.omega())
+            .unwrap()
+            .iter()
+            .map(|m| (m.frequency_hz, m.damping_ratio))
+            .collect();
+        let mut roots: Vec<(f64, f64)> = s
+            .eigenvalues
+            .iter()
+            .map(|m| (m.re.hypot(m.im) / std::f64::consts::TAU, m.damping_ratio))
+            .collect();
+        natural.sort_by(|a, b| a.0.total_cmp(&b.0));
+        roots.sort_by(|a, b| a.0.total_cmp(&b.0));
+        assert_eq!(roots.len(), natural.len(), "{name}");
+        for (r, n) in roots.iter().zip(&natural) {
+            assert!((r.0 - n.0).abs() < 1e-6 * n.0, "{name}: {r:?} vs {n:?}");
+            assert!((r.1 - n.1).abs() < 1e-6, "{name}: {r:?} vs {n:?}");
+        }
+    }
+}
