@@ -35,6 +35,10 @@ const NEWTON_MAX_ITERATIONS: usize = 60;
 /// Smallest load-factor step of the equilibrium's load continuation: below it the branch counts
 /// as ended (1e-3 of the load locates a fold far more finely than any operating point needs).
 const MIN_LOAD_STEP: f64 = 1e-3;
+/// Where the equilibrium branch ends with the tangent stiffness's smallest eigenvalue below this
+/// fraction of the blade's softest stiffness, the air has cancelled nearly all of it: a fold of
+/// the branch, static divergence (a kink of a polar leaves the tangent far from singular).
+const DIVERGENCE_MARGIN: f64 = 0.1;
 
 pub struct System {
     structure: Arc<dyn Structure>,
@@ -309,8 +313,8 @@ impl System {
     /// to 1: each step's Newton starts from the last equilibrium, the step grows after a success
     /// and halves after a failure. When the step falls below [`MIN_LOAD_STEP`] the branch ends
     /// short of the full load: the error gives the load reached and the smallest eigenvalue of
-    /// the tangent stiffness `K − ∂(sQ)/∂q` relative to the structure's stiffest, which is near
-    /// zero (or negative) at a fold of the branch: static divergence, no equilibrium at the
+    /// the tangent stiffness `K − ∂(sQ)/∂q` relative to the blade's softest stiffness, which is
+    /// near zero (or negative) at a fold of the branch: static divergence, no equilibrium at the
     /// full load.
     fn load_continuation(&self, scale: f64) -> Result<DVector<f64>> {
         let mut q = DVector::zeros(self.nq());
@@ -341,8 +345,16 @@ impl System {
             .iter()
             .map(|l| l.re)
             .fold(f64::INFINITY, f64::min);
-        let relative = softest / self.stiffness.amax().max(f64::MIN_POSITIVE);
-        let why = if relative < 1e-3 {
+        // Against the blade's own softest stiffness: how much of it the aerodynamic stiffness
+        // has cancelled.
+        let structural = self
+            .stiffness
+            .clone()
+            .symmetric_eigenvalues()
+            .min()
+            .max(f64::MIN_POSITIVE);
+        let relative = softest / structural;
+        let why = if relative < DIVERGENCE_MARGIN {
             "the tangent stiffness is (nearly) singular there: the aerodynamic stiffness cancels \
              the blade's (static divergence), so no static equilibrium carries the full load"
         } else {
@@ -351,9 +363,10 @@ impl System {
         };
         Error::numerical(format!(
             "static equilibrium: ramping the aerodynamic load up from the unloaded blade, the \
-             equilibrium branch ends at {:.1} % of the load (smallest tangent-stiffness \
-             eigenvalue {relative:.2e} of the stiffest); {why} ({last})",
-            100.0 * load
+             equilibrium branch ends at {:.1} % of the load (the tangent stiffness's smallest \
+             eigenvalue is {:.1} % of the blade's softest); {why} ({last})",
+            100.0 * load,
+            100.0 * relative
         ))
     }
     /// Equilibrium and the state matrix there.

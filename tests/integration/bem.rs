@@ -263,7 +263,10 @@ fn cone_tilt_and_prebend_turn_the_inflow() {
     for (f, s) in c.stations.iter().zip(&stations) {
         assert!((f.radius - (1.5 + s.span) * beta.cos()).abs() < 1e-9);
         let normal = f.axial_velocity / (1.0 - f.axial_induction);
-        assert!((normal - 8.0 * tau.cos() * beta.cos()).abs() < 1e-9, "{normal}");
+        assert!(
+            (normal - 8.0 * tau.cos() * beta.cos()).abs() < 1e-9,
+            "{normal}"
+        );
     }
     // Less wind through a smaller disc: less power and thrust, here by a few per cent.
     assert!(c.power < plain.power && c.thrust < plain.thrust);
@@ -312,7 +315,9 @@ fn prebend_from_the_aerodyn_file() {
     .unwrap_err()
     .to_string();
     assert!(
-        e.contains("aero.prebend_file") && e.contains("IEA_15MW_RWT_ae.dat") && e.contains("NumBlNds"),
+        e.contains("aero.prebend_file")
+            && e.contains("IEA_15MW_RWT_ae.dat")
+            && e.contains("NumBlNds"),
         "{e}"
     );
 }

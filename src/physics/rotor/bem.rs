@@ -244,15 +244,17 @@ fn totals(
     at: &Conditions,
 ) -> OperatingState {
     let b = rotor.blades as f64;
-    let (thrust, torque) = stations.iter().zip(places).zip(&flows).fold(
-        (0.0, 0.0),
-        |(t, q), ((s, place), f)| {
-            (
-                t + b * s.weight * f.out_of_plane_load * place.cone.cos(),
-                q + b * s.weight * f.in_plane_load * place.radius,
-            )
-        },
-    );
+    let (thrust, torque) =
+        stations
+            .iter()
+            .zip(places)
+            .zip(&flows)
+            .fold((0.0, 0.0), |(t, q), ((s, place), f)| {
+                (
+                    t + b * s.weight * f.out_of_plane_load * place.cone.cos(),
+                    q + b * s.weight * f.in_plane_load * place.radius,
+                )
+            });
     OperatingState {
         power: at.rotor_speed * torque,
         thrust,
