@@ -8,7 +8,6 @@ use flutterscope::analysis::eigen::{analyse, analyse_system, linear_system};
 use flutterscope::analysis::flutter::{flutter_boundary, BoundaryKind};
 use flutterscope::analysis::simulate::{propagators, simulate, RunStatus, Simulator};
 use flutterscope::analysis::sweep::track;
-use flutterscope::error::Error;
 use flutterscope::physics::system::System;
 use flutterscope::preset::{Preset, ValidPreset};
 use nalgebra::{DMatrix, DVector};
