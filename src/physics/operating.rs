@@ -3,10 +3,11 @@
 //!
 //! Inputs: a checked preset with a tabulated blade and its aerodynamic description. Steps:
 //! rotor speed and pitch from `operating.schedule` at the wind speed ([`on_schedule`]); the
-//! structure there; the BEM (§12.2) on the blade twisted by its elastic twist (none at first);
+//! structure there; the BEM (§12.2) on the blade twisted and bent by its deflection (none at
+//! first);
 //! the strips on that inflow, induction frozen (§12.5); the static equilibrium of the structure
 //! under those strip loads, whose angles of attack see the elastic twist (§6); the BEM again
-//! with the new twist, until the twist at every station settles. Outputs: the converged flow,
+//! with the new twist and flap, until both settle at every station. Outputs: the converged flow,
 //! the system about it and the equilibrium state.
 //!
 //! Why a fixed point rather than one Newton solve on everything: the BEM's induction is a
@@ -28,12 +29,12 @@ use crate::preset::{AeroModel, Schedule, ValidPreset};
 use nalgebra::DVector;
 use std::sync::Arc;
 
-/// Largest change of the elastic twist at any station (rad) between two passes at which the
-/// operating point counts as converged: 1e-7 rad moves a power or a damping by far less than
-/// the polar's own resolution.
+/// Largest change of the elastic twist at any station (rad), or of its flap over the tip radius,
+/// between two passes at which the operating point counts as converged: 1e-7 rad moves a power
+/// or a damping by far less than the polar's own resolution.
 const TWIST_TOLERANCE: f64 = 1e-7;
 /// Passes allowed before the operating point is reported as not settling.
-const MAX_PASSES: usize = 30;
+const MAX_PASSES: usize = 60;
 
 /// The converged steady operating point.
 pub struct Operation {
@@ -165,24 +166,32 @@ pub fn steady(p: &ValidPreset, unsteady: Unsteadiness) -> Result<Operation> {
         air_density: p.operating.air_density,
         unsteadiness: unsteady,
     };
-    let mut twist = vec![0.0; strips.len()];
+    // The deflection the BEM sees, `[twist…, flap/R…]`: the flap scaled by the tip radius so
+    // that one tolerance (rad) serves both.
+    let n = strips.len();
+    let mut shape = vec![0.0; 2 * n];
     let mut change = f64::INFINITY;
     let mut relaxation = Relaxation::default();
     for pass in 1..=MAX_PASSES {
-        let flow = bem::solve(&rotor, &strips, &twist, &conditions)?;
+        let deflection: Vec<bem::Deflection> = (0..n)
+            .map(|i| bem::Deflection {
+                twist: shape[i],
+                flap: shape[n + i] * rotor.tip_radius,
+            })
+            .collect();
+        let flow = bem::solve(&rotor, &strips, &deflection, &conditions)?;
         let stations = frozen_inflow(&strips, &flow, conditions.pitch);
         let system = System::from_parts(Arc::clone(&structure), stations, Box::new(model.clone()))?;
         let equilibrium = system
             .equilibrium()
             .map_err(|e| e.at(p.operating_point()))?;
-        let settled: Vec<f64> = system
-            .station_motion(&equilibrium)
-            .iter()
-            .map(|[phi, _, _]| *phi)
+        let motion = system.station_motion(&equilibrium);
+        let settled: Vec<f64> = (motion.iter().map(|[phi, _, _]| *phi))
+            .chain(motion.iter().map(|[_, u, _]| u / rotor.tip_radius))
             .collect();
         change = settled
             .iter()
-            .zip(&twist)
+            .zip(&shape)
             .fold(0.0, |m, (a, b)| f64::max(m, (a - b).abs()));
         if change <= TWIST_TOLERANCE {
             return Ok(Operation {
@@ -193,7 +202,7 @@ pub fn steady(p: &ValidPreset, unsteady: Unsteadiness) -> Result<Operation> {
                 passes: pass,
             });
         }
-        twist = relaxation.step(&twist, &settled);
+        shape = relaxation.step(&shape, &settled);
     }
     Err(Error::numerical(format!(
         "static aeroelastic equilibrium: the elastic twist had not settled after {MAX_PASSES} \

@@ -32,6 +32,13 @@ use std::sync::Arc;
 
 /// Newton iterations allowed for the static equilibrium before reporting non-convergence.
 const NEWTON_MAX_ITERATIONS: usize = 60;
+/// Smallest load-factor step of the equilibrium's load continuation: below it the branch counts
+/// as ended (1e-3 of the load locates a fold far more finely than any operating point needs).
+const MIN_LOAD_STEP: f64 = 1e-3;
+/// Where the equilibrium branch ends with the tangent stiffness's smallest eigenvalue below this
+/// fraction of the blade's softest stiffness, the air has cancelled nearly all of it: a fold of
+/// the branch, static divergence (a kink of a polar leaves the tangent far from singular).
+const DIVERGENCE_MARGIN: f64 = 0.1;
 
 pub struct System {
     structure: Arc<dyn Structure>,
@@ -228,20 +235,38 @@ impl System {
     /// The static equilibrium x* (q̇ = 0, aero states steady, `K q = Q(q)`), by Newton's method
     /// on q with a backtracking line search (docs/model.md §6). For the affine models (theodorsen,
     /// none) the first step is the exact linear solve; quasi-steady's `cos α_g` moment arm is
-    /// mildly nonlinear in φ and takes a few steps more.
+    /// mildly nonlinear in φ and takes a few steps more. Where Newton from the unloaded blade
+    /// stalls (a heavily loaded, soft blade: the NREL 5MW in overspeed), the load is ramped up
+    /// from zero along the equilibrium branch ([`System::load_continuation`]); if the branch ends
+    /// before the full load, the error says where and why (static divergence).
     pub fn equilibrium(&self) -> Result<DVector<f64>> {
-        let nq = self.nq();
-        let mut q = DVector::zeros(nq);
-        let (mut res, mut jac) = self.static_residual(&q, true)?;
-        // Load scale for the convergence test: the rigid (q = 0) load, floored by the stiffness.
-        let scale = res
+        let q0 = DVector::zeros(self.nq());
+        let scale = self.load_scale()?;
+        match self.newton(q0, 1.0, scale) {
+            Ok(q) => Ok(self.steady_state_of(&q)),
+            Err(_) => self
+                .load_continuation(scale)
+                .map(|q| self.steady_state_of(&q)),
+        }
+    }
+
+    /// Load scale of the convergence test: the rigid (q = 0) load, floored by the stiffness.
+    fn load_scale(&self) -> Result<f64> {
+        let (res, _) = self.static_residual(&DVector::zeros(self.nq()), 1.0, false)?;
+        Ok(res
             .norm()
             .max(self.stiffness.amax() * 1e-12)
-            .max(f64::MIN_POSITIVE);
+            .max(f64::MIN_POSITIVE))
+    }
+
+    /// Newton from `q` on `K q = s Q(q)` at load factor `s`, with a backtracking line search
+    /// (the full Newton step overshoots and cycles on soft blades).
+    fn newton(&self, mut q: DVector<f64>, load: f64, scale: f64) -> Result<DVector<f64>> {
+        let (mut res, mut jac) = self.static_residual(&q, load, true)?;
         for _ in 0..NEWTON_MAX_ITERATIONS {
             let rnorm = res.norm();
             if rnorm <= 1e-12 * scale {
-                return Ok(self.steady_state_of(&q));
+                return Ok(q);
             }
             let step = jac
                 .clone()
@@ -256,14 +281,13 @@ impl System {
                 })?;
             if step.norm() <= 1e-14 * (1.0 + q.norm()) {
                 // Round-off level: the residual cannot be reduced further.
-                return Ok(self.steady_state_of(&q));
+                return Ok(q);
             }
-            // Backtracking with an Armijo-type sufficient decrease: the full Newton step
-            // overshoots and cycles on soft blades.
+            // Backtracking with an Armijo-type sufficient decrease.
             let mut t = 1.0;
             loop {
                 let trial = &q + t * &step;
-                let (r, _) = self.static_residual(&trial, false)?;
+                let (r, _) = self.static_residual(&trial, load, false)?;
                 if r.norm() <= (1.0 - 1e-4 * t) * rnorm {
                     q = trial;
                     break;
@@ -272,12 +296,11 @@ impl System {
                 if t < 1e-6 {
                     return Err(Error::numerical(format!(
                         "static equilibrium: Newton line search stalled (residual {rnorm:.3e} \
-                         against load scale {scale:.3e}); the aerodynamic load may exceed what \
-                         the blade can carry here"
+                         against load scale {scale:.3e})"
                     )));
                 }
             }
-            (res, jac) = self.static_residual(&q, true)?;
+            (res, jac) = self.static_residual(&q, load, true)?;
         }
         Err(Error::numerical(format!(
             "static equilibrium did not converge in {NEWTON_MAX_ITERATIONS} Newton steps \
@@ -286,6 +309,66 @@ impl System {
         )))
     }
 
+    /// Natural-parameter continuation in the load factor `s` from 0 (the unloaded blade, q = 0)
+    /// to 1: each step's Newton starts from the last equilibrium, the step grows after a success
+    /// and halves after a failure. When the step falls below [`MIN_LOAD_STEP`] the branch ends
+    /// short of the full load: the error gives the load reached and the smallest eigenvalue of
+    /// the tangent stiffness `K − ∂(sQ)/∂q` relative to the blade's softest stiffness, which is
+    /// near zero (or negative) at a fold of the branch: static divergence, no equilibrium at the
+    /// full load.
+    fn load_continuation(&self, scale: f64) -> Result<DVector<f64>> {
+        let mut q = DVector::zeros(self.nq());
+        let (mut load, mut step) = (0.0, 0.25);
+        while load < 1.0 {
+            let next = f64::min(load + step, 1.0);
+            match self.newton(q.clone(), next, scale * next) {
+                Ok(reached) => {
+                    (q, load) = (reached, next);
+                    step = f64::min(2.0 * step, 0.5);
+                }
+                Err(_) if step > MIN_LOAD_STEP => step *= 0.5,
+                Err(e) => return Err(self.branch_end(&q, load, e)),
+            }
+        }
+        Ok(q)
+    }
+
+    /// Why the equilibrium branch ends at load factor `load` with deflection `q`: the tangent
+    /// stiffness there (docs/model.md §6).
+    fn branch_end(&self, q: &DVector<f64>, load: f64, last: Error) -> Error {
+        let tangent = match self.static_residual(q, load, true) {
+            Ok((_, jac)) => -jac,
+            Err(e) => return e,
+        };
+        let softest = tangent
+            .complex_eigenvalues()
+            .iter()
+            .map(|l| l.re)
+            .fold(f64::INFINITY, f64::min);
+        // Against the blade's own softest stiffness: how much of it the aerodynamic stiffness
+        // has cancelled.
+        let structural = self
+            .stiffness
+            .clone()
+            .symmetric_eigenvalues()
+            .min()
+            .max(f64::MIN_POSITIVE);
+        let relative = softest / structural;
+        let why = if relative < DIVERGENCE_MARGIN {
+            "the tangent stiffness is (nearly) singular there: the aerodynamic stiffness cancels \
+             the blade's (static divergence), so no static equilibrium carries the full load"
+        } else {
+            "the tangent stiffness is still regular there: the load path crosses a kink of the \
+             linearly interpolated polars that Newton cannot step over"
+        };
+        Error::numerical(format!(
+            "static equilibrium: ramping the aerodynamic load up from the unloaded blade, the \
+             equilibrium branch ends at {:.1} % of the load (the tangent stiffness's smallest \
+             eigenvalue is {:.1} % of the blade's softest); {why} ({last})",
+            100.0 * load,
+            100.0 * relative
+        ))
+    }
     /// Equilibrium and the state matrix there.
     pub fn linearise(&self) -> Result<LinearSystem> {
         let x_eq = self.equilibrium()?;
@@ -338,16 +421,18 @@ impl System {
     }
 
     /// `R(q) = Q(q, 0, z*(q)) − K q` and, when asked, `dR/dq` (aero states held steady).
+    /// `s Q(q) − K q` at load factor `s` (1: the full load) and, if asked, its Jacobian in q.
     fn static_residual(
         &self,
         q: &DVector<f64>,
+        load: f64,
         want_jac: bool,
     ) -> Result<(DVector<f64>, DMatrix<f64>)> {
         let nq = self.nq();
         let x = self.steady_state_of(q);
         let (qv, v, z) = self.split(&x);
         let pr = self.project(qv, v, z, want_jac);
-        let res = &pr.force - &self.stiffness * q;
+        let res = load * &pr.force - &self.stiffness * q;
         if !res.iter().all(|v| v.is_finite()) {
             return Err(Error::numerical(
                 "static equilibrium: non-finite aerodynamic load (check the operating point)",
@@ -356,7 +441,7 @@ impl System {
         if !want_jac {
             return Ok((res, DMatrix::zeros(0, 0)));
         }
-        let mut jac = &pr.dq - &self.stiffness;
+        let mut jac = &pr.dq * load - &self.stiffness;
         if self.ns > 0 {
             // Chain rule through the steady states: dz*/dq.
             let mut zq = DMatrix::zeros(self.n_aero(), nq);
@@ -374,7 +459,7 @@ impl System {
                     }
                 }
             }
-            jac += &pr.dz * zq;
+            jac += (&pr.dz * zq) * load;
         }
         Ok((res, jac))
     }

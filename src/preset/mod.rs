@@ -24,7 +24,7 @@ pub use schema::*;
 
 use crate::error::{Error, Result};
 use crate::physics::blade::source::{read_blade, read_twist, TabulatedBlade};
-use crate::physics::rotor::files::{read_aerodyn, read_hawc2};
+use crate::physics::rotor::files::{read_aerodyn, read_hawc2, read_prebend};
 use crate::physics::rotor::schedule::Table as ScheduleTable;
 use crate::physics::rotor::AeroBlade;
 use serde::Deserialize;
@@ -298,6 +298,15 @@ impl Preset {
             )
         } else {
             None
+        };
+        let blade = match (blade, a.prebend_file.is_empty()) {
+            (Some(mut b), false) => {
+                b.prebend = read_prebend(&base.resolve(&a.prebend_file)).map_err(|e| {
+                    invalid(&format!("aero.prebend_file = \"{}\"", a.prebend_file), e)
+                })?;
+                Some(b)
+            }
+            (blade, _) => blade,
         };
         let table =
             match self.operating.schedule {

@@ -252,6 +252,11 @@ pub struct Operating {
     pub tunnel_speed: f64,
     /// Air density ρ_a (kg/m³).
     pub air_density: f64,
+    /// Precone (deg): the blades' root axis inclined upwind out of the rotor plane (HAWC2's
+    /// cone; OpenFAST's `PreCone` with the opposite sign).
+    pub precone: f64,
+    /// Shaft tilt (deg): the wind's component along the shaft is `U cos(tilt)`.
+    pub shaft_tilt: f64,
     /// Axial induction a_ind.
     pub induction: f64,
     pub inflow: Inflow,
@@ -402,6 +407,9 @@ pub struct Aero {
     pub ae_set: usize,
     /// The HAWC2 pc file (profile coefficients by relative thickness).
     pub pc_file: String,
+    /// An AeroDyn 15 blade file whose `BlCrvAC` column is the blade's prebend (out-of-plane
+    /// offset of its axis, downwind positive); empty for a straight blade (docs/model.md §12.2).
+    pub prebend_file: String,
 }
 
 /// The rotor's files as read when the preset was checked, with the keys they were read from:
@@ -426,6 +434,7 @@ impl RotorFiles {
             a.ae_file.clone(),
             a.ae_set.to_string(),
             a.pc_file.clone(),
+            a.prebend_file.clone(),
         ];
         aero.extend(a.airfoils.iter().cloned());
         let table = match p.operating.schedule {
@@ -639,6 +648,8 @@ impl Default for Operating {
             pitch: 10.0,
             tunnel_speed: 0.0,
             air_density: 1.225,
+            precone: 0.0,
+            shaft_tilt: 0.0,
             induction: 0.0,
             inflow: Inflow::Tip,
             twist_root: 0.0,
@@ -683,6 +694,7 @@ impl Default for Aero {
             ae_file: String::new(),
             ae_set: 1,
             pc_file: String::new(),
+            prebend_file: String::new(),
         }
     }
 }

@@ -6,8 +6,9 @@ use flutterscope::formats::aerodyn::read_blade as read_aerodyn_blade;
 use flutterscope::formats::hawc2_aero::{read_opt, read_pc};
 use flutterscope::physics::aero::blade_element::Unsteadiness;
 use flutterscope::physics::operating::steady;
-use flutterscope::physics::rotor::bem::{solve, Conditions, Rotor, Station};
+use flutterscope::physics::rotor::bem::{solve, Conditions, Deflection, Rotor, Station};
 use flutterscope::physics::rotor::files::{read_aerodyn, read_hawc2};
+use flutterscope::physics::rotor::steady::rotor_of;
 use flutterscope::physics::rotor::AeroBlade;
 use flutterscope::preset::BladeFile;
 use flutterscope::preset::Preset;
@@ -56,6 +57,8 @@ fn rotor(blade: &AeroBlade, hub_radius: f64) -> Rotor {
         blades: 3,
         hub_radius,
         tip_radius: hub_radius + blade.span_range().1,
+        precone: 0.0,
+        shaft_tilt: 0.0,
     }
 }
 
@@ -128,9 +131,12 @@ fn iea15mw_rigid_against_the_flexible_operation_table() {
             100.0 * (s.thrust / row.thrust - 1.0)
         );
         for tip in [1.0, 2.0, 3.0] {
-            let twist: Vec<f64> = stations
+            let twist: Vec<Deflection> = stations
                 .iter()
-                .map(|st| f64::to_radians(tip) * st.span / length)
+                .map(|st| Deflection {
+                    twist: f64::to_radians(tip) * st.span / length,
+                    flap: 0.0,
+                })
                 .collect();
             let t = solve(&rotor, &stations, &twist, &row.at).unwrap();
             eprintln!(
@@ -168,18 +174,30 @@ fn iea15mw_rigid_against_the_flexible_operation_table() {
 }
 
 /// The deflected blade against the same table: the `iea15mw` preset's static aeroelastic
-/// equilibrium (docs/model.md §12.6) at the table's pitch and rotor speed. The blade bends
-/// downwind and twists toward feather under load, which brings power and thrust toward the
-/// table's at every wind speed from 7 m/s up; the 5 % is met at 7 m/s and not beyond
-/// (README, validation table: the remaining excess above rated needs about 1° more twist toward
-/// feather than the linear beam gives).
+/// equilibrium (docs/model.md §12.6) at the table's pitch and rotor speed, with the rotor's cone
+/// (4°), tilt (6°) and the blade's prebend (4 m upwind at the tip) and its elastic flap bending the
+/// axis the BEM sees (§12.2). The blade bends downwind and twists toward feather under load, which
+/// brings power and thrust toward the table's at every wind speed from 7 m/s up. The 5 % is
+/// met for power and thrust at 7 and 9 m/s and for power at 10 m/s; not at 5 m/s (power) nor above
+/// rated (README, validation table; docs/model.md §12.4 says why). Each bound is what is achieved,
+/// rounded up: losing the cone, tilt, prebend or deflected geometry breaks one of them.
 #[test]
 fn iea15mw_deflected_against_the_operation_table() {
     let p = flutterscope::preset::Preset::load("iea15mw", &[]).unwrap();
     let blade = iea15mw();
     let rotor = rotor(&blade, 3.97);
     let stations = Station::gauss(&blade, 30).unwrap();
-    for row in iea15mw_table(&IEA_WINDS) {
+    // Largest |power|, |thrust| difference from the table achieved at each wind speed.
+    let bounds = [
+        (5.0, 0.13, 0.05),
+        (7.0, 0.05, 0.05),
+        (9.0, 0.05, 0.05),
+        (10.0, 0.05, 0.065),
+        (13.0, 0.075, 0.08),
+        (17.0, 0.09, 0.08),
+    ];
+    for (row, (wind, power_bound, thrust_bound)) in iea15mw_table(&IEA_WINDS).iter().zip(bounds) {
+        assert_eq!(row.wind, wind);
         let at = p.with("operating.wind_speed", row.wind).unwrap();
         let op = steady(&at, Unsteadiness::QuasiSteady).unwrap();
         let rigid = solve(&rotor, &stations, &[], &row.at).unwrap();
@@ -217,13 +235,91 @@ fn iea15mw_deflected_against_the_operation_table() {
                 row.wind
             );
         }
-        if row.wind == 7.0 {
-            assert!(
-                power.abs() < 0.05 && thrust.abs() < 0.05,
-                "7 m/s: {power} {thrust}"
-            );
-        }
+        assert!(
+            power.abs() < power_bound && thrust.abs() < thrust_bound,
+            "{} m/s: power {power}, thrust {thrust}",
+            row.wind
+        );
     }
+}
+
+/// Cone, tilt and prebend as CCBlade takes them (docs/model.md §12.2): a straight blade coned by
+/// β sits at `r cos β` from the shaft and its elements see `U cos τ cos β` normal to them; a
+/// prebend leaning the axis upwind by `k` per metre adds `atan k` to the cone; thrust and torque
+/// follow the turned loads. And β = τ = 0 without prebend is the axial BEM.
+#[test]
+fn cone_tilt_and_prebend_turn_the_inflow() {
+    let blade = nrel5mw();
+    let (straight, mut stations) = rig(&blade, 1.5, 20);
+    let at = at(8.0, 9.0, 0.0);
+    let plain = solve(&straight, &stations, &[], &at).unwrap();
+    let (beta, tau) = (f64::to_radians(5.0), f64::to_radians(6.0));
+    let coned = Rotor {
+        precone: beta,
+        shaft_tilt: tau,
+        ..straight
+    };
+    let c = solve(&coned, &stations, &[], &at).unwrap();
+    for (f, s) in c.stations.iter().zip(&stations) {
+        assert!((f.radius - (1.5 + s.span) * beta.cos()).abs() < 1e-9);
+        let normal = f.axial_velocity / (1.0 - f.axial_induction);
+        assert!(
+            (normal - 8.0 * tau.cos() * beta.cos()).abs() < 1e-9,
+            "{normal}"
+        );
+    }
+    // Less wind through a smaller disc: less power and thrust, here by a few per cent.
+    assert!(c.power < plain.power && c.thrust < plain.thrust);
+    assert!(c.power > 0.9 * plain.power);
+    // A prebend leaning 0.05 m per metre upwind: the cone grows by atan(0.05) everywhere.
+    for s in &mut stations {
+        s.prebend = -0.05 * s.span;
+    }
+    let bent = solve(&straight, &stations, &[], &at).unwrap();
+    let kappa = 0.05f64.atan();
+    for (f, s) in bent.stations.iter().zip(&stations) {
+        let normal = f.axial_velocity / (1.0 - f.axial_induction);
+        assert!((normal - 8.0 * kappa.cos()).abs() < 1e-9, "{normal}");
+        assert!((f.radius - (1.5 + s.span)).abs() < 1e-12);
+    }
+    // The same offset as elastic flap (downwind) cones the other way by the same angle.
+    for s in &mut stations {
+        s.prebend = 0.0;
+    }
+    let flap: Vec<Deflection> = stations
+        .iter()
+        .map(|s| Deflection {
+            twist: 0.0,
+            flap: 0.05 * s.span,
+        })
+        .collect();
+    let flapped = solve(&straight, &stations, &flap, &at).unwrap();
+    assert!((flapped.power - bent.power).abs() < 1e-6 * bent.power);
+}
+
+/// The prebend comes from `aero.prebend_file`'s `BlCrvAC`: the IEA 15MW tip 4 m upwind; a file
+/// that is not an AeroDyn 15 blade file is refused with the key and the file named.
+#[test]
+fn prebend_from_the_aerodyn_file() {
+    let p = Preset::load("iea15mw", &[]).unwrap();
+    let blade = p.aero_blade().unwrap();
+    let tip = blade.prebend_at(blade.span_range().1);
+    assert!((tip + 3.999).abs() < 1e-3, "{tip}");
+    assert!(blade.prebend_at(0.0).abs() < 0.01);
+    let nrel = Preset::load("nrel5mw", &[]).unwrap();
+    assert!(nrel.aero_blade().unwrap().prebend.is_empty());
+    let e = Preset::load(
+        "presets/iea15mw.toml",
+        &["aero.prebend_file=blades/iea15mw/IEA_15MW_RWT_ae.dat".into()],
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("aero.prebend_file")
+            && e.contains("IEA_15MW_RWT_ae.dat")
+            && e.contains("NumBlNds"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -236,6 +332,18 @@ fn nrel5mw_rated_power() {
         s.thrust / 1e3
     );
     assert!((s.power / 5.30e6 - 1.0).abs() < 0.05, "{}", s.power);
+    // With the preset's precone (2.5°) and shaft tilt (5°).
+    let p = Preset::load("nrel5mw", &[]).unwrap();
+    let turned = rotor_of(&p, p.aero_blade().unwrap());
+    assert_eq!((p.operating.precone, p.operating.shaft_tilt), (2.5, 5.0));
+    let c = solve(&turned, &stations, &[], &at(11.4, 12.1, 0.0)).unwrap();
+    eprintln!(
+        "NREL 5MW 11.4 m/s 12.1 rpm, coned and tilted: power {:.1} kW, thrust {:.1} kN",
+        c.power / 1e3,
+        c.thrust / 1e3
+    );
+    assert!((c.power / 5.30e6 - 1.0).abs() < 0.05, "{}", c.power);
+    assert!(c.power < s.power);
 }
 
 /// The AeroDyn 15 file of the NREL 5MW states its aerodynamic-centre offsets from the pitch axis
@@ -404,11 +512,16 @@ fn converged_elements_balance_momentum() {
 fn extra_twist_lowers_the_angle_of_attack() {
     let (rotor, stations) = rig(&nrel5mw(), 1.5, 12);
     let at = at(0.0, 11.46, 0.0);
-    let twist: Vec<f64> = (0..12).map(|i| 0.01 * i as f64).collect();
+    let twist: Vec<Deflection> = (0..12)
+        .map(|i| Deflection {
+            twist: 0.01 * i as f64,
+            flap: 0.0,
+        })
+        .collect();
     let plain = solve(&rotor, &stations, &[], &at).unwrap();
     let turned = solve(&rotor, &stations, &twist, &at).unwrap();
     for ((a, b), t) in plain.stations.iter().zip(&turned.stations).zip(&twist) {
-        assert!((a.angle_of_attack - t - b.angle_of_attack).abs() < 1e-12);
+        assert!((a.angle_of_attack - t.twist - b.angle_of_attack).abs() < 1e-12);
     }
     assert!(solve(&rotor, &stations, &twist[..3], &at).is_err());
 }

@@ -252,3 +252,31 @@ fn without_air_the_roots_are_the_structural_modes() {
         }
     }
 }
+
+/// The NREL 5MW in high overspeed (11 m/s, pitch 0; docs/model.md §12.6): at 30 rpm Newton from
+/// the unloaded blade stalls and the load continuation reaches the equilibrium (it used to be a
+/// skipped point of `flutter`); at 33 rpm the equilibrium branch ends short of the full load and
+/// the error says where and why (a regular tangent stiffness: a kink of the linear polars, not
+/// static divergence).
+#[test]
+fn nrel5mw_overspeed_equilibrium() {
+    use flutterscope::physics::operating::{steady, unsteadiness};
+    let at = |rpm: f64| Preset::load("nrel5mw", &[format!("operating.rotor_speed={rpm}")]).unwrap();
+    let p = at(30.0);
+    let op = steady(&p, unsteadiness(&p)).unwrap();
+    let [twist, flap, _] = op.tip();
+    // Far past any linear beam's validity: at a tip speed ratio of 18 the outboard blade runs at
+    // negative angles of attack and bends 15.4 m upwind, twisting 21° toward feather.
+    assert!(
+        (twist - 0.367).abs() < 0.01 && (flap + 15.40).abs() < 0.1,
+        "{twist} {flap}"
+    );
+    let p = at(33.0);
+    let e = steady(&p, unsteadiness(&p)).err().unwrap().to_string();
+    assert!(
+        e.contains("equilibrium branch ends at 74.0 % of the load")
+            && e.contains("kink")
+            && e.contains("33 rpm"),
+        "{e}"
+    );
+}

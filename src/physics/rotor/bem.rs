@@ -1,15 +1,16 @@
-//! Steady blade-element momentum (BEM) theory for a rotor of B identical blades in uniform axial
-//! wind (docs/model.md §12.2): the axial and tangential induction at each station, Prandtl's tip
-//! and hub losses, Buhl's high-induction correction, solved as one residual in the inflow angle
-//! bracketed as Ning (2014) shows, so that every station converges: attached, stalled, near the
-//! hub, with the rotor parked.
+//! Steady blade-element momentum (BEM) theory for a rotor of B identical blades in uniform
+//! wind along the shaft (docs/model.md §12.2): the axial and tangential induction at each
+//! station, Prandtl's tip and hub losses, Buhl's high-induction correction, solved as one
+//! residual in the inflow angle bracketed as Ning (2014) shows, so that every station converges:
+//! attached, stalled, near the hub, with the rotor parked. The blade may be coned, prebent and
+//! bent by its elastic deflection, and the shaft tilted (§12.2, "Cone, prebend and tilt").
 //!
-//! Inputs: the stations (span, quadrature weight, section from [`AeroBlade::section_at`], an
-//! optional extra twist toward feather, e.g. the elastic twist of a static equilibrium), the
-//! rotor (blade count, hub and tip radius) and the operating conditions (wind, rotor speed,
-//! pitch, air density). Outputs: per station the inflow angle, angle of attack, inductions,
-//! velocities and coefficients and the loads per span; the rotor's power, thrust, torque and
-//! tip speed ratio.
+//! Inputs: the stations (span, quadrature weight, section from [`AeroBlade::section_at`], the
+//! prebend there), an optional deflection per station (elastic twist toward feather and flap
+//! downwind, from a static equilibrium), the rotor (blade count, hub and tip radius, precone,
+//! shaft tilt) and the operating conditions (wind, rotor speed, pitch, air density). Outputs:
+//! per station the inflow angle, angle of attack, inductions, velocities and coefficients and
+//! the loads per span; the rotor's power, thrust, torque and tip speed ratio.
 
 use super::{AeroBlade, AeroSection};
 use crate::error::{Error, Result};
@@ -25,8 +26,15 @@ pub struct Rotor {
     pub blades: usize,
     /// Hub radius r_hub (m): a station's radius is `r_hub + span`.
     pub hub_radius: f64,
-    /// Tip radius R (m).
+    /// Tip radius R (m), along the blade.
     pub tip_radius: f64,
+    /// Precone β (rad): the blade's root axis inclined upwind out of the rotor plane (away from
+    /// the tower of an upwind rotor; HAWC2's cone, AeroDyn's `−PreCone`).
+    pub precone: f64,
+    /// Shaft tilt τ (rad): the wind's component along the shaft is `U cos τ`; the in-plane
+    /// component `U sin τ` changes sign around the revolution and averages out (its sign is
+    /// immaterial here).
+    pub shaft_tilt: f64,
 }
 
 /// The steady operating conditions (SI).
@@ -50,15 +58,28 @@ pub struct Station {
     /// Quadrature weight (m): the totals are `Σ weight · load`.
     pub weight: f64,
     pub section: AeroSection,
+    /// Out-of-plane offset of the blade's axis from the coned root axis, downwind positive (m):
+    /// the prebend (AeroDyn's `BlCrvAC` sign; the IEA 15MW tip sits 4 m upwind).
+    pub prebend: f64,
+}
+
+/// The blade's static deflection at one station, from an aeroelastic equilibrium.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Deflection {
+    /// Elastic twist toward feather (rad): adds to the station's twist.
+    pub twist: f64,
+    /// Flap deflection downwind (m): adds to the prebend, bending the blade's axis.
+    pub flap: f64,
 }
 
 impl Station {
-    /// The station at `span` with its section from `blade`.
+    /// The station at `span` with its section and prebend from `blade`.
     pub fn on(blade: &AeroBlade, span: f64, weight: f64) -> Result<Station> {
         Ok(Station {
             span,
             weight,
             section: blade.section_at(span)?,
+            prebend: blade.prebend_at(span),
         })
     }
 
@@ -82,7 +103,8 @@ impl Station {
 pub struct StationFlow {
     /// Span from the blade root (m).
     pub span: f64,
-    /// Radius r (m).
+    /// Distance from the shaft axis (m): `r cos β` on a straight blade, less (or more) where
+    /// the axis is bent (§12.2).
     pub radius: f64,
     /// Inflow angle φ between the relative wind and the rotor plane (rad).
     pub inflow_angle: f64,
@@ -133,50 +155,106 @@ const TOLERANCE: f64 = 1e-10;
 /// divides by it; 1e-4 leaves F's effect (the load vanishing there) and keeps the residual finite.
 const MIN_LOSS: f64 = 1e-4;
 
-/// The steady flow at every station and the rotor's totals. `extra_twist` (rad, toward feather,
-/// one per station, or empty for none) adds to each station's twist, e.g. the elastic twist of a
-/// static equilibrium.
+/// The steady flow at every station and the rotor's totals. `deflection` (one per station, or
+/// empty for none) twists each station toward feather and bends the blade's axis downwind, e.g.
+/// the elastic deflection of a static equilibrium.
 pub fn solve(
     rotor: &Rotor,
     stations: &[Station],
-    extra_twist: &[f64],
+    deflection: &[Deflection],
     at: &Conditions,
 ) -> Result<OperatingState> {
-    if !extra_twist.is_empty() && extra_twist.len() != stations.len() {
+    if !deflection.is_empty() && deflection.len() != stations.len() {
         return Err(Error::numerical(format!(
-            "BEM: {} extra twists given for {} stations",
-            extra_twist.len(),
+            "BEM: {} deflections given for {} stations",
+            deflection.len(),
             stations.len()
         )));
     }
+    let deflected = |i: usize| deflection.get(i).copied().unwrap_or_default();
+    let places = placements(rotor, stations, deflected);
     let flows = stations
         .iter()
+        .zip(&places)
         .enumerate()
-        .map(|(i, s)| {
-            let twist = s.section.twist + at.pitch + extra_twist.get(i).copied().unwrap_or(0.0);
-            station_flow(rotor, s, twist, at)
+        .map(|(i, (s, place))| {
+            let twist = s.section.twist + at.pitch + deflected(i).twist;
+            station_flow(rotor, s, place, twist, at)
         })
         .collect::<Result<Vec<_>>>()?;
-    Ok(totals(rotor, stations, flows, at))
+    Ok(totals(rotor, stations, &places, flows, at))
 }
 
-/// Power, thrust and torque from the station loads by the stations' quadrature.
+/// Where a station sits on the coned, bent blade.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Placement {
+    /// Distance from the shaft axis (m).
+    radius: f64,
+    /// Local cone angle κ (rad), upwind positive: the precone plus the slope of the bent axis.
+    cone: f64,
+}
+
+/// Each station's distance from the shaft and local cone angle. A point at `s = r_hub + span`
+/// along the coned root axis, offset `w` (prebend + flap) downwind normal to it, sits
+/// `x = −s sin β + w cos β` downwind of the rotor plane and `z = s cos β + w sin β` from the
+/// shaft; the local cone is the inclination `atan2(−Δx, Δz)` of the axis, from the neighbouring
+/// stations (the mean of the two segments inside, the one segment at the ends), as CCBlade
+/// takes it (Ning 2014's code, `defineCurvature`).
+fn placements(
+    rotor: &Rotor,
+    stations: &[Station],
+    deflected: impl Fn(usize) -> Deflection,
+) -> Vec<Placement> {
+    let (sb, cb) = rotor.precone.sin_cos();
+    let points: Vec<(f64, f64)> = stations
+        .iter()
+        .enumerate()
+        .map(|(i, st)| {
+            let s = rotor.hub_radius + st.span;
+            let w = st.prebend + deflected(i).flap;
+            (-s * sb + w * cb, s * cb + w * sb)
+        })
+        .collect();
+    let segment = |i: usize| {
+        let ((x0, z0), (x1, z1)) = (points[i], points[i + 1]);
+        (x0 - x1).atan2(z1 - z0)
+    };
+    let n = points.len();
+    (0..n)
+        .map(|i| Placement {
+            radius: points[i].1,
+            cone: match (i, n) {
+                (_, 1) => rotor.precone,
+                (0, _) => segment(0),
+                (i, n) if i == n - 1 => segment(n - 2),
+                (i, _) => 0.5 * (segment(i - 1) + segment(i)),
+            },
+        })
+        .collect()
+}
+
+/// Power, thrust and torque from the station loads by the stations' quadrature: the thrust is
+/// the loads normal to the coned blade turned onto the shaft (`cos κ`), the torque their
+/// in-plane part times the distance from the shaft.
 fn totals(
     rotor: &Rotor,
     stations: &[Station],
+    places: &[Placement],
     flows: Vec<StationFlow>,
     at: &Conditions,
 ) -> OperatingState {
     let b = rotor.blades as f64;
-    let (thrust, torque) = stations
-        .iter()
-        .zip(&flows)
-        .fold((0.0, 0.0), |(t, q), (s, f)| {
-            (
-                t + b * s.weight * f.out_of_plane_load,
-                q + b * s.weight * f.in_plane_load * f.radius,
-            )
-        });
+    let (thrust, torque) =
+        stations
+            .iter()
+            .zip(places)
+            .zip(&flows)
+            .fold((0.0, 0.0), |(t, q), ((s, place), f)| {
+                (
+                    t + b * s.weight * f.out_of_plane_load * place.cone.cos(),
+                    q + b * s.weight * f.in_plane_load * place.radius,
+                )
+            });
     OperatingState {
         power: at.rotor_speed * torque,
         thrust,
@@ -204,7 +282,13 @@ struct Element {
 struct Blade<'a> {
     rotor: &'a Rotor,
     section: &'a AeroSection,
+    /// Radius along the blade, `r_hub + span` (m): the solidity and the loss factors use it,
+    /// as CCBlade does.
     radius: f64,
+    /// Distance from the shaft axis (m).
+    arm: f64,
+    /// Wind speed normal to the coned blade, `U cos τ cos κ` (m/s).
+    axial: f64,
     /// Local solidity σ' = B c / (2π r).
     solidity: f64,
     /// θ_twist + θ_p + extra twist (rad).
@@ -216,16 +300,22 @@ struct Blade<'a> {
 fn station_flow(
     rotor: &Rotor,
     station: &Station,
+    place: &Placement,
     twist: f64,
     at: &Conditions,
 ) -> Result<StationFlow> {
     let radius = rotor.hub_radius + station.span;
-    let axial = at.wind_speed;
-    let in_plane = at.rotor_speed * radius;
+    // Azimuth-averaged components in the coned blade's frame (CCBlade's `windComponents` at
+    // zero yaw, the tilt's in-plane part averaged out): normal to the blade the shaft-wise wind
+    // turned by the local cone, in plane the rotation about the shaft.
+    let axial = at.wind_speed * rotor.shaft_tilt.cos() * place.cone.cos();
+    let in_plane = at.rotor_speed * place.radius;
     let blade = Blade {
         rotor,
         section: &station.section,
         radius,
+        arm: place.radius,
+        axial,
         solidity: rotor.blades as f64 * station.section.chord / (2.0 * PI * radius),
         twist,
         speed_ratio: if axial > 0.0 { in_plane / axial } else { 0.0 },
@@ -320,8 +410,8 @@ impl Blade<'_> {
         loss: f64,
         at: &Conditions,
     ) -> StationFlow {
-        let u = at.wind_speed * (1.0 - axial_induction);
-        let v = at.rotor_speed * self.radius * (1.0 + tangential_induction);
+        let u = self.axial * (1.0 - axial_induction);
+        let v = at.rotor_speed * self.arm * (1.0 + tangential_induction);
         let w = u.hypot(v);
         let alpha = phi - self.twist;
         let coeff = self.section.polar.at(alpha);
@@ -329,7 +419,7 @@ impl Blade<'_> {
         let q = 0.5 * at.air_density * w * w * self.section.chord;
         StationFlow {
             span: self.radius - self.rotor.hub_radius,
-            radius: self.radius,
+            radius: self.arm,
             inflow_angle: phi,
             angle_of_attack: alpha,
             axial_induction,

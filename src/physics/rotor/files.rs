@@ -45,6 +45,14 @@ pub fn read_aerodyn(
     from_aerodyn(&nodes, &blade_name, &polars, &axis, &axis_name)
 }
 
+/// The prebend of a blade from an AeroDyn 15 blade file (docs/model.md §12.2): its `BlCrvAC`
+/// column, the out-of-plane offset of the blade's axis, downwind positive, at `BlSpn`. The
+/// reader checks the table (spans strictly increasing) and names the file and line.
+pub fn read_prebend(file: &BladeFile) -> Result<Vec<(f64, f64)>> {
+    let nodes = aerodyn::parse_blade(&file.read()?, &file.display())?.nodes;
+    Ok(nodes.iter().map(|n| (n.bl_spn, n.bl_crv_ac)).collect())
+}
+
 /// The polar of an AirfoilInfo file: its first table (AeroDyn's default `AFTabMod = 1` uses
 /// the first table whatever the Reynolds number), in radians. A table without `Cm` is refused:
 /// the pitching moment is part of the aerodynamic description.
@@ -127,6 +135,7 @@ pub fn from_aerodyn(
         ));
     }
     Ok(AeroBlade {
+        prebend: Vec::new(),
         nodes,
         origin: blade_origin.to_string(),
     })
@@ -269,6 +278,7 @@ pub fn from_hawc2(
         });
     }
     Ok(AeroBlade {
+        prebend: Vec::new(),
         nodes,
         origin: ae_origin.to_string(),
     })

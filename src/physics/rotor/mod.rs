@@ -32,6 +32,9 @@ pub struct AeroNode {
 #[derive(Debug, Clone, PartialEq)]
 pub struct AeroBlade {
     pub nodes: Vec<AeroNode>,
+    /// Prebend: `(span, offset)` of the blade's axis out of the coned root axis, downwind
+    /// positive (m), spans increasing; empty for a straight blade (docs/model.md §12.2).
+    pub prebend: Vec<(f64, f64)>,
     /// Where the description came from, for messages.
     pub origin: String,
 }
@@ -49,6 +52,22 @@ impl AeroBlade {
     /// Span of the first and last node (m).
     pub fn span_range(&self) -> (f64, f64) {
         (self.nodes[0].span, self.nodes[self.nodes.len() - 1].span)
+    }
+
+    /// The prebend at `span` (m, downwind), linear between the table's rows and held beyond
+    /// them; 0 without a table.
+    pub fn prebend_at(&self, span: f64) -> f64 {
+        let table = &self.prebend;
+        let i = table.partition_point(|&(s, _)| s <= span);
+        match (i, table.len()) {
+            (_, 0) => 0.0,
+            (0, _) => table[0].1,
+            (i, n) if i == n => table[n - 1].1,
+            (i, _) => {
+                let ((s0, w0), (s1, w1)) = (table[i - 1], table[i]);
+                w0 + (span - s0) / (s1 - s0) * (w1 - w0)
+            }
+        }
     }
 
     /// The section at `span`: chord, twist and centre linear between the neighbouring nodes, the

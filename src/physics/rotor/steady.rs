@@ -2,7 +2,7 @@
 //! `operating.blades`, `blade.hub_radius` and the aerodynamic description, the stations at
 //! `aero.stations` Gauss points, rotor speed and pitch from `operating.schedule`, then the BEM.
 //! The blade is rigid here: the static aeroelastic equilibrium re-runs [`bem::solve`] with the
-//! elastic twist as extra twist.
+//! elastic twist and flap as the blade's deflection.
 
 use super::bem::{self, Conditions, OperatingState, Rotor, Station};
 use super::schedule::{Law, Setting};
@@ -30,6 +30,8 @@ pub fn rotor_of(p: &ValidPreset, blade: &AeroBlade) -> Rotor {
         blades: p.operating.blades,
         hub_radius: p.blade.hub_radius,
         tip_radius: p.blade.hub_radius + blade.span_range().1,
+        precone: p.operating.precone.to_radians(),
+        shaft_tilt: p.operating.shaft_tilt.to_radians(),
     }
 }
 
