@@ -68,10 +68,18 @@ impl Error {
     }
     /// A numerical error prefixed with where it happened (`at`: the operating point, the values
     /// being varied), so the user knows which point to look at; other errors already name their
-    /// origin and are returned unchanged.
+    /// origin and are returned unchanged, as is one already prefixed with the same place (a
+    /// solver and its command may both add it).
     pub fn at(self, at: impl std::fmt::Display) -> Self {
         match self {
-            Error::Numerical(m) => Error::Numerical(format!("{at}: {m}")),
+            Error::Numerical(m) => {
+                let at = at.to_string();
+                if m.starts_with(&format!("{at}: ")) {
+                    Error::Numerical(m)
+                } else {
+                    Error::Numerical(format!("{at}: {m}"))
+                }
+            }
             e => e,
         }
     }
@@ -86,3 +94,22 @@ impl Error {
 }
 
 pub type Result<T> = std::result::Result<T, Error>;
+
+#[cfg(test)]
+mod tests {
+    use super::Error;
+
+    #[test]
+    fn a_place_is_named_once() {
+        let e = Error::numerical("Newton stalled").at("33 rpm").at("33 rpm");
+        assert_eq!(
+            e.to_string(),
+            Error::numerical("33 rpm: Newton stalled").to_string()
+        );
+        // A different place still nests: the search's values around the operating point.
+        let e = e.at("rotor speed = 33");
+        assert!(e
+            .to_string()
+            .contains("rotor speed = 33: 33 rpm: Newton stalled"));
+    }
+}

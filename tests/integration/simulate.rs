@@ -62,7 +62,7 @@ fn paper_stall_case_reaches_equilibrium_and_is_stable_in_the_coupled_form() {
 /// blade stalls on the soft blade's lift at α_r, and the load continuation (docs/model.md §12.6)
 /// follows the branch to the full load: the state it returns is a static equilibrium.
 #[test]
-fn equilibrium_failure_reports_its_residual() {
+fn load_continuation_reaches_the_soft_stall_blades_equilibrium() {
     let p = stall(&["aero.onera.forcing=rigid"]);
     let system = System::new(&p).unwrap();
     let x = system.equilibrium().unwrap();
