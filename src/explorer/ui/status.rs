@@ -50,9 +50,7 @@ pub fn margin_text(state: &AppState) -> Option<String> {
         Some(Err(_)) => "search failed (below)".to_string(),
         Some(Ok(searches)) => match job.kind {
             MarginKind::Onward => {
-                let Some(search) = searches.first() else {
-                    return None;
-                };
+                let search = searches.first()?;
                 match onward(state, job, &search.boundary) {
                     Onward::Whole(text) => return Some(text),
                     Onward::Body(text) => text,
