@@ -10,7 +10,7 @@ use flutterscope::explorer::display::{MarkerKind, ViewKind};
 use flutterscope::explorer::headless::settled_state;
 use flutterscope::explorer::keys::Action;
 use flutterscope::explorer::runner;
-use flutterscope::explorer::state::{update, Effect, Msg, PARAMS};
+use flutterscope::explorer::state::{update, AppState, Effect, Msg, PARAMS};
 use flutterscope::explorer::{ui, Engine, Physics};
 use flutterscope::preset::{Preset, ValidPreset, DEFAULT_PRESET};
 use ratatui::backend::TestBackend;
@@ -45,17 +45,35 @@ fn render_160x48(bencher: divan::Bencher) {
 
 #[divan::bench(args = ["quasi-steady", "theodorsen", "onera"])]
 fn key_to_solved_frame_160x48(bencher: divan::Bencher, model: &str) {
-    let mut state = settled_state(
+    let state = settled_state(
         DEFAULT_PRESET,
         preset(model),
         &Physics,
         ViewKind::Main,
         MarkerKind::Braille,
     );
-    state.focus = PARAMS
-        .iter()
-        .position(|p| p.label == "rotor speed")
-        .unwrap();
+    key_to_frame(bencher, state, "rotor speed");
+}
+
+/// Issue 14: the IEA 15MW in the wind (12 modes, 30 stations) at its rated point; a key on the
+/// rotor speed (an overspeed step, the structure's build kept) and on the wind speed (a step
+/// along the schedule: new pitch and rotor speed, its own deflected operating point). Targets:
+/// < 30 ms with theodorsen, < 150 ms with onera.
+#[divan::bench(
+    args = ["theodorsen/rotor speed", "theodorsen/wind speed", "onera/rotor speed", "onera/wind speed"],
+    sample_count = 20
+)]
+fn key_to_solved_frame_160x48_iea15mw(bencher: divan::Bencher, case: &str) {
+    let (model, row) = case.split_once('/').unwrap();
+    let p = Preset::load("iea15mw", &[format!("aero.model={model}")]).expect("iea15mw loads");
+    let state = settled_state("iea15mw", p, &Physics, ViewKind::Main, MarkerKind::Braille);
+    key_to_frame(bencher, state, row);
+}
+
+/// One key press on parameter row `row`, its solve (what the worker's solver thread runs) and the
+/// 160×48 frame drawn from the result.
+fn key_to_frame(bencher: divan::Bencher, mut state: AppState, row: &str) {
+    state.focus = PARAMS.iter().position(|p| p.label == row).unwrap();
     let mut terminal = Terminal::new(TestBackend::new(160, 48)).unwrap();
     let mut up = true;
     bencher.bench_local(|| {

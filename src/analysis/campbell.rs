@@ -1,11 +1,76 @@
-//! Which tracked modes a Campbell diagram draws. A property of the sweep's result, decided here
-//! once, so the explorer's Campbell view and `--plot` show the same modes for the same sweep
-//! (docs/model.md §6.4).
+//! Campbell diagrams: along rotor speed, or along the operating schedule's wind speeds with the
+//! scheduled rotor speed for the harmonics (docs/model.md §6.4, §12.7), and which tracked modes
+//! a diagram draws. The latter is a property of the sweep's result, decided here once, so the
+//! explorer's Campbell view and `--plot` show the same modes for the same sweep.
 
-use crate::analysis::sweep::{TrackedMode, TrackedSweep};
+use crate::analysis::cancel::Cancel;
+use crate::analysis::sweep::{track_cancellable, TrackedMode, TrackedSweep};
+use crate::error::Result;
+use crate::preset::{Schedule, ValidPreset};
 
 /// The rotor-speed key: a sweep along it is a Campbell diagram.
 pub const ROTOR_SPEED_KEY: &str = "operating.rotor_speed";
+
+/// The wind-speed key: along it, on a preset with an operating schedule, the sweep is the
+/// aeroelastic Campbell diagram of the turbine in operation (docs/model.md §12.7).
+pub const WIND_SPEED_KEY: &str = "operating.wind_speed";
+
+/// A Campbell diagram: the tracked modes and the rotor speed at every point of the axis (the
+/// axis itself along rotor speed; the schedule's along wind speed), for the rotor harmonics.
+#[derive(Debug, Clone)]
+pub struct Campbell {
+    pub sweep: TrackedSweep,
+    pub rotor_speed_rpm: Vec<f64>,
+}
+
+/// The wind speeds a scheduled preset operates over (m/s): `operating.cut_in` to
+/// `operating.cut_out`, within the table's rows for a table (a wind outside it is refused);
+/// where either is unstated, the table's end, or for a law 0 and `view.wind_speed_max`.
+/// `None` without a schedule.
+pub fn schedule_wind_range(p: &ValidPreset) -> Option<(f64, f64)> {
+    let o = &p.operating;
+    let stated = |v: f64| (v > 0.0).then_some(v);
+    let (first, last) = match o.schedule {
+        Schedule::None => return None,
+        Schedule::Table => {
+            let w = &p.schedule_table()?.wind_speed;
+            (*w.first()?, *w.last()?)
+        }
+        Schedule::Law => (0.0, p.view.wind_speed_max),
+    };
+    let lo = stated(o.cut_in).map_or(first, |c| c.max(first));
+    let hi = stated(o.cut_out).map_or(last, |c| c.min(last));
+    (lo < hi).then_some((lo, hi))
+}
+
+/// The rotor speed (rpm) the schedule sets at each wind speed of `winds`.
+pub fn scheduled_rotor_speeds(p: &ValidPreset, winds: &[f64]) -> Result<Vec<f64>> {
+    winds
+        .iter()
+        .map(|&u| {
+            let at = crate::physics::operating::on_schedule(&p.with(WIND_SPEED_KEY, u)?)?;
+            Ok(at.operating.rotor_speed)
+        })
+        .collect()
+}
+
+/// The Campbell diagram of `p` along `key` (rotor speed, or wind speed along the schedule) over
+/// `grid`, polling `cancel` between solves.
+pub fn campbell(p: &ValidPreset, key: &str, grid: &[f64], cancel: &Cancel) -> Result<Campbell> {
+    let sweep = track_cancellable(p, key, grid, cancel)?;
+    let rotor_speed_rpm = if key == WIND_SPEED_KEY && p.operating.schedule != Schedule::None {
+        cancel.check()?;
+        scheduled_rotor_speeds(p, grid)?
+    } else if key == ROTOR_SPEED_KEY {
+        grid.to_vec()
+    } else {
+        vec![p.operating.rotor_speed; grid.len()]
+    };
+    Ok(Campbell {
+        sweep,
+        rotor_speed_rpm,
+    })
+}
 
 /// At most this many modes are drawn (the lowest); more would be an unreadable tangle.
 pub const MAX_CAMPBELL_MODES: usize = 8;

@@ -63,6 +63,10 @@ pub struct Search {
     pub max_re: f64,
     /// Grid points that could not be solved (numerical failures), skipped by the search.
     pub failed: Vec<FailedPoint>,
+    /// No crossing because the first solved point is already unstable (the message says so; a
+    /// caller quoting a margin says it in its own words).
+    #[serde(skip)]
+    pub unstable_at_start: bool,
 }
 
 /// Relative accuracy of the critical value (docs/model.md §6).
@@ -199,14 +203,18 @@ pub fn search(p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<S
         message: message + &skipped,
         max_re,
         failed: failed.clone(),
+        unstable_at_start: false,
     };
     if unstable(first_solved) {
         let m = first_solved.critical().map(describe).unwrap_or_default();
-        return Ok(none(format!(
-            "already unstable at the start of the range, {key} = {start}{unit} ({m}); \
-             start the search from a value where the blade is stable (--from is where it \
-             starts; the range may run downward)"
-        )));
+        return Ok(Search {
+            unstable_at_start: true,
+            ..none(format!(
+                "already unstable at the start of the range, {key} = {start}{unit} ({m}); \
+                 start the search from a value where the blade is stable (--from is where it \
+                 starts; the range may run downward)"
+            ))
+        });
     }
     let Some(first) = solved.iter().position(|(_, s)| unstable(s)) else {
         return Ok(none(format!(
@@ -278,6 +286,7 @@ pub fn search(p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<S
         message: what + &skipped,
         max_re,
         failed,
+        unstable_at_start: false,
     })
 }
 

@@ -224,13 +224,5 @@ fn schedule_rotor_speeds(
     {
         return Ok(None);
     }
-    tracked
-        .values
-        .iter()
-        .map(|&u| {
-            let at = crate::physics::operating::on_schedule(&p.with("operating.wind_speed", u)?)?;
-            Ok(at.operating.rotor_speed)
-        })
-        .collect::<Result<Vec<f64>>>()
-        .map(Some)
+    crate::analysis::campbell::scheduled_rotor_speeds(p, &tracked.values).map(Some)
 }

@@ -68,15 +68,18 @@ impl MarkerKind {
 pub enum ViewKind {
     Main,
     Campbell,
+    /// The Campbell view against wind speed along the operating schedule.
+    CampbellWind,
     Help,
     /// The main view with the mode-shape pane (the least-damped mode).
     Shape,
 }
 
 impl ViewKind {
-    pub const ALL: [ViewKind; 4] = [
+    pub const ALL: [ViewKind; 5] = [
         ViewKind::Main,
         ViewKind::Campbell,
+        ViewKind::CampbellWind,
         ViewKind::Help,
         ViewKind::Shape,
     ];
@@ -85,6 +88,7 @@ impl ViewKind {
         match self {
             ViewKind::Main => "main",
             ViewKind::Campbell => "campbell",
+            ViewKind::CampbellWind => "campbell-wind",
             ViewKind::Help => "help",
             ViewKind::Shape => "shape",
         }

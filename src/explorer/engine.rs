@@ -2,14 +2,13 @@
 //! (state, worker, rendering) can be driven and tested with any engine. [`Physics`] is the real
 //! one; it only forwards to `analysis` (`solve`, `flutter`, `sweep`, `simulate`).
 
-use crate::analysis::campbell::ROTOR_SPEED_KEY;
+use crate::analysis::campbell::Campbell;
 use crate::analysis::cancel::Cancel;
 use crate::analysis::eigen::Stability;
-use crate::analysis::flutter::{Boundary, SearchRange};
+use crate::analysis::flutter::{Search, SearchRange};
 use crate::analysis::mode_shape::ModeShape;
 use crate::analysis::simulate::{RunStatus, Simulator, TipSample};
 use crate::analysis::solve::SectionProps;
-use crate::analysis::sweep::TrackedSweep;
 use crate::error::Result;
 use crate::preset::ValidPreset;
 
@@ -48,9 +47,16 @@ pub trait Engine: Send + Sync {
     /// Solve `p` and start its tip simulation (`simulation.*`); stop early once `cancel` is raised.
     fn solve(&self, p: &ValidPreset, cancel: &Cancel) -> Solve;
     /// First stability crossing in `range`.
-    fn boundary(&self, p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<Boundary>;
-    /// Tracked modes over rotor speeds `grid` (rpm).
-    fn campbell(&self, p: &ValidPreset, grid: &[f64], cancel: &Cancel) -> Result<TrackedSweep>;
+    fn boundary(&self, p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<Search>;
+    /// Tracked modes along `key` (rotor speed, or wind speed along the schedule) over `grid`,
+    /// with the rotor speed at each point.
+    fn campbell(
+        &self,
+        p: &ValidPreset,
+        key: &str,
+        grid: &[f64],
+        cancel: &Cancel,
+    ) -> Result<Campbell>;
 }
 
 /// The real engine: the analysis layer, unchanged.
@@ -110,11 +116,17 @@ impl Engine for Physics {
         }
     }
 
-    fn boundary(&self, p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<Boundary> {
-        Ok(crate::analysis::flutter::search(p, range, cancel)?.boundary)
+    fn boundary(&self, p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<Search> {
+        crate::analysis::flutter::search(p, range, cancel)
     }
 
-    fn campbell(&self, p: &ValidPreset, grid: &[f64], cancel: &Cancel) -> Result<TrackedSweep> {
-        crate::analysis::sweep::track_cancellable(p, ROTOR_SPEED_KEY, grid, cancel)
+    fn campbell(
+        &self,
+        p: &ValidPreset,
+        key: &str,
+        grid: &[f64],
+        cancel: &Cancel,
+    ) -> Result<Campbell> {
+        crate::analysis::campbell::campbell(p, key, grid, cancel)
     }
 }

@@ -112,6 +112,8 @@ pub fn settled_state(
     match view {
         ViewKind::Main => {}
         ViewKind::Campbell => press(&mut state, engine, &[Action::ToggleCampbell]),
+        // On a preset without a schedule the key says so and the view is against rotor speed.
+        ViewKind::CampbellWind => press(&mut state, engine, &[Action::ToggleCampbellAxis]),
         ViewKind::Help => press(&mut state, engine, &[Action::ToggleHelp]),
         ViewKind::Shape => press(&mut state, engine, &[Action::ToggleShape]),
     }

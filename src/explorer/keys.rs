@@ -24,6 +24,8 @@ pub enum Action {
     Kick,
     Boundary,
     ToggleCampbell,
+    /// The Campbell view's axis: rotor speed ↔ wind speed along the schedule.
+    ToggleCampbellAxis,
     /// The mode-shape pane in place of the tip response, or back.
     ToggleShape,
     /// The previous / next mode in the mode-shape pane.
@@ -187,7 +189,13 @@ pub static BINDINGS: &[Binding] = &[
         keys: &[ch('c')],
         shown: "c",
         action: Action::ToggleCampbell,
-        help: "Campbell diagram (modes against rotor speed) / back",
+        help: "Campbell diagram (modes against rotor speed or wind speed) / back",
+    },
+    Binding {
+        keys: &[ch('w')],
+        shown: "w",
+        action: Action::ToggleCampbellAxis,
+        help: "Campbell axis: rotor speed ↔ wind speed along the operating schedule",
     },
     Binding {
         keys: &[ch('s')],

@@ -91,14 +91,32 @@ pub fn kick(stream: &mut dyn Stream, gen: u64, twist_rad: f64, flap_m: f64) -> O
 /// for effects that are not jobs.
 pub fn job(engine: &dyn Engine, effect: &Effect, cancel: &Cancel) -> Option<Msg> {
     match effect {
-        Effect::Boundary { gen, preset, range } => Some(Msg::Boundary {
+        Effect::Boundary {
+            gen,
+            key,
+            preset,
+            ranges,
+        } => Some(Msg::Boundary {
             gen: *gen,
-            key: range.key.clone(),
-            result: guarded("boundary search", || engine.boundary(preset, range, cancel)),
+            key: key.to_string(),
+            // One search per range (a margin on both sides of the current value has two).
+            result: guarded("boundary search", || {
+                ranges
+                    .iter()
+                    .map(|range| engine.boundary(preset, range, cancel))
+                    .collect()
+            }),
         }),
-        Effect::Campbell { gen, preset, grid } => Some(Msg::Campbell {
+        Effect::Campbell {
+            gen,
+            preset,
+            key,
+            grid,
+        } => Some(Msg::Campbell {
             gen: *gen,
-            result: guarded("Campbell sweep", || engine.campbell(preset, grid, cancel)),
+            result: guarded("Campbell sweep", || {
+                engine.campbell(preset, key, grid, cancel)
+            }),
         }),
         _ => None,
     }

@@ -2,11 +2,10 @@
 //! action or a worker result), changes [`AppState`] and returns the [`Effect`]s to carry out; it
 //! does no I/O, so key sequences are tested without a terminal or a worker.
 
+use crate::analysis::campbell::{schedule_wind_range, Campbell, ROTOR_SPEED_KEY, WIND_SPEED_KEY};
 use crate::analysis::eigen::Mode;
-use crate::analysis::flutter::Boundary;
-use crate::analysis::flutter::SearchRange;
+use crate::analysis::flutter::{Search, SearchRange};
 use crate::analysis::simulate::{RunStatus, TipSample};
-use crate::analysis::sweep::TrackedSweep;
 use crate::explorer::display::{ColorMode, MarkerKind};
 use crate::explorer::engine::Solved;
 use crate::explorer::keys::Action;
@@ -17,6 +16,12 @@ use std::sync::Arc;
 pub const BOUNDARY_POINTS: usize = 41;
 /// Rotor speeds in the Campbell diagram, 0 to `view.rotor_speed_max`.
 pub const CAMPBELL_POINTS: usize = 41;
+/// Wind speeds in the Campbell diagram along the schedule: 1 m/s steps from cut-in 3 to
+/// cut-out 25 m/s on the real-blade presets, as HAWCStab2's operating-point files have them.
+pub const CAMPBELL_WIND_POINTS: usize = 23;
+/// The key a margin on both sides of the current value runs along (flutter may begin at either
+/// sign of the coupling).
+pub const COUPLING_KEY: &str = "blade.bend_twist_coupling";
 /// A solve running longer than this (s) is reported in the status line with its time: keys keep
 /// working meanwhile and the newest position replaces it.
 pub const SOLVE_BUDGET_S: f64 = 0.5;
@@ -147,6 +152,12 @@ pub fn param_bounds(p: &ValidPreset, key: &str) -> (f64, f64) {
     };
     let (lo, mut hi) = (spec.min, spec.max);
     let cur = (spec.get)(p);
+    // Along a schedule the wind runs where the turbine operates, cut-in to cut-out.
+    if key == WIND_SPEED_KEY {
+        if let Some((a, b)) = schedule_wind_range(p) {
+            return (a.min(cur), b.max(cur));
+        }
+    }
     match key {
         "operating.rotor_speed" => hi = p.view.rotor_speed_max.max(cur),
         "operating.wind_speed" => hi = p.view.wind_speed_max.max(cur),
@@ -184,6 +195,37 @@ impl Default for Options {
     }
 }
 
+/// The Campbell view's axis.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CampbellAxis {
+    /// 0 to `view.rotor_speed_max`, everything else as set.
+    RotorSpeed,
+    /// Cut-in to cut-out along the operating schedule (rotor speed and pitch the schedule's).
+    WindSpeed,
+}
+
+impl CampbellAxis {
+    pub fn key(self) -> &'static str {
+        match self {
+            CampbellAxis::RotorSpeed => ROTOR_SPEED_KEY,
+            CampbellAxis::WindSpeed => WIND_SPEED_KEY,
+        }
+    }
+}
+
+/// Where a boundary search looks for the margin along its key.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MarginKind {
+    /// From the current value toward the end of the slider where the blade is stable (below
+    /// it when the current point is unstable): the first crossing.
+    Onward,
+    /// Wind speed along a schedule: cut-in to cut-out, the lowest wind at which a mode is
+    /// unstable.
+    Schedule,
+    /// Both ways from the current value (the coupling): the nearest crossing on either side.
+    BothWays,
+}
+
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ViewMode {
     Main,
@@ -213,18 +255,25 @@ pub struct BoundaryJob {
     pub current: f64,
     /// Whether the operating point was unstable (the search then looks below it).
     pub unstable: bool,
+    pub kind: MarginKind,
     /// The current value is at the end of the slider in the search direction: no search ran.
     pub empty_range: bool,
-    /// `None` while running (or when the range is empty).
-    pub result: Option<Result<Boundary, String>>,
+    /// One search per range searched (two for [`MarginKind::BothWays`], nearest side first
+    /// below); `None` while running (or when the range is empty).
+    pub result: Option<Result<Vec<Search>, String>>,
 }
 
-/// The Campbell diagram, valid for every preset equal to `for_preset` up to the rotor speed.
+/// The Campbell diagram, valid for every preset equal to `for_preset` up to the axis's key.
 #[derive(Debug, Clone)]
 pub struct CampbellJob {
     pub gen: u64,
+    pub axis: CampbellAxis,
+    /// The axis's range.
+    pub from: f64,
+    pub to: f64,
+    pub points: usize,
     pub for_preset: Preset,
-    pub result: Option<Result<TrackedSweep, String>>,
+    pub result: Option<Result<Campbell, String>>,
 }
 
 /// Everything the screen shows.
@@ -253,6 +302,11 @@ pub struct AppState {
     pub boundary_key: &'static str,
     pub boundary: Option<BoundaryJob>,
     pub campbell: Option<CampbellJob>,
+    /// The Campbell view's axis (wind speed only on a preset with a schedule).
+    pub campbell_axis: CampbellAxis,
+    /// Wind speeds in the Campbell diagram along the schedule ([`CAMPBELL_WIND_POINTS`]; tests
+    /// and snapshots take fewer).
+    pub campbell_wind_points: usize,
     pub view: ViewMode,
     /// The mode the mode-shape pane shows, by label; `None`: the least-damped one (the flutter
     /// mode once unstable). Also `None` when the picked label is gone after a solve.
@@ -293,11 +347,11 @@ pub enum Msg {
     Boundary {
         gen: u64,
         key: String,
-        result: Result<Boundary, String>,
+        result: Result<Vec<Search>, String>,
     },
     Campbell {
         gen: u64,
-        result: Result<TrackedSweep, String>,
+        result: Result<Campbell, String>,
     },
     /// The solve of generation `gen` has been running for `seconds` (from the event loop's clock).
     SolveTime {
@@ -318,14 +372,17 @@ pub enum Effect {
         gen: u64,
         preset: Arc<ValidPreset>,
     },
+    /// The searches of one margin along `key`, in order.
     Boundary {
         gen: u64,
+        key: &'static str,
         preset: Arc<ValidPreset>,
-        range: SearchRange,
+        ranges: Vec<SearchRange>,
     },
     Campbell {
         gen: u64,
         preset: Arc<ValidPreset>,
+        key: &'static str,
         grid: Vec<f64>,
     },
     /// Kick the running simulation of generation `gen`.
@@ -366,6 +423,8 @@ impl AppState {
             boundary_key: start,
             boundary: None,
             campbell: None,
+            campbell_axis: CampbellAxis::RotorSpeed,
+            campbell_wind_points: CAMPBELL_WIND_POINTS,
             view: ViewMode::Main,
             shape_pick: None,
             help: false,
@@ -483,6 +542,9 @@ impl AppState {
         // Each preset opens on the parameter it selects (`view.select`).
         self.focus = param_index(&self.preset, self.preset.view.select.key());
         self.boundary_key = opening_key(&self.preset, self.focus);
+        if schedule_wind_range(&self.preset).is_none() {
+            self.campbell_axis = CampbellAxis::RotorSpeed;
+        }
         self.shape_pick = None;
         self.trails.clear();
         self.prev_modes.clear();
@@ -500,10 +562,26 @@ impl AppState {
         let current = self.preset.get(key).ok()?;
         let (lo, hi) = param_bounds(&self.preset, key);
         let unstable = !solved.stability.stable;
-        let (from, to) = if unstable {
-            (lo, current)
-        } else {
-            (current, hi)
+        let kind = margin_kind(&self.preset, key, unstable);
+        let (from, to) = match kind {
+            MarginKind::Schedule | MarginKind::BothWays => (lo, hi),
+            MarginKind::Onward if unstable => (lo, current),
+            MarginKind::Onward => (current, hi),
+        };
+        let range = |from: f64, to: f64, points: usize| SearchRange {
+            key: key.to_string(),
+            from,
+            to,
+            points,
+        };
+        let ranges: Vec<SearchRange> = match kind {
+            MarginKind::Onward | MarginKind::Schedule => vec![range(from, to, BOUNDARY_POINTS)],
+            // Each side on half the points: the same spacing as one search over the slider.
+            MarginKind::BothWays => [(current, lo), (current, hi)]
+                .into_iter()
+                .filter(|(a, b)| a != b)
+                .map(|(a, b)| range(a, b, BOUNDARY_POINTS / 2 + 1))
+                .collect(),
         };
         let mut job = BoundaryJob {
             gen: self.gen,
@@ -512,10 +590,11 @@ impl AppState {
             to,
             current,
             unstable,
+            kind,
             empty_range: false,
             result: None,
         };
-        if to <= from {
+        if to <= from || ranges.is_empty() {
             // At the end of the slider: nothing to search.
             job.empty_range = true;
             self.boundary = Some(job);
@@ -524,49 +603,102 @@ impl AppState {
         self.boundary = Some(job);
         Some(Effect::Boundary {
             gen: self.gen,
+            key,
             preset: Arc::new(self.preset.clone()),
-            range: SearchRange {
-                key: key.to_string(),
-                from,
-                to,
-                points: BOUNDARY_POINTS,
-            },
+            ranges,
         })
     }
 
-    /// The preset as the Campbell diagram sees it (rotor speed is its axis).
+    /// The preset the Campbell diagram is computed on: along wind speed, on the schedule (an
+    /// overridden rotor speed or pitch follows it again: the diagram is the turbine's in
+    /// operation).
+    fn campbell_preset(&self) -> ValidPreset {
+        match self.campbell_axis {
+            CampbellAxis::RotorSpeed => self.preset.clone(),
+            CampbellAxis::WindSpeed => self
+                .preset
+                .edited(|q| q.follow_schedule())
+                .unwrap_or_else(|_| self.preset.clone()),
+        }
+    }
+
+    /// The preset as the Campbell diagram sees it (its axis's key, and along the schedule the
+    /// rotor speed and pitch the schedule sets, do not change it).
     fn campbell_key(&self) -> Preset {
-        let mut p = self.preset.clone().into_preset();
+        let mut p = self.campbell_preset().into_preset();
         p.operating.rotor_speed = 0.0;
         p.schedule_overrides.rotor_speed = false;
+        if self.campbell_axis == CampbellAxis::WindSpeed {
+            p.operating.wind_speed = 0.0;
+            p.operating.pitch = 0.0;
+        }
         p
+    }
+
+    /// The Campbell axis's range and points: 0 to `view.rotor_speed_max`, or the schedule's
+    /// cut-in to cut-out.
+    pub fn campbell_range(&self) -> (f64, f64, usize) {
+        match (self.campbell_axis, schedule_wind_range(&self.preset)) {
+            (CampbellAxis::WindSpeed, Some((lo, hi))) => (lo, hi, self.campbell_wind_points),
+            _ => (0.0, self.preset.view.rotor_speed_max, CAMPBELL_POINTS),
+        }
     }
 
     /// The Campbell diagram is current for these parameters (or being computed for them).
     pub fn campbell_current(&self) -> bool {
-        self.campbell
-            .as_ref()
-            .is_some_and(|c| c.for_preset == self.campbell_key())
+        let (from, to, points) = self.campbell_range();
+        self.campbell.as_ref().is_some_and(|c| {
+            c.axis == self.campbell_axis
+                && (c.from, c.to, c.points) == (from, to, points)
+                && c.for_preset == self.campbell_key()
+        })
     }
 
     fn campbell_effect(&mut self) -> Option<Effect> {
         if self.view != ViewMode::Campbell || self.campbell_current() {
             return None;
         }
-        let max = self.preset.view.rotor_speed_max;
-        let grid: Vec<f64> = (0..CAMPBELL_POINTS)
-            .map(|i| max * i as f64 / (CAMPBELL_POINTS - 1) as f64)
+        let (from, to, points) = self.campbell_range();
+        let n = points.max(2);
+        let grid: Vec<f64> = (0..n)
+            .map(|i| from + (to - from) * i as f64 / (n - 1) as f64)
             .collect();
         self.campbell = Some(CampbellJob {
             gen: self.gen,
+            axis: self.campbell_axis,
+            from,
+            to,
+            points,
             for_preset: self.campbell_key(),
             result: None,
         });
         Some(Effect::Campbell {
             gen: self.gen,
-            preset: Arc::new(self.preset.clone()),
+            preset: Arc::new(self.campbell_preset()),
+            key: self.campbell_axis.key(),
             grid,
         })
+    }
+
+    /// `w`: the Campbell axis rotor speed ↔ wind speed along the schedule (opening the view).
+    fn toggle_campbell_axis(&mut self) -> Vec<Effect> {
+        if schedule_wind_range(&self.preset).is_none() {
+            self.campbell_axis = CampbellAxis::RotorSpeed;
+            self.notice = Some(
+                "this preset has no operating schedule: its Campbell diagram is against rotor \
+                 speed only"
+                    .into(),
+            );
+        } else if self.view == ViewMode::Campbell {
+            self.campbell_axis = match self.campbell_axis {
+                CampbellAxis::RotorSpeed => CampbellAxis::WindSpeed,
+                CampbellAxis::WindSpeed => CampbellAxis::RotorSpeed,
+            };
+        } else {
+            self.campbell_axis = CampbellAxis::WindSpeed;
+        }
+        self.view = ViewMode::Campbell;
+        self.campbell_effect().into_iter().collect()
     }
 
     /// Take an edited preset and re-solve, or keep the current one and say why the edit failed.
@@ -716,6 +848,7 @@ impl AppState {
                 };
                 self.campbell_effect().into_iter().collect()
             }
+            Action::ToggleCampbellAxis => self.toggle_campbell_axis(),
             Action::ToggleShape => {
                 self.view = match self.view {
                     ViewMode::Main | ViewMode::Campbell => ViewMode::Shape,
@@ -820,6 +953,18 @@ impl AppState {
                 Vec::new()
             }
         }
+    }
+}
+
+/// How the margin along `key` is searched: cut-in to cut-out for the wind along a schedule, both
+/// ways for the coupling (from a stable point), else onward from the current value.
+fn margin_kind(p: &ValidPreset, key: &str, unstable: bool) -> MarginKind {
+    if key == WIND_SPEED_KEY && schedule_wind_range(p).is_some() {
+        MarginKind::Schedule
+    } else if key == COUPLING_KEY && !unstable {
+        MarginKind::BothWays
+    } else {
+        MarginKind::Onward
     }
 }
 

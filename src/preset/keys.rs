@@ -169,6 +169,8 @@ pub static KEYS: &[KeySpec] = &[
     real!("operating.rotor_speed_max", "rpm", 0.0, 5000.0, open = false, operating.rotor_speed_max),
     real!("operating.tip_speed_ratio", "", 0.0, 50.0, open = false, operating.tip_speed_ratio),
     real!("operating.rated_rotor_speed", "rpm", 0.0, 5000.0, open = false, operating.rated_rotor_speed),
+    real!("operating.cut_in", "m/s", 0.0, 200.0, open = false, operating.cut_in),
+    real!("operating.cut_out", "m/s", 0.0, 200.0, open = false, operating.cut_out),
     int!("structure.modes", 1, 40, structure.modes),
     real!("structure.loss_factor", "", 0.0, 1.0, open = false, structure.loss_factor),
     int!("structure.min_elements", 1, MAX_ELEMENTS, structure.min_elements),

@@ -162,6 +162,18 @@ fn law_is_complete(p: &Preset) -> std::result::Result<(), String> {
     Ok(())
 }
 
+/// Stated cut-in and cut-out wind speeds bound a range (0 leaves either unstated).
+fn cut_in_below_cut_out(p: &Preset) -> std::result::Result<(), String> {
+    let o = &p.operating;
+    if o.cut_in > 0.0 && o.cut_out > 0.0 && o.cut_in >= o.cut_out {
+        return Err(format!(
+            "operating.cut_in = {} m/s must be below operating.cut_out = {} m/s",
+            o.cut_in, o.cut_out
+        ));
+    }
+    Ok(())
+}
+
 /// Every rule, in the order a user would fix them; the first broken one is the error.
 pub fn check(p: &Preset) -> Result<()> {
     let invalid = |message: String| Error::Invalid {
@@ -170,6 +182,7 @@ pub fn check(p: &Preset) -> Result<()> {
     };
     length_is_the_files(p).map_err(invalid)?;
     law_is_complete(p).map_err(invalid)?;
+    cut_in_below_cut_out(p).map_err(invalid)?;
     coupling_is_definite(p).map_err(invalid)?;
     let described = p.rotor_files.as_ref().is_some_and(|r| r.blade.is_some());
     if p.blade.source.is_tabulated() && p.aero.model != AeroModel::None && !described {

@@ -281,6 +281,12 @@ pub struct Operating {
     pub tip_speed_ratio: f64,
     /// The rotor speed margins are quoted against (rpm); 0: none stated.
     pub rated_rotor_speed: f64,
+    /// Cut-in wind speed (m/s), where the schedule's Campbell diagram and wind-speed margin
+    /// start; 0: not stated (the table's first row, or 0 for a law).
+    pub cut_in: f64,
+    /// Cut-out wind speed (m/s), where they end; 0: not stated (the table's last row, or
+    /// `view.wind_speed_max` for a law).
+    pub cut_out: f64,
 }
 
 /// `operating.schedule`: where rotor speed and pitch come from.
@@ -662,6 +668,8 @@ impl Default for Operating {
             rotor_speed_max: 0.0,
             tip_speed_ratio: 0.0,
             rated_rotor_speed: 0.0,
+            cut_in: 0.0,
+            cut_out: 0.0,
         }
     }
 }

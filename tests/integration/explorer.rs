@@ -4,9 +4,10 @@
 
 use crossbeam_channel::{bounded, unbounded, Receiver, Sender};
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
+use flutterscope::analysis::campbell::Campbell;
 use flutterscope::analysis::cancel::Cancel;
 use flutterscope::analysis::eigen::{Mode, Stability, Verdict};
-use flutterscope::analysis::flutter::{Boundary, BoundaryKind, SearchRange};
+use flutterscope::analysis::flutter::{Boundary, BoundaryKind, Search, SearchRange};
 use flutterscope::analysis::simulate::{RunStatus, TipSample};
 use flutterscope::analysis::sweep::{TrackedMode, TrackedSweep};
 use flutterscope::error::{Error, Result};
@@ -15,7 +16,9 @@ use flutterscope::explorer::headless::{
     self, parse_size, preset_entries, render_text, settle, settled_state,
 };
 use flutterscope::explorer::keys::{action_for, Action, BINDINGS};
-use flutterscope::explorer::state::{update, AppState, Effect, Msg, Options, ViewMode, PARAMS};
+use flutterscope::explorer::state::{
+    update, AppState, CampbellAxis, Effect, Msg, Options, ViewMode, PARAMS,
+};
 use flutterscope::explorer::worker::Worker;
 use flutterscope::explorer::{Engine, Physics, Solve, Solved, Stream};
 use flutterscope::physics::section::SectionProps;
@@ -166,7 +169,7 @@ impl Engine for TestEngine {
         }
     }
 
-    fn boundary(&self, p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<Boundary> {
+    fn boundary(&self, p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<Search> {
         self.boundaries.fetch_add(1, Ordering::SeqCst);
         cancel.check()?;
         let (key, from, to) = (range.key.as_str(), range.from, range.to);
@@ -177,17 +180,29 @@ impl Engine for TestEngine {
             None
         };
         let _ = p;
-        Ok(Boundary {
-            parameter: key.into(),
-            critical,
-            frequency_hz: critical.map(|_| 1.0),
-            kind: critical.map(|_| BoundaryKind::Flutter),
-            mode: critical.map(|_| "flap 1".into()),
-            shares: None,
+        Ok(Search {
+            boundary: Boundary {
+                parameter: key.into(),
+                critical,
+                frequency_hz: critical.map(|_| 1.0),
+                kind: critical.map(|_| BoundaryKind::Flutter),
+                mode: critical.map(|_| "flap 1".into()),
+                shares: None,
+            },
+            message: String::new(),
+            max_re: 0.0,
+            failed: Vec::new(),
+            unstable_at_start: false,
         })
     }
 
-    fn campbell(&self, p: &ValidPreset, grid: &[f64], cancel: &Cancel) -> Result<TrackedSweep> {
+    fn campbell(
+        &self,
+        p: &ValidPreset,
+        key: &str,
+        grid: &[f64],
+        cancel: &Cancel,
+    ) -> Result<Campbell> {
         self.campbells.fetch_add(1, Ordering::SeqCst);
         cancel.check()?;
         let modes = ["flap 1", "torsion 1"]
@@ -196,7 +211,7 @@ impl Engine for TestEngine {
             .map(|(k, label)| {
                 let stab: Vec<Stability> = grid
                     .iter()
-                    .map(|&r| test_stability(&p.with("operating.rotor_speed", r).unwrap()))
+                    .map(|&r| test_stability(&p.with(key, r).unwrap()))
                     .collect();
                 TrackedMode {
                     label: label.to_string(),
@@ -211,11 +226,14 @@ impl Engine for TestEngine {
                 }
             })
             .collect();
-        Ok(TrackedSweep {
-            parameter: "operating.rotor_speed".into(),
-            values: grid.to_vec(),
-            modes,
-            failed: Vec::new(),
+        Ok(Campbell {
+            sweep: TrackedSweep {
+                parameter: key.into(),
+                values: grid.to_vec(),
+                modes,
+                failed: Vec::new(),
+            },
+            rotor_speed_rpm: vec![p.operating.rotor_speed; grid.len()],
         })
     }
 }
@@ -275,7 +293,7 @@ fn start_requests_one_solve_then_a_boundary_search() {
     assert!(
         matches!(
             follow.as_slice(),
-            [Effect::Boundary { range, .. }] if range.key == "operating.rotor_speed"
+            [Effect::Boundary { ranges, .. }] if ranges[0].key == "operating.rotor_speed"
         ),
         "{follow:?}"
     );
@@ -464,9 +482,10 @@ fn boundary_follows_the_selected_parameter() {
     // Select wind speed: a new search along it.
     s.focus = 0;
     let e = update(&mut s, Msg::Action(Action::FocusNext));
-    let Some(Effect::Boundary { range, .. }) = e.first() else {
+    let Some(Effect::Boundary { ranges, .. }) = e.first() else {
         panic!("{e:?}")
     };
+    let range = &ranges[0];
     let (key, from, to) = (range.key.as_str(), &range.from, &range.to);
     // The test engine's flap mode is unstable at 20 m/s, so the search runs below the current
     // value (stable operating points search above it, up to view.wind_speed_max).
@@ -799,13 +818,14 @@ fn worker_jobs_run_the_latest_request() {
     for g in 1..=50u64 {
         worker.send(Effect::Boundary {
             gen: g,
+            key: "operating.wind_speed",
             preset: p.clone(),
-            range: SearchRange {
+            ranges: vec![SearchRange {
                 key: "operating.wind_speed".into(),
                 from: 0.0,
                 to: 40.0,
                 points: 41,
-            },
+            }],
         });
     }
     let msgs = collect_until(&rx, |m| matches!(m, Msg::Boundary { gen: 50, .. }));
@@ -898,11 +918,17 @@ impl Engine for FailingSolve {
             ..Physics.solve(p, &Cancel::never())
         }
     }
-    fn boundary(&self, p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<Boundary> {
+    fn boundary(&self, p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<Search> {
         Physics.boundary(p, range, cancel)
     }
-    fn campbell(&self, p: &ValidPreset, grid: &[f64], cancel: &Cancel) -> Result<TrackedSweep> {
-        Physics.campbell(p, grid, cancel)
+    fn campbell(
+        &self,
+        p: &ValidPreset,
+        key: &str,
+        grid: &[f64],
+        cancel: &Cancel,
+    ) -> Result<Campbell> {
+        Physics.campbell(p, key, grid, cancel)
     }
 }
 
@@ -1344,4 +1370,214 @@ fn rotor_speed_and_pitch_follow_the_schedule_until_overridden() {
     // Nothing left to return to: said so.
     headless::press(&mut s, &Physics, &[Action::FollowSchedule]);
     assert!(s.notice.as_deref().unwrap_or("").contains("already follow"));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Issue 14: the Campbell view against wind speed along the schedule, and margins along the
+// schedule and the coupling.
+// ---------------------------------------------------------------------------------------------
+
+fn state_on(name: &str, overrides: &[&str], engine: &dyn Engine) -> AppState {
+    let ov: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
+    let p = Preset::load(name, &ov).unwrap();
+    let (entries, index) = preset_entries(name, p);
+    let mut s = AppState::new(entries, index, Options::default());
+    let e = s.start();
+    settle(&mut s, engine, e);
+    s
+}
+
+/// `w` opens the Campbell view against wind speed on a scheduled preset and toggles the axis in
+/// it; the sweep runs from cut-in to cut-out, keeps while the wind moves (the diagram does not
+/// depend on it) and while a rotor-speed override comes and goes, and the axis key on a preset
+/// without a schedule says why nothing changes.
+#[test]
+fn the_campbell_axis_toggles_between_rotor_speed_and_wind_speed_along_the_schedule() {
+    let engine = TestEngine::default();
+    let mut s = state_on("iea15mw", &[], &engine);
+    let e = update(&mut s, key(KeyCode::Char('w'), KeyModifiers::NONE));
+    assert_eq!(s.view, ViewMode::Campbell);
+    assert_eq!(s.campbell_axis, CampbellAxis::WindSpeed);
+    let Some(Effect::Campbell { key: k, grid, .. }) = e.first() else {
+        panic!("{e:?}")
+    };
+    assert_eq!(*k, "operating.wind_speed");
+    assert_eq!(grid.len(), 23);
+    assert_eq!((grid[0], grid[22]), (3.0, 25.0));
+    assert!((grid[1] - 4.0).abs() < 1e-12);
+    settle(&mut s, &engine, e);
+    assert_eq!(engine.campbells.load(Ordering::SeqCst), 1);
+    // While computing the pane said so; now the diagram is drawn with the schedule's harmonics.
+    let text = render_text(&s, 160, 48);
+    assert!(text.contains("Campbell along the schedule"), "{text}");
+    assert!(text.contains("1P, 3P, 6P, now"), "{text}");
+    assert!(text.contains("· now 10.7 m/s"), "{text}");
+    // The wind moves: the same diagram, the marker moves.
+    s.focus = PARAMS.iter().position(|p| p.label == "wind speed").unwrap();
+    headless::press(&mut s, &engine, &[Action::Increase, Action::IncreaseCoarse]);
+    assert_eq!(s.preset.operating.wind_speed, 15.0);
+    assert_eq!(engine.campbells.load(Ordering::SeqCst), 1);
+    assert!(render_text(&s, 160, 48).contains("· now 15.0 m/s"));
+    // The wind slider stops at cut-out.
+    headless::press(
+        &mut s,
+        &engine,
+        &[Action::IncreaseCoarse, Action::IncreaseCoarse],
+    );
+    assert_eq!(s.preset.operating.wind_speed, 25.0);
+    headless::press(&mut s, &engine, &[Action::Increase]);
+    assert!(s.notice.as_deref().unwrap_or("").contains("maximum"));
+    // Overspeed by hand: the diagram along the schedule stays the schedule's.
+    s.focus = PARAMS
+        .iter()
+        .position(|p| p.label == "rotor speed")
+        .unwrap();
+    headless::press(&mut s, &engine, &[Action::IncreaseCoarse]);
+    assert!(s.preset.schedule_overrides.rotor_speed);
+    assert_eq!(engine.campbells.load(Ordering::SeqCst), 1);
+    // Another knob changes it.
+    s.focus = PARAMS
+        .iter()
+        .position(|p| p.label == "bend–twist α")
+        .unwrap();
+    headless::press(&mut s, &engine, &[Action::Increase]);
+    assert_eq!(engine.campbells.load(Ordering::SeqCst), 2);
+    // w again: against rotor speed, 0 to view.rotor_speed_max.
+    let e = update(&mut s, Msg::Action(Action::ToggleCampbellAxis));
+    assert_eq!(s.campbell_axis, CampbellAxis::RotorSpeed);
+    let Some(Effect::Campbell { key: k, grid, .. }) = e.first() else {
+        panic!("{e:?}")
+    };
+    assert_eq!(*k, "operating.rotor_speed");
+    assert_eq!((grid[0], *grid.last().unwrap()), (0.0, 15.0));
+    // A preset without a schedule: the key says so, and the view is against rotor speed.
+    let mut s = settled(&engine);
+    headless::press(&mut s, &engine, &[Action::ToggleCampbellAxis]);
+    assert_eq!(s.view, ViewMode::Campbell);
+    assert_eq!(s.campbell_axis, CampbellAxis::RotorSpeed);
+    assert!(
+        s.notice
+            .as_deref()
+            .unwrap_or("")
+            .contains("no operating schedule"),
+        "{:?}",
+        s.notice
+    );
+    assert!(render_text(&s, 120, 40).contains("no operating schedule"));
+}
+
+/// The explorer's wind-speed margin is `flutterscope flutter --vary operating.wind_speed` from
+/// cut-in to cut-out on the same preset (IEA 15MW, coupling −0.12: flap 1 flutters in part of
+/// the operating range); with the file's blade it is stable to cut-out.
+#[test]
+fn the_wind_speed_margin_is_the_flutter_command_along_the_schedule() {
+    let coupled = ["blade.bend_twist_coupling=-0.12"];
+    let mut s = state_on("iea15mw", &coupled, &Physics);
+    s.focus = PARAMS
+        .iter()
+        .position(|p| p.label == "rotor speed")
+        .unwrap();
+    headless::press(&mut s, &Physics, &[Action::FocusPrev]);
+    assert_eq!(s.boundary_key, "operating.wind_speed");
+    let job = s.boundary.as_ref().unwrap();
+    assert_eq!((job.from, job.to), (3.0, 25.0));
+    let text = flutterscope::explorer::ui::status::margin_text(&s).unwrap();
+    let out = assert_cmd::Command::cargo_bin("flutterscope")
+        .unwrap()
+        .args(["flutter", "--preset", "iea15mw", "--set", coupled[0]])
+        .args([
+            "--vary",
+            "operating.wind_speed",
+            "--from",
+            "3",
+            "--to",
+            "25",
+        ])
+        .arg("--json")
+        .output()
+        .unwrap();
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let critical = json["critical"]
+        .as_f64()
+        .expect("a crossing between 3 and 25 m/s");
+    let mode = json["mode"].as_str().unwrap();
+    assert_eq!(
+        text,
+        format!("wind speed: flutter at {critical:.1} m/s along the schedule ({mode})")
+    );
+}
+
+/// The coupling margin looks both ways from α = 0: on the IEA 15MW at rated the blade is stable
+/// up to 0.3 and flutters below, at the α the boundary search finds downward.
+#[test]
+fn the_coupling_margin_is_the_nearest_crossing_either_way() {
+    let mut s = state_on("iea15mw", &[], &Physics);
+    s.focus = PARAMS
+        .iter()
+        .position(|p| p.label == "bend–twist α")
+        .unwrap();
+    s.boundary_key = "blade.bend_twist_coupling";
+    let e = update(&mut s, Msg::Action(Action::Boundary));
+    let Some(Effect::Boundary { ranges, .. }) = e.first() else {
+        panic!("{e:?}")
+    };
+    let ends: Vec<(f64, f64)> = ranges.iter().map(|r| (r.from, r.to)).collect();
+    assert_eq!(ends, [(0.0, -0.3), (0.0, 0.3)]);
+    settle(&mut s, &Physics, e);
+    let text = flutterscope::explorer::ui::status::margin_text(&s).unwrap();
+    let down = flutterscope::analysis::flutter::flutter_search(
+        &s.preset,
+        "blade.bend_twist_coupling",
+        0.0,
+        -0.3,
+        21,
+    )
+    .unwrap();
+    let c = down.boundary.critical.expect("flutter below α = 0");
+    let up = flutterscope::analysis::flutter::flutter_search(
+        &s.preset,
+        "blade.bend_twist_coupling",
+        0.0,
+        0.3,
+        21,
+    )
+    .unwrap();
+    assert!(up.boundary.critical.is_none(), "{}", up.message);
+    let mode = down.boundary.mode.unwrap();
+    assert_eq!(text, format!("bend–twist α: flutter at α {c:.2} ({mode})"));
+}
+
+/// Every real-blade preset's main view and its Campbell view along the schedule, at the smallest
+/// and a large window (the mode-shape pane's are `shape_*` above). The diagram runs on 12 winds
+/// (2 m/s steps) rather than the explorer's 23 to keep the suite fast; it is the same code.
+#[test]
+fn snapshot_the_real_blades_main_and_wind_campbell_views() {
+    for name in ["nrel5mw", "iea15mw", "iea15mw-btc"] {
+        let p = Preset::load(name, &[]).unwrap();
+        let mut s = settled_state(name, p, &Physics, ViewKind::Main, MarkerKind::Braille);
+        for (cols, rows) in [(80, 24), (160, 48)] {
+            let text = render_text(&s, cols, rows);
+            assert!(!text.contains("ERROR"), "{name}:\n{text}");
+            insta::assert_snapshot!(format!("main_{name}_{cols}x{rows}"), text);
+        }
+        s.campbell_wind_points = 12;
+        headless::press(&mut s, &Physics, &[Action::ToggleCampbellAxis]);
+        let job = s.campbell.as_ref().unwrap();
+        assert_eq!((job.from, job.to, job.points), (3.0, 25.0, 12));
+        let diagram = job.result.as_ref().unwrap().as_ref().unwrap();
+        assert!(
+            diagram.sweep.failed.is_empty(),
+            "{name}: {:?}",
+            diagram.sweep.failed
+        );
+        for (cols, rows) in [(80, 24), (160, 48)] {
+            let text = render_text(&s, cols, rows);
+            assert!(
+                text.contains("Campbell along the schedule"),
+                "{name}:\n{text}"
+            );
+            assert!(text.contains("· now 10.7 m/s") || text.contains("· now 11.0 m/s"));
+            insta::assert_snapshot!(format!("campbell_wind_{name}_{cols}x{rows}"), text);
+        }
+    }
 }

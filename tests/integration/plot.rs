@@ -638,6 +638,7 @@ mod from_results {
             message: "flutter at 33.25 m/s".into(),
             max_re: 0.4,
             failed: Vec::new(),
+            unstable_at_start: false,
         };
         let fig = from_results::flutter("test", &tracked, &search);
         let damp = &fig.panels[0];
@@ -670,6 +671,7 @@ mod from_results {
             message: "stable throughout".into(),
             max_re: -0.1,
             failed: Vec::new(),
+            unstable_at_start: false,
         };
         let fig = from_results::flutter("test", &tracked, &none);
         assert!(fig.panels[0].markers.is_empty());

@@ -26,6 +26,16 @@ impl Session {
         Session { name }
     }
 
+    /// The explorer run with `args` in a `cols × rows` pane; after it exits the shell prints
+    /// its exit code (`explorer exited with N`) and keeps the pane open.
+    fn explorer(cols: u16, rows: u16, args: &str) -> Session {
+        let cmd = format!(
+            "{} {args}; echo \"explorer exited with $?\"; sleep 30",
+            binary().display()
+        );
+        Session::start(cols, rows, &cmd)
+    }
+
     fn screen(&self) -> String {
         let out = Command::new("tmux")
             .args(["capture-pane", "-p", "-t", &self.name])
@@ -94,13 +104,18 @@ impl Session {
 
     /// Wait until the screen shows every one of `needles` at once.
     fn wait_for_all(&self, needles: &[&str]) -> String {
+        self.wait_within(needles, Duration::from_secs(30))
+    }
+
+    /// [`Session::wait_for_all`] with its own patience (a background sweep on a busy machine).
+    fn wait_within(&self, needles: &[&str], patience: Duration) -> String {
         let start = Instant::now();
         loop {
             let screen = self.screen();
             if needles.iter().all(|n| screen.contains(n)) {
                 return screen;
             }
-            if start.elapsed() > Duration::from_secs(30) {
+            if start.elapsed() > patience {
                 panic!("screen never showed {needles:?}; it shows:\n{screen}");
             }
             std::thread::sleep(Duration::from_millis(100));
@@ -158,6 +173,15 @@ fn tmux_available() -> bool {
     found
 }
 
+/// The screen line that shows `label` (a parameter's row).
+fn row(screen: &str, label: &str) -> String {
+    screen
+        .lines()
+        .find(|l| l.contains(label))
+        .unwrap_or_else(|| panic!("no {label} row:\n{screen}"))
+        .to_string()
+}
+
 fn binary() -> PathBuf {
     PathBuf::from(env!("CARGO_BIN_EXE_flutterscope"))
 }
@@ -167,12 +191,7 @@ fn explorer_runs_adjusts_helps_and_quits_cleanly_in_a_terminal() {
     if !tmux_available() {
         return;
     }
-    // After the explorer exits the shell prints its exit code and keeps the pane open.
-    let cmd = format!(
-        "{} tui --preset liu2017; echo \"explorer exited with $?\"; sleep 30",
-        binary().display()
-    );
-    let s = Session::start(120, 40, &cmd);
+    let s = Session::explorer(120, 40, "tui --preset liu2017");
     let screen = s.wait_for("STABLE");
     assert!(
         screen.contains("ply angle") && screen.contains("45.0 deg"),
@@ -211,19 +230,12 @@ fn a_real_blade_drags_its_coupling_shows_its_modes_and_quits_cleanly() {
     if !tmux_available() {
         return;
     }
-    let cmd = format!(
-        "{} tui --preset nrel5mw --set blade.bend_twist_coupling=0.1; echo \"explorer exited \
-         with $?\"; sleep 30",
-        binary().display()
+    let s = Session::explorer(
+        120,
+        40,
+        "tui --preset nrel5mw --set blade.bend_twist_coupling=0.1",
     );
-    let s = Session::start(120, 40, &cmd);
-    let coupling_row = |screen: &str| -> String {
-        screen
-            .lines()
-            .find(|l| l.contains("bend–twist α"))
-            .unwrap_or_else(|| panic!("no coupling row:\n{screen}"))
-            .to_string()
-    };
+    let coupling_row = |screen: &str| row(screen, "bend–twist α");
     let screen = s.wait_for_all(&["STABLE", "nrel5mw [5/7]", "bend–twist α"]);
     assert!(coupling_row(&screen).contains("0.10"), "{screen}");
     assert!(!screen.contains("ply angle"), "{screen}");
@@ -256,6 +268,51 @@ fn a_real_blade_drags_its_coupling_shows_its_modes_and_quits_cleanly() {
     let screen = s.wait_for("nrel5mw [5/7]");
     assert!(coupling_row(&screen).contains("0.10"), "{screen}");
 
+    s.quit_cleanly();
+}
+
+/// Issue 14 along the schedule, in a real terminal: the wind speed moves the operating point
+/// (rotor speed follows, `↻`), the wind-speed margin runs cut-in to cut-out, the coupling drags,
+/// `w` opens the Campbell view against wind speed (computing in the background, then drawn with
+/// the schedule's harmonics) and toggles back to rotor speed, and `q` ends cleanly.
+#[test]
+fn a_real_blade_moves_along_its_schedule_and_shows_its_campbell_against_wind() {
+    if !tmux_available() {
+        return;
+    }
+    let s = Session::explorer(160, 48, "tui --preset iea15mw");
+    let screen = s.wait_for_all(&["STABLE", "iea15mw [6/7]", "↻ 8 rpm"]);
+    assert!(row(&screen, "wind speed").contains("10.7 m/s"), "{screen}");
+    // Up to the wind speed; coarse steps down the schedule: 10 m/s, then 5 m/s at 5 rpm.
+    s.keys(&["Up", "H"]);
+    let screen = s.wait_for("10.0 m/s");
+    assert!(row(&screen, "rotor speed").contains('↻'), "{screen}");
+    s.keys(&["H"]);
+    let screen = s.wait_for_all(&["5.0 m/s", "↻ 5 rpm"]);
+    assert!(row(&screen, "pitch").contains('↻'), "{screen}");
+    let patient = Duration::from_secs(120);
+    s.wait_within(
+        &["margin along wind speed: stable to cut-out 25.0 m/s"],
+        patient,
+    );
+    // Up to the coupling, one step down.
+    s.keys(&["Up", "Left"]);
+    let screen = s.wait_for("bend–twist α*");
+    assert!(row(&screen, "bend–twist α").contains("-0.01"), "{screen}");
+    // w: the Campbell view along the schedule, computed in the background.
+    s.keys(&["w"]);
+    s.wait_for("Campbell");
+    let screen = s.wait_within(&["1P, 3P, 6P, now", "wind speed"], patient);
+    assert!(
+        screen.contains("Campbell along the schedule: frequency against wind speed"),
+        "{screen}"
+    );
+    assert!(screen.contains("now 5.00 m/s"), "{screen}");
+    // w again: against rotor speed.
+    s.keys(&["w"]);
+    s.wait_within(&["frequency against rotor speed (w: wind speed)"], patient);
+    s.keys(&["Escape"]);
+    s.wait_for("Tip response");
     s.quit_cleanly();
 }
 

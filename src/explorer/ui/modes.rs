@@ -70,6 +70,8 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
         .iter()
         .map(|m| m.re)
         .fold(f64::NEG_INFINITY, f64::max);
+    // Below this the table squeezes ζ to 5 characters and cuts its left: see `zeta_text`.
+    let narrow = area.width < 36;
     let rows: Vec<Row> = modes
         .iter()
         .map(|m| {
@@ -100,7 +102,8 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
                         .right_aligned(),
                 ),
                 Cell::from(
-                    Line::from(format!("{}{z_trend}", sig(m.damping_ratio, 3))).right_aligned(),
+                    Line::from(format!("{}{z_trend}", zeta_text(m.damping_ratio, narrow)))
+                        .right_aligned(),
                 ),
             ])
             .style(style)
@@ -126,6 +129,14 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
     .column_spacing(1)
     .block(block);
     frame.render_widget(table, area);
+}
+
+/// ζ with 3 significant digits; in a narrow pane, where the column shows 5 characters and
+/// cuts from the left (0.0221 reads .0221), a ζ below 0.01 takes 2, so 0.00831 reads .0083
+/// rather than 00831.
+fn zeta_text(zeta: f64, narrow: bool) -> String {
+    let digits = if narrow && zeta.abs() < 0.01 { 2 } else { 3 };
+    sig(zeta, digits)
 }
 
 #[cfg(test)]

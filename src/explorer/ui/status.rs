@@ -4,9 +4,10 @@
 
 use super::{sig, Theme};
 use crate::analysis::eigen::{Mode, Stability, Verdict};
-use crate::analysis::flutter::BoundaryKind;
-use crate::explorer::state::ParamKind;
-use crate::explorer::state::{unit, AppState, ViewMode, PARAMS, SOLVE_BUDGET_S};
+use crate::analysis::flutter::{Boundary, BoundaryKind, Search};
+use crate::explorer::state::{
+    unit, AppState, BoundaryJob, MarginKind, ParamKind, ViewMode, PARAMS, SOLVE_BUDGET_S,
+};
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
@@ -39,66 +40,151 @@ fn decimals(key: &str) -> usize {
 /// "flutter at 87 rpm, +45 %" and the like; `None` before the first solve.
 pub fn margin_text(state: &AppState) -> Option<String> {
     let job = state.boundary.as_ref()?;
-    let u = unit(job.key);
-    let d = decimals(job.key);
-    let with_unit = |v: f64| {
-        if u.is_empty() {
-            format!("{v:.d$}")
-        } else {
-            format!("{v:.d$} {u}")
-        }
-    };
     let label = param_label(job.key);
     let body = match &job.result {
-        None if job.empty_range => format!("at the end of its range ({})", with_unit(job.current)),
+        None if job.empty_range => format!(
+            "at the end of its range ({})",
+            with_unit(job.key, job.current)
+        ),
         None => "searching…".to_string(),
         Some(Err(_)) => "search failed (below)".to_string(),
-        Some(Ok(b)) => match b.critical {
-            Some(c) => {
-                let kind = match b.kind {
-                    Some(BoundaryKind::Divergence) => "divergence",
-                    _ => "flutter",
-                };
-                let pct = if job.current.abs() > 1e-12 {
-                    format!(", {:+.0} %", 100.0 * (c - job.current) / job.current.abs())
-                } else {
-                    String::new()
-                };
-                // Overspeed: a real blade's margin is a multiple of its rated rotor speed.
-                let rated = state.preset.operating.rated_rotor_speed;
-                let overspeed = (job.key == "operating.rotor_speed" && rated > 0.0)
-                    .then(|| format!("{:.2}× rated, ", c / rated));
-                if let (Some(times), false) = (&overspeed, job.unstable) {
-                    let mode = b
-                        .mode
-                        .as_ref()
-                        .map(|m| format!(", {m}"))
-                        .unwrap_or_default();
-                    return Some(format!("{label}: {kind} at {times}{}{mode}", with_unit(c)));
-                }
-                if job.unstable {
-                    // The search ran up from the slider's low end, so its mode label is the
-                    // mode's identity there; the verdict beside this already names the mode
-                    // that is unstable here, and two names for one root only confuse.
-                    format!("{kind} from {}{pct}", with_unit(c))
-                } else {
-                    let mode = b
-                        .mode
-                        .as_ref()
-                        .map(|m| format!(" ({m})"))
-                        .unwrap_or_default();
-                    format!("{kind} at {}{pct}{mode}", with_unit(c))
+        Some(Ok(searches)) => match job.kind {
+            MarginKind::Onward => {
+                let search = searches.first()?;
+                match onward(state, job, &search.boundary) {
+                    Onward::Whole(text) => return Some(text),
+                    Onward::Body(text) => text,
                 }
             }
-            None if job.unstable => format!(
-                "unstable over {} … {}",
-                with_unit(job.from),
-                with_unit(job.to)
-            ),
-            None => format!("no flutter up to {}", with_unit(job.to)),
+            MarginKind::Schedule => along_schedule(job, searches),
+            MarginKind::BothWays => both_ways(job, searches),
         },
     };
     Some(format!("{label}: {body}"))
+}
+
+/// `v` in `key`'s unit with the parameters pane's decimals.
+fn with_unit(key: &str, v: f64) -> String {
+    let (u, d) = (unit(key), decimals(key));
+    if u.is_empty() {
+        format!("{v:.d$}")
+    } else {
+        format!("{v:.d$} {u}")
+    }
+}
+
+/// "flutter" or "divergence".
+fn kind_word(b: &Boundary) -> &'static str {
+    match b.kind {
+        Some(BoundaryKind::Divergence) => "divergence",
+        _ => "flutter",
+    }
+}
+
+/// " (flap 1)" after a crossing, if the mode is named.
+fn mode_note(b: &Boundary) -> String {
+    b.mode
+        .as_ref()
+        .map(|m| format!(" ({m})"))
+        .unwrap_or_default()
+}
+
+enum Onward {
+    /// The whole margin, label included.
+    Whole(String),
+    /// The part after the label.
+    Body(String),
+}
+
+/// The margin from the current value toward the stable end (or from below, when unstable).
+fn onward(state: &AppState, job: &BoundaryJob, b: &Boundary) -> Onward {
+    let label = param_label(job.key);
+    let Some(c) = b.critical else {
+        return Onward::Body(if job.unstable {
+            format!(
+                "unstable over {} … {}",
+                with_unit(job.key, job.from),
+                with_unit(job.key, job.to)
+            )
+        } else {
+            format!("no flutter up to {}", with_unit(job.key, job.to))
+        });
+    };
+    let kind = kind_word(b);
+    let pct = if job.current.abs() > 1e-12 {
+        format!(", {:+.0} %", 100.0 * (c - job.current) / job.current.abs())
+    } else {
+        String::new()
+    };
+    // Overspeed: a real blade's margin is a multiple of its rated rotor speed.
+    let rated = state.preset.operating.rated_rotor_speed;
+    if job.key == "operating.rotor_speed" && rated > 0.0 && !job.unstable {
+        let mode = b
+            .mode
+            .as_ref()
+            .map(|m| format!(", {m}"))
+            .unwrap_or_default();
+        return Onward::Whole(format!(
+            "{label}: {kind} at {:.2}× rated, {}{mode}",
+            c / rated,
+            with_unit(job.key, c)
+        ));
+    }
+    Onward::Body(if job.unstable {
+        // The search ran up from the slider's low end, so its mode label is the mode's
+        // identity there; the verdict beside this already names the mode that is unstable
+        // here, and two names for one root only confuse.
+        format!("{kind} from {}{pct}", with_unit(job.key, c))
+    } else {
+        format!("{kind} at {}{pct}{}", with_unit(job.key, c), mode_note(b))
+    })
+}
+
+/// The wind-speed margin along the schedule: the lowest wind between cut-in and cut-out at
+/// which a mode is unstable.
+fn along_schedule(job: &BoundaryJob, searches: &[Search]) -> String {
+    let Some(search) = searches.first() else {
+        return "no search".to_string();
+    };
+    let b = &search.boundary;
+    match b.critical {
+        Some(c) => format!(
+            "{} at {} along the schedule{}",
+            kind_word(b),
+            with_unit(job.key, c),
+            mode_note(b)
+        ),
+        None if search.unstable_at_start => {
+            format!("unstable at cut-in {}", with_unit(job.key, job.from))
+        }
+        None => format!("stable to cut-out {}", with_unit(job.key, job.to)),
+    }
+}
+
+/// The coupling margin: the nearest value on either side at which flutter begins, or the
+/// slider range it is stable over.
+fn both_ways(job: &BoundaryJob, searches: &[Search]) -> String {
+    let nearest = searches
+        .iter()
+        .filter_map(|s| s.boundary.critical.map(|c| (c, &s.boundary)))
+        .min_by(|a, b| {
+            (a.0 - job.current)
+                .abs()
+                .total_cmp(&(b.0 - job.current).abs())
+        });
+    match nearest {
+        Some((c, b)) => format!(
+            "{} at α {}{}",
+            kind_word(b),
+            with_unit(job.key, c),
+            mode_note(b)
+        ),
+        None => format!(
+            "stable over α {}…{}",
+            with_unit(job.key, job.from),
+            with_unit(job.key, job.to)
+        ),
+    }
 }
 
 /// The most important error to show, if any.
