@@ -215,7 +215,7 @@ impl ModalBlade {
     /// [`stiffness_damping`]): each mode's [`BladeMode::damping_ratio`] is then its projection.
     pub fn with_damping(mut self, damping: &DMatrix<f64>) -> ModalBlade {
         let c = SymmetricBand::from_dense(damping, half_bandwidth(damping));
-        self.reduced_damping = Some(symmetrised(self.basis.tr_mul(&c.mul(&*self.basis))));
+        self.reduced_damping = Some(symmetrised(self.basis.tr_mul(&c.mul(&self.basis))));
         self
     }
 

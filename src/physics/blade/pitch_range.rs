@@ -253,7 +253,7 @@ mod tests {
                 Harmonics::from_samples(&samples.iter().map(|s| f(s).clone()).collect::<Vec<_>>())
             };
             let (m, k0, kw) = (terms(|s| &s.mass), terms(|s| &s.k0), terms(|s| &s.k_omega));
-            for pitch in [-0.3, 0.1234, 0.9, 1.5708, 2.5] {
+            for pitch in [-0.3, 0.1234, 0.9, 1.4, 2.5] {
                 let exact = assemble(&table, &mesh, pitch).unwrap();
                 for (fourier, assembled) in [
                     (m.at(pitch), &exact.mass),
