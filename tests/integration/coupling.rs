@@ -4,6 +4,7 @@
 //! sweeps vary it.
 
 use flutterscope::physics::blade::coupling::coupling_ratio;
+use flutterscope::physics::blade::fem::assemble;
 use flutterscope::physics::blade::source::blade_structure;
 use flutterscope::preset::{Preset, ValidPreset};
 use std::sync::Arc;
@@ -16,7 +17,8 @@ fn with_alpha(name: &str, alpha: f64) -> ValidPreset {
 /// shear centre, at rest, on the blade as the preset builds it.
 fn tip_under_load(p: &ValidPreset) -> (f64, f64) {
     let built = blade_structure(p).unwrap().unwrap();
-    let m = &built.modal.matrices;
+    let g = &built.modal.geometry;
+    let m = assemble(&g.table, &g.mesh, g.pitch).unwrap();
     let centre = m.shear_centre_at(built.table.length()).unwrap();
     let f = centre.point_load(m.k0.nrows(), 1.0e5, 0.0, 0.0);
     let motion = centre.motion(&m.k0.clone().lu().solve(&f).unwrap());

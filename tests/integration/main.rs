@@ -14,6 +14,7 @@ mod laminate;
 mod modes;
 mod onera;
 mod paper_figures;
+mod pitch_range;
 mod plot;
 mod presets;
 mod readme;

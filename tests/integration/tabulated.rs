@@ -178,8 +178,8 @@ fn tip_rows_of_a_tabulated_blade_read_its_mode_shapes_at_the_tip() {
     let structure = TabulatedStructure::new(blade.clone(), modes.clone()).unwrap();
     let tip = structure.motion_rows(structure.length());
     let map = blade
-        .matrices
-        .reference_axis_at(blade.matrices.table.length())
+        .geometry
+        .reference_axis_at(blade.geometry.table.length())
         .unwrap();
     for (k, m) in modes.iter().enumerate() {
         let motion = map.motion(&m.shape);

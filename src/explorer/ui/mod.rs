@@ -105,7 +105,16 @@ pub fn sig(v: f64, digits: usize) -> String {
     if v == 0.0 {
         return "0".to_string();
     }
-    let mag = v.abs().log10().floor() as i32;
+    let mut mag = v.abs().log10().floor() as i32;
+    // A value that rounds up into the next decade (0.99996 to 2 digits) takes that decade's
+    // decimals, so round-off about 1 never shows as `1.00` against `1.0`.
+    let decimals = (digits as i32 - 1 - mag).max(0) as usize;
+    if format!("{:.decimals$}", v.abs())
+        .parse::<f64>()
+        .is_ok_and(|r| r >= 10f64.powi(mag + 1))
+    {
+        mag += 1;
+    }
     if (-3..5).contains(&mag) {
         let decimals = (digits as i32 - 1 - mag).max(0) as usize;
         format!("{v:.decimals$}")
@@ -153,6 +162,11 @@ mod tests {
         assert_eq!(sig(2.3e-6, 3), "2.30e-6");
         assert_eq!(sig(1.5e7, 2), "1.5e7");
         assert_eq!(sig(0.0, 3), "0");
+        // Round-off on either side of a decade prints the same.
+        assert_eq!(sig(0.999_999_999_9, 2), "1.0");
+        assert_eq!(sig(1.000_000_000_1, 2), "1.0");
+        assert_eq!(sig(-9.9996, 4), "-10.00");
+        assert_eq!(sig(99_999.7, 3), "1.00e5");
     }
 
     #[test]

@@ -436,7 +436,39 @@ impl StationMap {
     }
 }
 
+/// Where a blade's elements lie and how its sections are turned, without the matrices: what
+/// carries a mode shape from the shear centre to any span position (docs/model.md §11.2), kept
+/// by a reduced basis that no longer holds the full matrices (§11.4).
+#[derive(Debug, Clone, PartialEq)]
+pub struct BladeGeometry {
+    pub table: BladeTable,
+    pub mesh: Mesh,
+    /// Pitch the section frames are turned by (rad).
+    pub pitch: f64,
+}
+
 impl BladeMatrices {
+    /// The table, mesh and pitch of these matrices.
+    pub fn geometry(&self) -> BladeGeometry {
+        BladeGeometry {
+            table: self.table.clone(),
+            mesh: self.mesh.clone(),
+            pitch: self.pitch,
+        }
+    }
+
+    /// [`BladeGeometry::reference_axis_at`] of these matrices' blade.
+    pub fn reference_axis_at(&self, z: f64) -> Result<StationMap> {
+        self.geometry().reference_axis_at(z)
+    }
+
+    /// [`BladeGeometry::shear_centre_at`] of these matrices' blade.
+    pub fn shear_centre_at(&self, z: f64) -> Result<StationMap> {
+        self.geometry().shear_centre_at(z)
+    }
+}
+
+impl BladeGeometry {
     /// The motion of the reference (pitch) axis at span `z`, where the aerodynamic loads attach
     /// (docs/model.md §11.2): the section turns about the shear centre `(x_s, y_s)`, so the
     /// reference axis moves by `u + y_s φ`, `v − x_s φ` (slopes by differentiation, the offsets

@@ -15,6 +15,7 @@ pub mod coupling;
 pub mod fem;
 pub mod hawc2;
 pub mod modal;
+pub mod pitch_range;
 pub mod source;
 
 use crate::error::{Error, Result};

@@ -5,13 +5,14 @@
 //! modal damping ratio (docs/model.md §11.4) and its shape on the element dofs, which
 //! [`BladeMatrices::reference_axis_at`] evaluates at any span position.
 
-use super::fem::{assemble, BladeMatrices, Mesh, NODE_DOFS, U, V};
+use super::fem::{assemble, BladeGeometry, BladeMatrices, Mesh, NODE_DOFS, U, V};
 use super::{BladeTable, Section};
 use crate::error::{Error, Result};
 use crate::numeric::banded::{half_bandwidth, SymmetricBand};
 use crate::numeric::cholesky::symmetrised;
 use crate::numeric::lanczos::lowest_modes;
 use nalgebra::{DMatrix, DVector, SymmetricEigen};
+use std::sync::Arc;
 
 /// Iteration cap of the symmetric eigensolver (nalgebra's implicit QR): far beyond what these
 /// sizes need, so reaching it means broken input, reported as an error.
@@ -36,7 +37,8 @@ pub struct BladeMode {
     pub damping_ratio: f64,
     /// Free-dof vector (`[u, u', v, v', φ]` per node after the root), M-normalised.
     pub shape: DVector<f64>,
-    /// The same in the coordinates of its blade's reduced basis (`shape = Φ·coordinates`).
+    /// The same in its blade's reduced coordinates, where the reduced mass is the identity
+    /// (`shape = Φ·coordinates`, or `Φ·L⁻ᵀ·coordinates` on a pitch-range basis).
     pub coordinates: DVector<f64>,
 }
 
@@ -99,9 +101,14 @@ pub fn stiffness_damping(
 /// A blade's structure reduced onto a basis of its modes.
 #[derive(Debug, Clone)]
 pub struct ModalBlade {
-    pub matrices: BladeMatrices,
-    /// Basis (dofs × b), M-orthonormal.
-    basis: DMatrix<f64>,
+    /// Table, mesh and pitch: what carries a shape to the reference axis.
+    pub geometry: BladeGeometry,
+    /// Basis Φ (dofs × b): M-orthonormal, or, from a pitch-range basis (docs/model.md §11.4),
+    /// any basis with the Cholesky factor of its reduced mass in `mass_factor`.
+    basis: Arc<DMatrix<f64>>,
+    /// `L` of `ΦᵀMΦ = LLᵀ` when Φ is not M-orthonormal: every reduced matrix below is then
+    /// `L⁻¹(Φᵀ·Φ)L⁻ᵀ`, and a mode's basis coordinates are `L⁻ᵀ y` (none: `L = I`).
+    mass_factor: Option<DMatrix<f64>>,
     reduced_k0: DMatrix<f64>,
     reduced_k_omega: DMatrix<f64>,
     /// `ΦᵀCΦ` of the structural damping matrix, when there is one.
@@ -155,12 +162,52 @@ impl ModalBlade {
         let reduced_k_omega = symmetrised(basis.tr_mul(&k_omega.mul(&basis)));
         let reduced_family = reduced_family_mass(&mass, &basis);
         Ok(ModalBlade {
-            matrices,
-            basis,
+            geometry: matrices.geometry(),
+            basis: Arc::new(basis),
+            mass_factor: None,
             reduced_k0,
             reduced_k_omega,
             reduced_damping: None,
             reduced_family,
+        })
+    }
+
+    /// The blade on a basis `basis` that need not be M-orthonormal, from its projections
+    /// `reduced` (docs/model.md §11.4, the pitch-range basis): the reduced mass is factored
+    /// once, and every other projection turned into the coordinates where it is the identity.
+    pub fn from_projections(
+        geometry: BladeGeometry,
+        basis: Arc<DMatrix<f64>>,
+        reduced: &Projections,
+    ) -> Result<ModalBlade> {
+        let singular = || {
+            Error::numerical(format!(
+                "{}: the reduced blade mass is not positive definite",
+                geometry.table.origin
+            ))
+        };
+        let l = reduced
+            .mass
+            .clone()
+            .cholesky()
+            .ok_or_else(singular)?
+            .unpack();
+        // L⁻¹ once, then each projection turned by two matrix products.
+        let n = l.nrows();
+        let l_inv = l
+            .solve_lower_triangular(&DMatrix::identity(n, n))
+            .ok_or_else(singular)?;
+        let reduce = |a: &DMatrix<f64>| symmetrised(&l_inv * a * l_inv.transpose());
+        let reduced_k0 = reduce(&reduced.k0);
+        let reduced_family = reduced.family.each_ref().map(reduce);
+        Ok(ModalBlade {
+            reduced_k_omega: reduce(&reduced.k_omega),
+            reduced_damping: reduced.damping.as_ref().map(reduce),
+            reduced_k0,
+            reduced_family,
+            geometry,
+            basis,
+            mass_factor: Some(l),
         })
     }
 
@@ -170,6 +217,11 @@ impl ModalBlade {
         let c = SymmetricBand::from_dense(damping, half_bandwidth(damping));
         self.reduced_damping = Some(symmetrised(self.basis.tr_mul(&c.mul(&self.basis))));
         self
+    }
+
+    /// The basis Φ (dofs × b).
+    pub fn basis(&self) -> &DMatrix<f64> {
+        &self.basis
     }
 
     /// Size of the reduced basis.
@@ -198,7 +250,13 @@ impl ModalBlade {
         }
         // All shapes in one product (Φ·Y): a matrix product, far quicker than one per mode.
         let y = eig.eigenvectors.select_columns(&order);
-        let shapes = &self.basis * &y;
+        let in_basis = match &self.mass_factor {
+            None => y.clone(),
+            Some(l) => l
+                .tr_solve_lower_triangular(&y)
+                .ok_or_else(|| Error::numerical("blade modes: singular reduced mass factor"))?,
+        };
+        let shapes = &*self.basis * in_basis;
         Ok(order
             .iter()
             .enumerate()
@@ -234,10 +292,21 @@ impl ModalBlade {
     }
 }
 
+/// The projections `ΦᵀAΦ` of a blade's matrices on a basis Φ (b × b each).
+#[derive(Debug, Clone)]
+pub struct Projections {
+    pub mass: DMatrix<f64>,
+    pub k0: DMatrix<f64>,
+    pub k_omega: DMatrix<f64>,
+    pub damping: Option<DMatrix<f64>>,
+    /// [`reduced_family_mass`]: flap, edge, twist.
+    pub family: [DMatrix<f64>; 3],
+}
+
 /// `Φᵀ M_b Φ` for the flap, edge and twist blocks `b` of the mass matrix (the diagonal blocks of
 /// each group of dofs, the cross terms from the centre of mass offset left out): O(n·band·b),
 /// once per basis.
-fn reduced_family_mass(mass: &SymmetricBand, basis: &DMatrix<f64>) -> [DMatrix<f64>; 3] {
+pub fn reduced_family_mass(mass: &SymmetricBand, basis: &DMatrix<f64>) -> [DMatrix<f64>; 3] {
     let group = |i: usize| match i % NODE_DOFS {
         d if d == U || d == U + 1 => 0,
         d if d == V || d == V + 1 => 1,
@@ -272,7 +341,7 @@ fn shares_of(y: &DVector<f64>, family: &[DMatrix<f64>; 3]) -> [f64; 3] {
 
 /// Modified Gram–Schmidt in the M inner product, twice for round-off; dependent vectors dropped.
 /// Each kept vector's `M k` is stored, so a projection is a dot product, not a product with M.
-fn m_orthonormal(mass: &SymmetricBand, columns: Vec<DVector<f64>>) -> DMatrix<f64> {
+pub fn m_orthonormal(mass: &SymmetricBand, columns: Vec<DVector<f64>>) -> DMatrix<f64> {
     let n = mass.size();
     let mut kept: Vec<(DVector<f64>, DVector<f64>)> = Vec::new();
     let mut mc = DVector::zeros(n);

@@ -10,9 +10,10 @@
 
 use super::beamdyn::from_beamdyn;
 use super::coupling::with_bend_twist_coupling;
-use super::fem::{assemble, Mesh};
+use super::fem::Mesh;
 use super::hawc2::{from_hawc2_st, ChordTwist};
-use super::modal::{stiffness_damping, BladeMode, ModalBlade, StiffnessFactors};
+use super::modal::{BladeMode, ModalBlade, StiffnessFactors};
+use super::pitch_range::{snapshot_pitches, PitchRangeBlade};
 use super::BladeTable;
 use crate::error::{Error, Result};
 use crate::formats::{aerodyn, beamdyn, elastodyn, hawc2_st};
@@ -171,13 +172,6 @@ fn misread(text: &str, name: &str, expected: BladeSource) -> Option<Error> {
     }
 }
 
-/// Reduced-basis modes per reference rotor speed beyond the K retained (docs/model.md §11.4).
-/// On the NREL 5MW blade the 12 retained modes anywhere between the 0 and 20 rpm references are
-/// within 1.5e-10 of the exact ones even without a margin; a blade whose modes change more with
-/// the rotor speed (a light, fast one, as the paper's) needs the extra vectors, which cost little
-/// (the reduced problem has at most 3(K + 8) dofs).
-const BASIS_MARGIN: usize = 8;
-
 /// A tabulated blade's structure at a preset's pitch: the modal basis the analyses work on, and
 /// how its modes are damped.
 #[derive(Debug, Clone)]
@@ -196,88 +190,139 @@ pub struct BladeStructure {
 
 /// The structure of the tabulated blade `p` holds (`None` for the uniform blade): elements at
 /// `structure.min_elements`, pitch `operating.pitch`, a basis good from rest to
-/// `view.rotor_speed_max` (or the operating speed, if higher).
+/// `view.rotor_speed_max` (or the operating speed, if higher) and over the pitch range
+/// ([`pitch_range`]).
 ///
-/// Built once per blade, coupling α, hub radius, pitch, mesh, K, damping and basis range, and kept for the
-/// next call ([`BUILT`] of them): a change of rotor speed, wind or anything aerodynamic then
-/// costs the reduced eigenproblem only (docs/model.md §11.4), not a re-assembly.
+/// Two builds are kept for the next call: the pitch-range basis, once per blade, coupling α,
+/// hub radius, mesh, K, damping and speed and pitch ranges ([`RANGES`] of them; docs/model.md
+/// §11.8), and the blade at one pitch on it ([`BUILT`] of them). A change of rotor speed, wind
+/// or anything aerodynamic then costs the reduced eigenproblem only (§11.4), a change of pitch
+/// the reduced matrices at the new pitch, never a re-assembly.
 pub fn blade_structure(p: &ValidPreset) -> Result<Option<Arc<BladeStructure>>> {
     let Some(blade) = p.tabulated_blade() else {
         return Ok(None);
     };
-    let key = BuildKey::of(p, blade);
-    let cache = BUILT_CACHE.get_or_init(Default::default);
-    if let Some(hit) = lock(cache).iter().find(|(k, _)| *k == key) {
-        return Ok(Some(hit.1.clone()));
-    }
-    let built = Arc::new(build(p, blade.clone())?);
-    let mut kept = lock(cache);
-    if kept.len() >= BUILT {
-        kept.remove(0);
-    }
-    kept.push((key, built.clone()));
-    Ok(Some(built))
+    static BUILT_CACHE: Kept<BuildKey, BladeStructure> = Kept::new();
+    BUILT_CACHE
+        .get_or_build(BuildKey::of(p, blade), BUILT, || build(p, blade.clone()))
+        .map(Some)
 }
 
-/// Builds kept: the explorer's current blade and a few it was just at (a pitch dragged back).
+/// Blades at one pitch kept: the explorer's current blade and a few it was just at (a pitch
+/// dragged back), or the points a sweep's worker is between.
 const BUILT: usize = 4;
 
-type Built = std::sync::Mutex<Vec<(BuildKey, Arc<BladeStructure>)>>;
+/// Pitch-range bases kept: one per blade in use (a design sweep over the coupling builds one
+/// per value).
+const RANGES: usize = 2;
 
-static BUILT_CACHE: std::sync::OnceLock<Built> = std::sync::OnceLock::new();
+/// The last few builds, newest last, found by their key.
+pub(crate) struct Kept<K, V>(std::sync::Mutex<Vec<(K, Arc<V>)>>);
 
-/// A poisoned lock only means another thread panicked mid-push; the list is still whole.
-fn lock(cache: &Built) -> std::sync::MutexGuard<'_, Vec<(BuildKey, Arc<BladeStructure>)>> {
-    cache.lock().unwrap_or_else(|e| e.into_inner())
+impl<K: PartialEq, V> Kept<K, V> {
+    pub(crate) const fn new() -> Kept<K, V> {
+        Kept(std::sync::Mutex::new(Vec::new()))
+    }
+
+    /// The build kept under `key`, or a new one from `build`, kept in place of the oldest
+    /// when `capacity` are. A poisoned lock only means another thread panicked mid-push: the
+    /// list is still whole.
+    pub(crate) fn get_or_build(
+        &self,
+        key: K,
+        capacity: usize,
+        build: impl FnOnce() -> Result<V>,
+    ) -> Result<Arc<V>> {
+        let lock = || self.0.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(hit) = lock().iter().find(|(k, _)| *k == key) {
+            return Ok(hit.1.clone());
+        }
+        let built = Arc::new(build()?);
+        let mut kept = lock();
+        if kept.len() >= capacity {
+            kept.remove(0);
+        }
+        kept.push((key, built.clone()));
+        Ok(built)
+    }
 }
 
 /// Everything [`build`] reads from a preset.
 #[derive(Debug, Clone, PartialEq)]
 struct BuildKey {
+    range: RangeKey,
+    pitch: f64,
+    ratios: [Option<f64>; 3],
+}
+
+/// Everything the pitch-range basis depends on.
+#[derive(Debug, Clone, PartialEq)]
+struct RangeKey {
     blade: Arc<TabulatedBlade>,
     /// `blade.bend_twist_coupling`: another α is another blade.
     coupling: f64,
     hub_radius: f64,
-    pitch: f64,
     min_elements: usize,
     count: usize,
     speeds: Vec<f64>,
-    ratios: [Option<f64>; 3],
+    pitches: (f64, f64),
 }
 
 impl BuildKey {
     fn of(p: &ValidPreset, blade: &Arc<TabulatedBlade>) -> BuildKey {
         BuildKey {
-            blade: blade.clone(),
-            coupling: p.blade.bend_twist_coupling,
-            hub_radius: p.blade.hub_radius,
+            range: RangeKey {
+                blade: blade.clone(),
+                coupling: p.blade.bend_twist_coupling,
+                hub_radius: p.blade.hub_radius,
+                min_elements: p.structure.min_elements,
+                count: p.structure.modes,
+                speeds: reference_speeds(p),
+                pitches: pitch_range(p),
+            },
             pitch: p.pitch_rad(),
-            min_elements: p.structure.min_elements,
-            count: p.structure.modes,
-            speeds: reference_speeds(p),
             ratios: family_ratios(p, blade.damping),
         }
     }
 }
 
-fn build(p: &ValidPreset, blade: Arc<TabulatedBlade>) -> Result<BladeStructure> {
-    let coupled = with_bend_twist_coupling(&blade.table, p.blade.bend_twist_coupling);
-    let table = BladeTable::new(&coupled.origin, p.blade.hub_radius, coupled.sections)?;
-    let mesh = Mesh::following(&table, p.structure.min_elements);
+/// The pitch range every basis spans (rad): from fine pitch 0 to feather at 90°, widened to
+/// hold the preset's pitch when it lies outside, so the basis, and every result on it, does not
+/// depend on the pitch inside the range.
+fn pitch_range(p: &ValidPreset) -> (f64, f64) {
     let pitch = p.pitch_rad();
-    let matrices = assemble(&table, &mesh, pitch)?;
-    let count = p.structure.modes;
-    let mut modal = ModalBlade::new(matrices, &reference_speeds(p), count + BASIS_MARGIN)?;
-    if let SourceDamping::StiffnessProportional(f) = blade.damping {
-        modal = modal.with_damping(&stiffness_damping(&table, &mesh, pitch, f)?);
-    }
-    let ratios = family_ratios(p, blade.damping);
+    (pitch.min(0.0), pitch.max(std::f64::consts::FRAC_PI_2))
+}
+
+fn build(p: &ValidPreset, blade: Arc<TabulatedBlade>) -> Result<BladeStructure> {
+    let key = BuildKey::of(p, &blade).range;
+    static RANGE_CACHE: Kept<RangeKey, (BladeTable, PitchRangeBlade)> = Kept::new();
+    let range = RANGE_CACHE.get_or_build(key, RANGES, || {
+        let coupled = with_bend_twist_coupling(&blade.table, p.blade.bend_twist_coupling);
+        let table = BladeTable::new(&coupled.origin, p.blade.hub_radius, coupled.sections)?;
+        let mesh = Mesh::following(&table, p.structure.min_elements);
+        let (low, high) = pitch_range(p);
+        let damping = match blade.damping {
+            SourceDamping::StiffnessProportional(f) => Some(f),
+            _ => None,
+        };
+        let modal = PitchRangeBlade::new(
+            &table,
+            &mesh,
+            &snapshot_pitches(low, high),
+            &reference_speeds(p),
+            p.structure.modes,
+            damping,
+        )?;
+        Ok((table, modal))
+    })?;
+    let (table, modal) = &*range;
     Ok(BladeStructure {
+        ratios: family_ratios(p, blade.damping),
         blade,
-        table,
-        modal: Arc::new(modal),
-        count,
-        ratios,
+        table: table.clone(),
+        modal: Arc::new(modal.at(p.pitch_rad())?),
+        count: p.structure.modes,
     })
 }
 
@@ -316,7 +361,7 @@ impl BladeStructure {
 
     /// Finite elements along the span.
     pub fn elements(&self) -> usize {
-        self.modal.matrices.mesh.elements()
+        self.modal.geometry.mesh.elements()
     }
 }
 

@@ -87,10 +87,10 @@ impl Structure for TabulatedStructure {
         self.modes.len()
     }
     fn length(&self) -> f64 {
-        self.blade.matrices.table.length()
+        self.blade.geometry.table.length()
     }
     fn hub_radius(&self) -> f64 {
-        self.blade.matrices.table.hub_radius
+        self.blade.geometry.table.hub_radius
     }
     fn mass(&self) -> &DMatrix<f64> {
         &self.mass
@@ -112,7 +112,7 @@ impl Structure for TabulatedStructure {
         };
         let z = x.clamp(0.0, self.length());
         // z is on the blade, so locating it cannot fail.
-        if let Ok(map) = self.blade.matrices.reference_axis_at(z) {
+        if let Ok(map) = self.blade.geometry.reference_axis_at(z) {
             for (i, m) in self.modes.iter().enumerate() {
                 let motion = map.motion(&m.shape);
                 rows.twist[i] = motion.twist;
@@ -152,6 +152,6 @@ impl Structure for TabulatedStructure {
     }
     /// The mesh nodes, which follow the input stations.
     fn span_points(&self) -> Vec<f64> {
-        self.blade.matrices.mesh.nodes.clone()
+        self.blade.geometry.mesh.nodes.clone()
     }
 }
