@@ -44,7 +44,7 @@ pub fn schedule_wind_range(p: &ValidPreset) -> Option<(f64, f64)> {
 }
 
 /// The rotor speed (rpm) the schedule sets at each wind speed of `winds`.
-pub fn scheduled_rotor_speeds(p: &ValidPreset, winds: &[f64]) -> Result<Vec<f64>> {
+fn scheduled_rotor_speeds(p: &ValidPreset, winds: &[f64]) -> Result<Vec<f64>> {
     winds
         .iter()
         .map(|&u| {
@@ -54,13 +54,26 @@ pub fn scheduled_rotor_speeds(p: &ValidPreset, winds: &[f64]) -> Result<Vec<f64>
         .collect()
 }
 
+/// Along wind speed on a preset with an operating schedule: the scheduled rotor speed (rpm) at
+/// every wind of `grid`, for the rotor harmonics; `None` along any other key.
+pub fn along_schedule_rotor_speeds(
+    p: &ValidPreset,
+    key: &str,
+    grid: &[f64],
+) -> Result<Option<Vec<f64>>> {
+    if key != WIND_SPEED_KEY || p.operating.schedule == Schedule::None {
+        return Ok(None);
+    }
+    scheduled_rotor_speeds(p, grid).map(Some)
+}
+
 /// The Campbell diagram of `p` along `key` (rotor speed, or wind speed along the schedule) over
 /// `grid`, polling `cancel` between solves.
 pub fn campbell(p: &ValidPreset, key: &str, grid: &[f64], cancel: &Cancel) -> Result<Campbell> {
     let sweep = track_cancellable(p, key, grid, cancel)?;
-    let rotor_speed_rpm = if key == WIND_SPEED_KEY && p.operating.schedule != Schedule::None {
-        cancel.check()?;
-        scheduled_rotor_speeds(p, grid)?
+    cancel.check()?;
+    let rotor_speed_rpm = if let Some(rpm) = along_schedule_rotor_speeds(p, key, grid)? {
+        rpm
     } else if key == ROTOR_SPEED_KEY {
         grid.to_vec()
     } else {

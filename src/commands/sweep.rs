@@ -77,7 +77,11 @@ pub fn run(
     }
     if let Some(path) = plot {
         let tracked = crate::plot::from_results::tracked_from_rows(&grid.keys[0], &plotted);
-        let fig = match schedule_rotor_speeds(p, &tracked)? {
+        let fig = match crate::analysis::campbell::along_schedule_rotor_speeds(
+            p,
+            &tracked.parameter,
+            &tracked.values,
+        )? {
             Some(rpm) => {
                 crate::plot::from_results::campbell_along_schedule(p.display_name(), &tracked, &rpm)
             }
@@ -211,18 +215,4 @@ fn progress_bar(total: u64) -> ProgressBar {
         bar.set_style(style);
     }
     bar
-}
-
-/// Along the wind speed on a preset with an operating schedule: the schedule's rotor speed (rpm)
-/// at every swept wind speed, for the plot's rotor harmonics; `None` for any other sweep.
-fn schedule_rotor_speeds(
-    p: &ValidPreset,
-    tracked: &crate::analysis::sweep::TrackedSweep,
-) -> Result<Option<Vec<f64>>> {
-    if tracked.parameter != "operating.wind_speed"
-        || p.operating.schedule == crate::preset::Schedule::None
-    {
-        return Ok(None);
-    }
-    crate::analysis::campbell::scheduled_rotor_speeds(p, &tracked.values).map(Some)
 }

@@ -369,6 +369,7 @@ impl System {
             100.0 * relative
         ))
     }
+
     /// Equilibrium and the state matrix there.
     pub fn linearise(&self) -> Result<LinearSystem> {
         let x_eq = self.equilibrium()?;
@@ -420,8 +421,8 @@ impl System {
         x
     }
 
-    /// `R(q) = Q(q, 0, z*(q)) − K q` and, when asked, `dR/dq` (aero states held steady).
-    /// `s Q(q) − K q` at load factor `s` (1: the full load) and, if asked, its Jacobian in q.
+    /// `R(q) = s Q(q, 0, z*(q)) − K q` at load factor `s` (1: the full load) and, when asked,
+    /// `dR/dq` (aero states held steady).
     fn static_residual(
         &self,
         q: &DVector<f64>,
