@@ -61,7 +61,7 @@ fn buhl(k: f64, loss: f64) -> f64 {
 }
 
 /// Coefficients `k1, k2, k3` of Madsen et al. (2020)'s `a = k3 C_T³ + k2 C_T² + k1 C_T` (their
-/// k0 is 0), fitted to actuator-disc computations up to C_T ≈ 2.5 and used by HAWC2's BEM.
+/// k0 is 0), fitted to actuator-disc computations and used by HAWC2's BEM.
 const MADSEN: [f64; 3] = [0.2460, 0.0586, 0.0883];
 
 /// Madsen's polynomial in the local thrust coefficient over the loss factor.
