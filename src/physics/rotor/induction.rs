@@ -12,7 +12,6 @@
 //! Output: the axial induction a. Both relations are used inside the BEM's one residual in φ,
 //! so each returns a finite a for every finite k.
 
-use crate::numeric::root::brent_with_values;
 use serde::{Deserialize, Serialize};
 
 /// `aero.high_thrust`: the thrust–induction relation of a heavily loaded element.
@@ -73,23 +72,53 @@ fn madsen_polynomial(ct: f64) -> f64 {
 /// Tolerance on the induction of the implicit solve (far below what the inflow angle's 1e-10 rad
 /// resolves).
 const INDUCTION_TOLERANCE: f64 = 1e-14;
+/// Newton steps allowed (from the starting bounds below, a handful).
+const MAX_NEWTON_STEPS: usize = 200;
 
 /// The induction `a = P(C_T/F)` where the element's own thrust sets the local thrust coefficient:
 /// `C_T/F = σ' c_n W² / (F U²) = 4 k (1 − a)²`, since `W = U (1 − a) / sin φ`. So a is the root
-/// of `g(a) = P(4k(1 − a)²) − a`. For k ≥ 0, g falls strictly in a (P rises for C_T ≥ 0 and
-/// 4k(1 − a)² falls on [0, 1)), `g(0) = P(4k) ≥ 0` and `g(1) = −1`: one root in [0, 1),
-/// bracketed. The polynomial is a fit for positive thrust; an element pushed upwind (k < 0:
-/// feathered, or the propeller-brake side) keeps momentum theory, `a = k/(1 + k)`, whose slope
-/// at zero (¼) the polynomial's (0.246) matches to 1.6 %.
+/// of `g(a) = P(4k(1 − a)²) − a`. For k > 0 on [0, 1), g falls (P rises for C_T ≥ 0 and 4k(1 − a)²
+/// falls) and is convex (`g'' = P''(C) C'² + 8k P'(C) > 0`), `g(0) = P(4k) > 0` and `g(1) = −1`:
+/// one root. Newton's method from any a below it (g ≥ 0) then climbs to it monotonically, never
+/// past it (the tangent of a convex, falling g meets zero left of g's root), so it needs no
+/// bracket; it is
+/// used rather than a bracketing search because it runs inside every evaluation of the BEM's
+/// residual and converges in a few steps. The polynomial is a fit for positive thrust; an
+/// element pushed upwind (k < 0: feathered, or the propeller-brake side) keeps momentum theory,
+/// `a = k/(1 + k)`, whose slope at zero (¼) the polynomial's (0.246) matches to 1.6 %.
 fn madsen(k: f64) -> f64 {
     if k <= 0.0 {
         return k / (1.0 + k);
     }
-    let mut g = |a: f64| madsen_polynomial(4.0 * k * (1.0 - a) * (1.0 - a)) - a;
-    let (g0, g1) = (g(0.0), g(1.0));
-    // Brent cannot fail on this bracket for finite k; an infinite k (F·sin²φ underflowing) is
-    // the fully blocked element, a → 1.
-    brent_with_values(&mut g, 0.0, g0, 1.0, g1, INDUCTION_TOLERANCE).unwrap_or(1.0)
+    if !k.is_finite() {
+        // The fully blocked element (F·sin²φ underflowing): a → 1.
+        return 1.0;
+    }
+    let [k1, k2, k3] = MADSEN;
+    let g = |a: f64| madsen_polynomial(4.0 * k * (1.0 - a) * (1.0 - a)) - a;
+    // Start below the root, as close as cheaply known: where `4k(1 − a)² = 2`, P = 1.43 > a so
+    // g > 0 (this bound nears the root as k grows: at the bracket ends of the BEM's residual,
+    // φ → 0, k is huge and a → 1); and momentum theory's induction, close to the root, where it
+    // lies below it.
+    let bound = (1.0 - (0.5 / k).sqrt()).max(0.0);
+    let momentum = k / (1.0 + k);
+    let mut a = if g(momentum) >= 0.0 {
+        momentum.max(bound)
+    } else {
+        bound
+    };
+    for _ in 0..MAX_NEWTON_STEPS {
+        let b = 1.0 - a;
+        let c = 4.0 * k * b * b;
+        let g = madsen_polynomial(c) - a;
+        let slope = -(k1 + c * (2.0 * k2 + 3.0 * k3 * c)) * 8.0 * k * b - 1.0;
+        let step = -g / slope;
+        a = (a + step).min(1.0);
+        if step.abs() <= INDUCTION_TOLERANCE {
+            break;
+        }
+    }
+    a
 }
 
 #[cfg(test)]
