@@ -378,8 +378,7 @@ impl Blade<'_> {
 
     /// The element at inflow angle φ: normal and tangential force coefficients from the polar,
     /// the inductions momentum theory gives for them (the rotor's high-thrust relation where
-    /// heavily loaded, [`HighThrust`]), and
-    /// Ning's residual (docs/model.md §12.2).
+    /// heavily loaded, [`HighThrust`]), and Ning's residual (docs/model.md §12.2).
     fn element(&self, phi: f64) -> Element {
         let (s, c) = phi.sin_cos();
         let coeff = self.section.polar.at(phi - self.twist);

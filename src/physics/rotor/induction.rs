@@ -81,16 +81,19 @@ const MAX_NEWTON_STEPS: usize = 200;
 /// falls) and is convex (`g'' = P''(C) C'² + 8k P'(C) > 0`), `g(0) = P(4k) > 0` and `g(1) = −1`:
 /// one root. Newton's method from any a below it (g ≥ 0) then climbs to it monotonically, never
 /// past it (the tangent of a convex, falling g meets zero left of g's root), so it needs no
-/// bracket; it is
-/// used rather than a bracketing search because it runs inside every evaluation of the BEM's
-/// residual and converges in a few steps. The polynomial is a fit for positive thrust; an
-/// element pushed upwind (k < 0: feathered, or the propeller-brake side) keeps momentum theory,
-/// `a = k/(1 + k)`, whose slope at zero (¼) the polynomial's (0.246) matches to 1.6 %.
+/// bracket; it is used rather than a bracketing search because it runs inside every evaluation
+/// of the BEM's residual and converges in a few steps. The polynomial is a fit for positive
+/// thrust; an element pushed upwind (k < 0: feathered, or the propeller-brake side) keeps
+/// momentum theory, `a = k/(1 + k)`, whose slope at zero (¼) the polynomial's (0.246) matches to
+/// 1.6 %.
 fn madsen(k: f64) -> f64 {
+    if k.is_nan() {
+        return k;
+    }
     if k <= 0.0 {
         return k / (1.0 + k);
     }
-    if !k.is_finite() {
+    if k == f64::INFINITY {
         // The fully blocked element (F·sin²φ underflowing): a → 1.
         return 1.0;
     }
