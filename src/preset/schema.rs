@@ -3,6 +3,7 @@
 
 use super::files::FileBase;
 use crate::physics::blade::source::TabulatedBlade;
+use crate::physics::rotor::induction::HighThrust;
 use crate::physics::rotor::schedule::Table as ScheduleTable;
 use crate::physics::rotor::AeroBlade;
 use serde::{Deserialize, Serialize};
@@ -416,6 +417,9 @@ pub struct Aero {
     /// An AeroDyn 15 blade file whose `BlCrvAC` column is the blade's prebend (out-of-plane
     /// offset of its axis, downwind positive); empty for a straight blade (docs/model.md §12.2).
     pub prebend_file: String,
+    /// The steady BEM's thrust–induction relation where an element is heavily loaded: `buhl`
+    /// (momentum theory, Buhl beyond a = 0.4) or `madsen` (HAWC2's cubic a(C_T), §12.2).
+    pub high_thrust: HighThrust,
 }
 
 /// The rotor's files as read when the preset was checked, with the keys they were read from:
@@ -703,6 +707,7 @@ impl Default for Aero {
             ae_set: 1,
             pc_file: String::new(),
             prebend_file: String::new(),
+            high_thrust: HighThrust::Buhl,
         }
     }
 }

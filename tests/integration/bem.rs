@@ -8,6 +8,7 @@ use flutterscope::physics::aero::blade_element::Unsteadiness;
 use flutterscope::physics::operating::steady;
 use flutterscope::physics::rotor::bem::{solve, Conditions, Deflection, Rotor, Station};
 use flutterscope::physics::rotor::files::{read_aerodyn, read_hawc2};
+use flutterscope::physics::rotor::induction::HighThrust;
 use flutterscope::physics::rotor::steady::rotor_of;
 use flutterscope::physics::rotor::AeroBlade;
 use flutterscope::preset::BladeFile;
@@ -59,6 +60,7 @@ fn rotor(blade: &AeroBlade, hub_radius: f64) -> Rotor {
         tip_radius: hub_radius + blade.span_range().1,
         precone: 0.0,
         shaft_tilt: 0.0,
+        high_thrust: HighThrust::Buhl,
     }
 }
 
@@ -176,25 +178,32 @@ fn iea15mw_rigid_against_the_flexible_operation_table() {
 /// The deflected blade against the same table: the `iea15mw` preset's static aeroelastic
 /// equilibrium (docs/model.md §12.6) at the table's pitch and rotor speed, with the rotor's cone
 /// (4°), tilt (6°) and the blade's prebend (4 m upwind at the tip) and its elastic flap bending the
-/// axis the BEM sees (§12.2). The blade bends downwind and twists toward feather under load, which
-/// brings power and thrust toward the table's at every wind speed from 7 m/s up. The 5 % is
-/// met for power and thrust at 7 and 9 m/s and for power at 10 m/s; not at 5 m/s (power) nor above
-/// rated (README, validation table; docs/model.md §12.4 says why). Each bound is what is achieved,
-/// rounded up: losing the cone, tilt, prebend or deflected geometry breaks one of them.
+/// axis the BEM sees (§12.2), and HAWC2's thrust–induction relation (`aero.high_thrust =
+/// "madsen"`). The blade bends downwind and twists toward feather under load, which brings power
+/// and thrust toward the table's at every wind speed from 7 m/s up; at 5 m/s (λ = 12.7, C_T ≈
+/// 0.94) the induction relation decides the power: Buhl's leaves it 12.6 % short. The 5 %
+/// is met for power and thrust from 5 to 9 m/s and for power at 10 m/s; not for thrust at 10 m/s
+/// nor above rated (README, validation table; docs/model.md §12.4 says why). Each bound is what is
+/// achieved, rounded up: losing the cone, tilt, prebend, deflected geometry or the induction
+/// relation breaks one of them.
 #[test]
 fn iea15mw_deflected_against_the_operation_table() {
     let p = flutterscope::preset::Preset::load("iea15mw", &[]).unwrap();
+    assert_eq!(p.aero.high_thrust, HighThrust::Madsen);
     let blade = iea15mw();
-    let rotor = rotor(&blade, 3.97);
+    let rotor = Rotor {
+        high_thrust: HighThrust::Madsen,
+        ..rotor(&blade, 3.97)
+    };
     let stations = Station::gauss(&blade, 30).unwrap();
     // Largest |power|, |thrust| difference from the table achieved at each wind speed.
     let bounds = [
-        (5.0, 0.13, 0.05),
-        (7.0, 0.05, 0.05),
-        (9.0, 0.05, 0.05),
-        (10.0, 0.05, 0.065),
-        (13.0, 0.075, 0.08),
-        (17.0, 0.09, 0.08),
+        (5.0, 0.035, 0.035),
+        (7.0, 0.006, 0.028),
+        (9.0, 0.010, 0.048),
+        (10.0, 0.018, 0.059),
+        (13.0, 0.064, 0.071),
+        (17.0, 0.084, 0.075),
     ];
     for (row, (wind, power_bound, thrust_bound)) in iea15mw_table(&IEA_WINDS).iter().zip(bounds) {
         assert_eq!(row.wind, wind);
@@ -241,6 +250,16 @@ fn iea15mw_deflected_against_the_operation_table() {
             row.wind
         );
     }
+    // The same equilibrium with Buhl's relation at 5 m/s: the power 12.6 % short of the table's.
+    let buhl = Preset::load("iea15mw", &["aero.high_thrust=buhl".to_string()]).unwrap();
+    let row = &iea15mw_table(&[5.0])[0];
+    let op = steady(
+        &buhl.with("operating.wind_speed", 5.0).unwrap(),
+        Unsteadiness::QuasiSteady,
+    )
+    .unwrap();
+    let power = op.flow.power / row.power - 1.0;
+    assert!((-0.127..-0.125).contains(&power), "Buhl at 5 m/s: {power}");
 }
 
 /// Cone, tilt and prebend as CCBlade takes them (docs/model.md §12.2): a straight blade coned by
@@ -420,11 +439,20 @@ fn iea15mw_hawc2_mapping() {
 }
 
 /// Every station converges over the whole operating envelope and beyond it: parked (Ω = 0),
-/// idling, deep stall (low rotor speed in strong wind), feathered, and negative pitch.
+/// idling, deep stall (low rotor speed in strong wind), feathered, and negative pitch; under both
+/// thrust–induction relations (docs/model.md §12.2).
 #[test]
 fn bem_converges_at_every_station_parked_and_stalled() {
-    for (blade, hub) in [(nrel5mw(), 1.5), (iea15mw(), 3.97)] {
+    let relations = [HighThrust::Buhl, HighThrust::Madsen];
+    for (blade, hub, high_thrust) in [(nrel5mw(), 1.5), (iea15mw(), 3.97)]
+        .into_iter()
+        .flat_map(|(b, h)| relations.map(|r| (b.clone(), h, r)))
+    {
         let (rotor, stations) = rig(&blade, hub, 30);
+        let rotor = Rotor {
+            high_thrust,
+            ..rotor
+        };
         let mut stalled = 0;
         let mut points = 0;
         for wind in [0.0, 3.0, 8.0, 15.0, 25.0, 50.0] {
@@ -432,7 +460,11 @@ fn bem_converges_at_every_station_parked_and_stalled() {
                 for pitch in [-10.0, 0.0, 10.0, 45.0, 90.0] {
                     let at = at(wind, rpm, pitch);
                     let s = solve(&rotor, &stations, &[], &at).unwrap_or_else(|e| {
-                        panic!("{} at {wind} m/s, {rpm} rpm, {pitch}°: {e}", blade.origin)
+                        panic!(
+                            "{} ({}) at {wind} m/s, {rpm} rpm, {pitch}°: {e}",
+                            blade.origin,
+                            high_thrust.name()
+                        )
                     });
                     points += 1;
                     assert!(s.power.is_finite() && s.thrust.is_finite());
@@ -585,6 +617,13 @@ pc_file = "presets/blades/iea15mw/IEA_15MW_RWT_pc.dat"
     assert!(load(hawc2_on_beamdyn)
         .unwrap_err()
         .contains("half-chord line"));
+    let e = Preset::load("iea15mw", &["aero.high_thrust=glauert".into()])
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("high_thrust") && e.contains("glauert") && e.contains("madsen"),
+        "{e}"
+    );
     let e = Preset::load("iea15mw", &["aero.ae_set=2".into()])
         .unwrap_err()
         .to_string();

@@ -1,6 +1,6 @@
 //! Steady blade-element momentum (BEM) theory for a rotor of B identical blades in uniform
 //! wind along the shaft (docs/model.md §12.2): the axial and tangential induction at each
-//! station, Prandtl's tip and hub losses, Buhl's high-induction correction, solved as one
+//! station, Prandtl's tip and hub losses, Buhl's or Madsen's high-thrust relation, solved as one
 //! residual in the inflow angle bracketed as Ning (2014) shows, so that every station converges:
 //! attached, stalled, near the hub, with the rotor parked. The blade may be coned, prebent and
 //! bent by its elastic deflection, and the shaft tilted (§12.2, "Cone, prebend and tilt").
@@ -12,6 +12,7 @@
 //! per station the inflow angle, angle of attack, inductions, velocities and coefficients and
 //! the loads per span; the rotor's power, thrust, torque and tip speed ratio.
 
+use super::induction::HighThrust;
 use super::{AeroBlade, AeroSection};
 use crate::error::{Error, Result};
 use crate::numeric::root::brent_with_values;
@@ -35,6 +36,8 @@ pub struct Rotor {
     /// component `U sin τ` changes sign around the revolution and averages out (its sign is
     /// immaterial here).
     pub shaft_tilt: f64,
+    /// The thrust–induction relation of heavily loaded elements (`aero.high_thrust`).
+    pub high_thrust: HighThrust,
 }
 
 /// The steady operating conditions (SI).
@@ -374,8 +377,8 @@ impl Blade<'_> {
     }
 
     /// The element at inflow angle φ: normal and tangential force coefficients from the polar,
-    /// the inductions momentum theory gives for them (Buhl's relation beyond a = 0.4), and
-    /// Ning's residual (docs/model.md §12.2).
+    /// the inductions momentum theory gives for them (the rotor's high-thrust relation where
+    /// heavily loaded, [`HighThrust`]), and Ning's residual (docs/model.md §12.2).
     fn element(&self, phi: f64) -> Element {
         let (s, c) = phi.sin_cos();
         let coeff = self.section.polar.at(phi - self.twist);
@@ -386,7 +389,7 @@ impl Blade<'_> {
         let kp = self.solidity * ct / (4.0 * loss * s * c);
         let tangential = kp / (1.0 - kp);
         let (axial, residual) = if phi > 0.0 {
-            let a = axial_induction(k, loss);
+            let a = self.rotor.high_thrust.axial_induction(k, loss);
             (a, s / (1.0 - a) - c / self.speed_ratio * (1.0 - kp))
         } else {
             // Propeller brake: the residual in the form that stays finite there.
@@ -434,38 +437,5 @@ impl Blade<'_> {
             out_of_plane_load: q * (coeff.cl * c + coeff.cd * s),
             in_plane_load: q * (coeff.cl * s - coeff.cd * c),
         }
-    }
-}
-
-/// Axial induction from `k = σ' C_n / (4 F sin²φ)`: momentum theory `a = k/(1 + k)` up to
-/// a = 0.4 (k = 2/3), Buhl's quadratic empirical thrust beyond it, which meets momentum theory
-/// with equal slope at a = 0.4 and reaches C_T = 2 at a = 1 (F = 1).
-fn axial_induction(k: f64, loss: f64) -> f64 {
-    if k <= 2.0 / 3.0 {
-        return k / (1.0 + k);
-    }
-    let g1 = 2.0 * loss * k - (10.0 / 9.0 - loss);
-    let g2 = (2.0 * loss * k - loss * (4.0 / 3.0 - loss)).max(0.0);
-    let g3 = 2.0 * loss * k - (25.0 / 9.0 - 2.0 * loss);
-    if g3.abs() < 1e-6 {
-        1.0 - 1.0 / (2.0 * g2.sqrt())
-    } else {
-        (g1 - g2.sqrt()) / g3
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn buhl_meets_momentum_theory_at_a_04() {
-        let below = axial_induction(2.0 / 3.0, 1.0);
-        let above = axial_induction(2.0 / 3.0 + 1e-9, 1.0);
-        assert!((below - 0.4).abs() < 1e-12);
-        assert!((above - 0.4).abs() < 1e-6, "{above}");
-        // Monotonic in k beyond.
-        assert!(axial_induction(1.0, 1.0) > 0.4);
-        assert!(axial_induction(2.0, 1.0) > axial_induction(1.0, 1.0));
     }
 }

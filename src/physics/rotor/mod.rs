@@ -7,6 +7,7 @@
 
 pub mod bem;
 pub mod files;
+pub mod induction;
 pub mod schedule;
 pub mod steady;
 

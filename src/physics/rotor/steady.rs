@@ -32,6 +32,7 @@ pub fn rotor_of(p: &ValidPreset, blade: &AeroBlade) -> Rotor {
         tip_radius: p.blade.hub_radius + blade.span_range().1,
         precone: p.operating.precone.to_radians(),
         shaft_tilt: p.operating.shaft_tilt.to_radians(),
+        high_thrust: p.aero.high_thrust,
     }
 }
 
