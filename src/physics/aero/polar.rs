@@ -50,6 +50,10 @@ pub struct Polar {
 /// table's own steps (0.5°–1° near zero lift) do not set the slope.
 const ATTACHED_HALF_WINDOW: f64 = 4.0 * std::f64::consts::PI / 180.0;
 
+/// Largest |C_l| of a non-lifting section (a cylinder): a hundred times the token lift cylinder
+/// polars carry, a thousandth of an airfoil's maximum lift.
+const NON_LIFTING: f64 = 1e-3;
+
 impl Polar {
     /// A polar from columns in radians; `origin` names it in errors (file and table).
     pub fn new(
@@ -83,9 +87,11 @@ impl Polar {
                 "{origin}: the polar has non-finite coefficients"
             )));
         }
-        // A section that lifts nowhere (a cylinder at the root: C_l = 0 at every angle) has the
-        // attached line C_l = 0; any other polar must have an attached range.
-        let attached = if cl.iter().all(|&c| c == 0.0) {
+        // A section that lifts nowhere (a cylinder at the root) has the attached line C_l = 0;
+        // any other polar must have an attached range. Cylinder files often hold a token lift
+        // (the IEA 15MW's AeroDyn polars 00 and 01: C_l = 1e-4 at every angle, for tools that
+        // divide by it), so "nowhere" is |C_l| ≤ NON_LIFTING everywhere, far below any airfoil's.
+        let attached = if cl.iter().all(|&c| c.abs() <= NON_LIFTING) {
             Some(AttachedLine {
                 slope: 0.0,
                 zero_lift: 0.0,
@@ -96,7 +102,8 @@ impl Polar {
         .ok_or_else(|| {
             Error::numerical(format!(
                 "{origin}: no attached-flow range: the lift coefficient never rises through zero \
-                 between −30° and 30° (and is not zero throughout, as a cylinder's)"
+                 between −30° and 30° (and is not within ±{NON_LIFTING} throughout, as a \
+                 cylinder's)"
             ))
         })?;
         Ok(Polar {
@@ -268,6 +275,12 @@ mod tests {
         let p = Polar::new(alpha, vec![0.0; 3], vec![0.5; 3], vec![0.0; 3], "cyl").unwrap();
         assert_eq!(p.attached().slope, 0.0);
         assert_eq!(p.at(0.3).cd, 0.5);
+        // The token lift of the IEA 15MW's cylinder polars (C_l = 1e-4, C_m = −1e-4) is a
+        // cylinder too, and its line is exactly zero lift.
+        let alpha = vec![-std::f64::consts::PI, 0.0, std::f64::consts::PI];
+        let token = Polar::new(alpha, vec![1e-4; 3], vec![0.35; 3], vec![-1e-4; 3], "cyl");
+        let line = token.unwrap().attached();
+        assert_eq!((line.slope, line.zero_lift), (0.0, 0.0));
     }
 
     #[test]
@@ -282,6 +295,16 @@ mod tests {
             "x"
         )
         .is_err());
-        assert!(Polar::new(vec![0.0, 0.0, 0.1], flat.clone(), flat.clone(), flat, "x").is_err());
+        assert!(Polar::new(
+            vec![0.0, 0.0, 0.1],
+            flat.clone(),
+            flat.clone(),
+            flat.clone(),
+            "x"
+        )
+        .is_err());
+        // A constant lift larger than a cylinder's token one is not a cylinder.
+        let err = Polar::new(alpha, vec![0.01; 3], flat.clone(), flat, "x").unwrap_err();
+        assert!(err.to_string().contains("±0.001"), "{err}");
     }
 }
