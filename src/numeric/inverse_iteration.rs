@@ -4,7 +4,7 @@
 //! eigendecomposition in [`super::eigen`]: far cheaper than a Schur form with its vectors, and
 //! (numerically) repeated roots still get a basis of their eigenspace.
 
-use nalgebra::{ComplexField, DMatrix};
+use nalgebra::{Complex, ComplexField, DMatrix};
 
 /// Iteration cap: solves per vector. With a converged eigenvalue as shift one or two solves
 /// usually suffice; a root that needs more is defective or extremely ill-conditioned, and goes to
@@ -16,6 +16,101 @@ const RESIDUAL_TOLERANCE: f64 = 64.0;
 
 /// Earlier roots within this many ε‖H‖ of a shift share (numerically) its eigenspace.
 const CLUSTER_RADIUS: f64 = 1e3;
+
+/// A right eigenvector and, when asked, the w with wᵀH = λwᵀ (unit 2-norm), of one root.
+pub(super) type RootVectors = (Vec<Complex<f64>>, Option<Vec<Complex<f64>>>);
+
+/// Below this many rows the vectors of all roots are computed on the calling thread: handing half
+/// of them to a second thread costs more than it saves (tens of µs against O(n³) flops).
+const PARALLEL_FROM: usize = 40;
+
+/// The vectors of every root in `values` (real roots in real arithmetic, pairs in complex), or
+/// `None` if any fails its residual check.
+///
+/// Why two groups: each root's vectors depend only on its own shift and on the earlier roots of
+/// its cluster (same kind, within [`CLUSTER_RADIUS`]·ε‖H‖; see [`InverseIteration::vectors`]).
+/// So the roots split into whole clusters on two threads (rayon, so a sweep that already runs
+/// its points in parallel does not oversubscribe the cores) and every vector comes out bit for
+/// bit as it would in one sequential pass (docs/model.md §6.1).
+pub(super) fn root_vectors(
+    h: &DMatrix<f64>,
+    hnorm: f64,
+    values: &[Complex<f64>],
+    want_left: bool,
+) -> Option<Vec<RootVectors>> {
+    let (first, second) = if h.nrows() >= PARALLEL_FROM {
+        balanced_halves(values, CLUSTER_RADIUS * f64::EPSILON * hnorm)
+    } else {
+        ((0..values.len()).collect(), Vec::new())
+    };
+    let run = |group: &[usize]| group_vectors(h, hnorm, values, group, want_left);
+    let (a, b) = if second.is_empty() {
+        (run(&first), Some(Vec::new()))
+    } else {
+        rayon::join(|| run(&first), || run(&second))
+    };
+    let mut out: Vec<Option<RootVectors>> = vec![None; values.len()];
+    for (k, v) in first.iter().zip(a?).chain(second.iter().zip(b?)) {
+        out[*k] = Some(v);
+    }
+    out.into_iter().collect()
+}
+
+/// The vectors of the roots `group` (indices into `values`, in order), one sequential pass.
+fn group_vectors(
+    h: &DMatrix<f64>,
+    hnorm: f64,
+    values: &[Complex<f64>],
+    group: &[usize],
+    want_left: bool,
+) -> Option<Vec<RootVectors>> {
+    let mut real = InverseIteration::<f64>::new(h, hnorm);
+    let mut complex = InverseIteration::<Complex<f64>>::new(h, hnorm);
+    group
+        .iter()
+        .map(|&k| {
+            let lambda = values[k];
+            if lambda.im == 0.0 {
+                let (x, w) = real.vectors(lambda.re, want_left)?;
+                let up = |v: Vec<f64>| v.into_iter().map(|r| Complex::new(r, 0.0)).collect();
+                Some((up(x), w.map(up)))
+            } else {
+                complex.vectors(lambda, want_left)
+            }
+        })
+        .collect()
+}
+
+/// Two lists of root indices, each in ascending order, that never separate two roots of one
+/// cluster (same kind, real or complex, and within `radius` of each other, transitively), with
+/// about equal work: a complex root costs about four real ones (complex arithmetic).
+fn balanced_halves(values: &[Complex<f64>], radius: f64) -> (Vec<usize>, Vec<usize>) {
+    let n = values.len();
+    let mut cluster: Vec<usize> = (0..n).collect();
+    for k in 0..n {
+        for j in 0..k {
+            let same_kind = (values[j].im == 0.0) == (values[k].im == 0.0);
+            if same_kind && (values[j] - values[k]).norm() <= radius {
+                // Relabel k's cluster as j's (n is a few hundred at most).
+                let (from, to) = (cluster[k], cluster[j]);
+                cluster.iter_mut().filter(|c| **c == from).for_each(|c| *c = to);
+            }
+        }
+    }
+    let cost = |k: usize| if values[k].im == 0.0 { 1 } else { 4 };
+    let mut load = [0usize; 2];
+    let mut side = vec![0usize; n];
+    for c in 0..n {
+        let members: Vec<usize> = (0..n).filter(|&k| cluster[k] == c).collect();
+        if members.is_empty() {
+            continue;
+        }
+        let lighter = usize::from(load[1] < load[0]);
+        load[lighter] += members.iter().map(|&k| cost(k)).sum::<usize>();
+        members.iter().for_each(|&k| side[k] = lighter);
+    }
+    (0..n).partition(|&k| side[k] == 0)
+}
 
 /// Inverse iteration on one upper Hessenberg matrix for a sequence of shifts (real `f64` or
 /// complex), remembering earlier roots' vectors to separate (numerically) repeated roots.

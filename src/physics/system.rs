@@ -93,8 +93,16 @@ impl System {
     /// its strips on the inflow of its steady aeroelastic operating point
     /// ([`crate::physics::operating`], docs/model.md §12.6).
     pub fn new(p: &ValidPreset) -> Result<System> {
+        Self::with_equilibrium(p).map(|(system, _)| system)
+    }
+
+    /// [`System::new`] with the static equilibrium when building the system already found it
+    /// (a real blade's steady operating point ends on it, §12.6): linearising about it
+    /// ([`System::linearise_at`]) then skips a second, identical Newton solve.
+    pub fn with_equilibrium(p: &ValidPreset) -> Result<(System, Option<DVector<f64>>)> {
         if operating::in_the_wind(p) {
-            return operating::steady(p, operating::unsteadiness(p)).map(|op| op.system);
+            return operating::steady(p, operating::unsteadiness(p))
+                .map(|op| (op.system, Some(op.equilibrium)));
         }
         let scheduled = operating::on_schedule(p)?;
         let p = &scheduled;
@@ -106,7 +114,7 @@ impl System {
             &OperatingPoint::from_preset(p),
             p.aero.stations,
         );
-        System::from_parts(structure, stations, model)
+        Ok((System::from_parts(structure, stations, model)?, None))
     }
 
     /// Build from an assembled structure, stations and a model (tests and alternative models).
@@ -372,7 +380,16 @@ impl System {
 
     /// Equilibrium and the state matrix there.
     pub fn linearise(&self) -> Result<LinearSystem> {
-        let x_eq = self.equilibrium()?;
+        self.linearise_at(None)
+    }
+
+    /// The state matrix at `known`, an equilibrium of this system found while building it
+    /// ([`System::with_equilibrium`]), or at the one solved here when there is none.
+    pub fn linearise_at(&self, known: Option<DVector<f64>>) -> Result<LinearSystem> {
+        let x_eq = match known {
+            Some(x) => x,
+            None => self.equilibrium()?,
+        };
         let a = self.jacobian(&x_eq);
         check_finite("state matrix", &a)?;
         Ok(self.tangent(x_eq, a))
