@@ -93,7 +93,10 @@ fn balanced_halves(values: &[Complex<f64>], radius: f64) -> (Vec<usize>, Vec<usi
             if same_kind && (values[j] - values[k]).norm() <= radius {
                 // Relabel k's cluster as j's (n is a few hundred at most).
                 let (from, to) = (cluster[k], cluster[j]);
-                cluster.iter_mut().filter(|c| **c == from).for_each(|c| *c = to);
+                cluster
+                    .iter_mut()
+                    .filter(|c| **c == from)
+                    .for_each(|c| *c = to);
             }
         }
     }
@@ -405,4 +408,66 @@ fn residual<T: ComplexField<RealField = f64> + Copy>(
         }
     }
     r.iter().map(|c| c.modulus_squared()).sum::<f64>().sqrt()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::numeric::hessenberg::hessenberg_eigenvalues;
+
+    /// A 64-state matrix (above [`PARALLEL_FROM`]) with a cluster of four identical
+    /// oscillators, a cluster of six identical real roots, and distinct roots coupled to
+    /// them, in Hessenberg form, with its roots one per pair.
+    fn clustered() -> (DMatrix<f64>, Vec<Complex<f64>>) {
+        let n = 64;
+        let mut a = DMatrix::<f64>::zeros(n, n);
+        for k in 0..4 {
+            a[(2 * k, 2 * k + 1)] = 1.0;
+            a[(2 * k + 1, 2 * k)] = -9.0;
+            a[(2 * k + 1, 2 * k + 1)] = -0.3;
+        }
+        for k in 8..14 {
+            a[(k, k)] = -2.0;
+        }
+        // The rest: distinct roots, coupled one way into the clusters so that these stay exact.
+        for i in 14..n {
+            for j in 0..n {
+                a[(i, j)] = ((i * 31 + j * 17) as f64).sin() * if j >= 14 { 1.0 } else { 0.1 };
+            }
+        }
+        let (_, h) = nalgebra::linalg::Hessenberg::new(a).unpack();
+        let values = hessenberg_eigenvalues(h.clone())
+            .unwrap()
+            .into_iter()
+            .filter(|l| l.im >= 0.0)
+            .collect();
+        (h, values)
+    }
+
+    #[test]
+    fn two_threads_give_the_vectors_of_one_pass_bit_for_bit() {
+        let (h, values) = clustered();
+        let hnorm = h.norm();
+        let radius = CLUSTER_RADIUS * f64::EPSILON * hnorm;
+        let (first, second) = balanced_halves(&values, radius);
+        assert!(!first.is_empty() && !second.is_empty());
+        // No cluster is split: every near pair of one kind is on one side.
+        let side = |k: usize| first.contains(&k);
+        let mut near_pairs = 0;
+        for k in 0..values.len() {
+            for j in 0..k {
+                let same_kind = (values[j].im == 0.0) == (values[k].im == 0.0);
+                if same_kind && (values[j] - values[k]).norm() <= radius {
+                    near_pairs += 1;
+                    assert_eq!(side(j), side(k), "roots {j} and {k} split");
+                }
+            }
+        }
+        // The clusters are there to be kept together (3 + 15 pairs at least, one per root).
+        assert!(near_pairs >= 3 + 15, "{near_pairs} near pairs");
+        let all: Vec<usize> = (0..values.len()).collect();
+        let sequential = group_vectors(&h, hnorm, &values, &all, true).unwrap();
+        let parallel = root_vectors(&h, hnorm, &values, true).unwrap();
+        assert_eq!(sequential, parallel);
+    }
 }

@@ -24,9 +24,9 @@ pub use schema::*;
 
 use crate::error::{Error, Result};
 use crate::physics::blade::source::{read_blade, read_twist, TabulatedBlade};
+use crate::physics::rotor::bem::Station;
 use crate::physics::rotor::files::{read_aerodyn, read_hawc2, read_prebend};
 use crate::physics::rotor::schedule::Table as ScheduleTable;
-use crate::physics::rotor::bem::Station;
 use crate::physics::rotor::stations::GaussStations;
 use crate::physics::rotor::AeroBlade;
 use serde::Deserialize;
@@ -262,9 +262,7 @@ impl Preset {
         let held_blade = held
             .filter(|r| (&r.keys.0, &r.keys.1) == (&keys.0, &keys.1))
             .map(|r| (r.blade.clone(), r.stations.clone()));
-        let held_table = held
-            .filter(|r| r.keys.2 == keys.2)
-            .map(|r| r.table.clone());
+        let held_table = held.filter(|r| r.keys.2 == keys.2).map(|r| r.table.clone());
         let origin = self.origin.clone();
         let invalid = |keys: &str, e: Error| Error::Invalid {
             origin: origin.clone(),
@@ -284,9 +282,9 @@ impl Preset {
             match self.operating.schedule {
                 Schedule::Table => {
                     let name = &self.operating.schedule_file;
-                    Some(Arc::new(read_schedule_table(&base.resolve(name)).map_err(|e| {
-                        invalid(&format!("operating.schedule_file = \"{name}\""), e)
-                    })?))
+                    Some(Arc::new(read_schedule_table(&base.resolve(name)).map_err(
+                        |e| invalid(&format!("operating.schedule_file = \"{name}\""), e),
+                    )?))
                 }
                 _ => None,
             }
