@@ -15,12 +15,15 @@ use std::sync::{Arc, Mutex};
 /// other than its aerodynamic files keeps them); the holder builds a new one whenever the blade is
 /// read again, so stations never outlive the blade they were built on.
 #[derive(Clone, Default)]
-pub struct GaussStations(Arc<Mutex<Vec<(usize, Arc<Vec<Station>>)>>>);
+pub struct GaussStations(Arc<Mutex<Vec<Built>>>);
+
+/// Stations built for one count.
+type Built = (usize, Arc<Vec<Station>>);
 
 impl GaussStations {
     /// The `count` Gauss stations of `blade` ([`Station::gauss`]), built on first use.
     pub fn of(&self, blade: &AeroBlade, count: usize) -> Result<Arc<Vec<Station>>> {
-        let built = |cache: &[(usize, Arc<Vec<Station>>)]| {
+        let built = |cache: &[Built]| {
             cache
                 .iter()
                 .find(|(n, _)| *n == count)
