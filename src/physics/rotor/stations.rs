@@ -55,3 +55,37 @@ impl std::fmt::Debug for GaussStations {
         f.write_str("GaussStations")
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::physics::operating::on_schedule;
+    use crate::preset::Preset;
+    use std::sync::Arc;
+
+    /// What a sweep along the schedule relies on: moving the wind speed, and then to the
+    /// schedule's setting, keeps the aerodynamic description as read and the stations as built;
+    /// a new station count builds new ones, and the old count's are still there.
+    #[test]
+    fn operating_points_share_the_blade_and_its_stations() {
+        let p = Preset::load("iea15mw", &[]).unwrap();
+        let stations = p.aero_stations().unwrap().unwrap();
+        let q = on_schedule(&p.with("operating.wind_speed", 14.0).unwrap()).unwrap();
+        assert!(Arc::ptr_eq(
+            p.aero_blade().unwrap(),
+            q.aero_blade().unwrap()
+        ));
+        assert!(Arc::ptr_eq(&stations, &q.aero_stations().unwrap().unwrap()));
+        let fewer = q.with("aero.stations", 12.0).unwrap();
+        let twelve = fewer.aero_stations().unwrap().unwrap();
+        assert_eq!((stations.len(), twelve.len()), (30, 12));
+        assert!(Arc::ptr_eq(&stations, &p.aero_stations().unwrap().unwrap()));
+        // A blade read again (another aerodynamic file key) gets stations of its own.
+        let straight = p.edited(|e| e.aero.prebend_file.clear()).unwrap();
+        assert!(!Arc::ptr_eq(
+            p.aero_blade().unwrap(),
+            straight.aero_blade().unwrap()
+        ));
+        let own = straight.aero_stations().unwrap().unwrap();
+        assert!(!Arc::ptr_eq(&stations, &own));
+    }
+}
