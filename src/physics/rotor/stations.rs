@@ -2,14 +2,18 @@
 //! every operating point of the preset that holds it (docs/model.md §12.6).
 //!
 //! Why: a station's section is a blend of the neighbouring airfoils' polars (§12.1), and
-//! building the 30 stations of the IEA 15MW is about 0.5 ms, a sixth of its steady operating
-//! point; the stations depend only on the blade and the count, so a sweep along the schedule or a
-//! key press that moves the wind speed reuses them.
+//! building the 30 stations of the IEA 15MW is about 0.5 ms, more than a third of its steady
+//! operating point once they are kept; the stations depend only on the blade and the count, so a
+//! sweep along the schedule or a key press that moves the wind speed reuses them.
 
 use crate::error::Result;
 use crate::physics::rotor::bem::Station;
 use crate::physics::rotor::AeroBlade;
 use std::sync::{Arc, Mutex};
+
+/// How many station counts are kept (the most recently built): an operating point and a
+/// convergence study's neighbours.
+const KEPT_COUNTS: usize = 4;
 
 /// Stations of one blade by count. Clones share the built stations (a preset edited in keys
 /// other than its aerodynamic files keeps them); the holder builds a new one whenever the blade is
@@ -36,6 +40,10 @@ impl GaussStations {
         let stations = Arc::new(Station::gauss(blade, count)?);
         if let Ok(mut cache) = self.0.lock() {
             if built(&cache).is_none() {
+                // A sweep over `aero.stations` would otherwise keep every count it visited.
+                if cache.len() == KEPT_COUNTS {
+                    cache.remove(0);
+                }
                 cache.push((count, Arc::clone(&stations)));
             }
         }
@@ -79,6 +87,16 @@ mod tests {
         let twelve = fewer.aero_stations().unwrap().unwrap();
         assert_eq!((stations.len(), twelve.len()), (30, 12));
         assert!(Arc::ptr_eq(&stations, &p.aero_stations().unwrap().unwrap()));
+        // Only the last few counts stay: after four more, 30 is built again.
+        for count in 8..12 {
+            let other = p.with("aero.stations", f64::from(count)).unwrap();
+            assert_eq!(
+                other.aero_stations().unwrap().unwrap().len(),
+                count as usize
+            );
+        }
+        let again = p.aero_stations().unwrap().unwrap();
+        assert!(!Arc::ptr_eq(&stations, &again) && again.len() == 30);
         // A blade read again (another aerodynamic file key) gets stations of its own.
         let straight = p.edited(|e| e.aero.prebend_file.clear()).unwrap();
         assert!(!Arc::ptr_eq(
