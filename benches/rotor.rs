@@ -7,7 +7,7 @@
 //!
 //! Run: `cargo bench --bench rotor`.
 
-use flutterscope::analysis::eigen::analyse;
+use flutterscope::analysis::eigen::{analyse, analyse_system, linear_system};
 use flutterscope::analysis::sweep::track;
 use flutterscope::physics::aero::blade_element::Unsteadiness;
 use flutterscope::physics::operating::steady;
@@ -33,6 +33,22 @@ fn operating_point(bencher: divan::Bencher) {
 fn stability_at_an_operating_point(bencher: divan::Bencher) {
     let p = preset();
     bencher.bench(|| analyse(divan::black_box(&p)).unwrap());
+}
+
+/// Its eigen-analysis alone (84 states, left and right vectors, names), on the system built
+/// once: what the operating point leaves of the budget.
+#[divan::bench]
+fn eigen_analysis_of_the_operating_point(bencher: divan::Bencher) {
+    let ls = linear_system(&preset()).unwrap();
+    bencher.bench(|| analyse_system(divan::black_box(&ls)).unwrap());
+}
+
+/// The same for ONERA's system.
+#[divan::bench]
+fn eigen_analysis_of_the_operating_point_onera(bencher: divan::Bencher) {
+    let p = Preset::load("iea15mw", &["aero.model=onera".to_string()]).unwrap();
+    let ls = linear_system(&p).unwrap();
+    bencher.bench(|| analyse_system(divan::black_box(&ls)).unwrap());
 }
 
 /// The same with ONERA's stall states on every station's own polar (target < 50 ms a point).

@@ -151,7 +151,8 @@ pub fn analyse(p: &ValidPreset) -> Result<Stability> {
 
 /// The linearised system of a preset (assemble, equilibrium, state matrix).
 pub fn linear_system(p: &ValidPreset) -> Result<LinearSystem> {
-    System::new(p)?.linearise()
+    let (system, equilibrium) = System::with_equilibrium(p)?;
+    system.linearise_at(equilibrium)
 }
 
 /// Eigen-analysis of an assembled linear system (sweeps reuse their own systems).

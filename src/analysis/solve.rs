@@ -24,8 +24,9 @@ pub struct Solution {
 
 /// Build the preset's system once and linearise it about its static equilibrium.
 pub fn solve(p: &ValidPreset) -> Result<Solution> {
-    let system = Arc::new(System::new(p)?);
-    let linear = system.linearise();
+    let (system, equilibrium) = System::with_equilibrium(p)?;
+    let linear = system.linearise_at(equilibrium);
+    let system = Arc::new(system);
     Ok(Solution { system, linear })
 }
 

@@ -9,7 +9,7 @@
 use super::balance::{balanced, balancing_scale};
 use super::faer_evd::real_evd;
 use super::hessenberg::hessenberg_eigenvalues;
-use super::inverse_iteration::InverseIteration;
+use super::inverse_iteration::root_vectors;
 use super::isolate::Isolation;
 use crate::error::{Error, Result};
 use nalgebra::{Complex, DMatrix};
@@ -200,17 +200,10 @@ pub(crate) fn fast_decomposition(b: &DMatrix<f64>, want_left: bool) -> Option<De
     } else {
         (DMatrix::zeros(n, 0), DMatrix::zeros(n, 0))
     };
-    // Real roots in real arithmetic (a quarter of the work), pairs in complex.
-    let mut real = InverseIteration::<f64>::new(&h, hnorm);
-    let mut complex = InverseIteration::<Complex<f64>>::new(&h, hnorm);
-    for (c, &lambda) in values.iter().enumerate() {
-        let (x, w): (Vec<Complex<f64>>, Option<Vec<Complex<f64>>>) = if lambda.im == 0.0 {
-            let (x, w) = real.vectors(lambda.re, want_left)?;
-            let up = |v: Vec<f64>| v.into_iter().map(|r| Complex::new(r, 0.0)).collect();
-            (up(x), w.map(up))
-        } else {
-            complex.vectors(lambda, want_left)?
-        };
+    // Real roots in real arithmetic (a quarter of the work), pairs in complex; whole clusters
+    // on two threads.
+    let vectors = root_vectors(&h, hnorm, &values, want_left)?;
+    for (c, (x, w)) in vectors.into_iter().enumerate() {
         for i in 0..n {
             xr[(i, c)] = x[i].re;
             xi[(i, c)] = x[i].im;

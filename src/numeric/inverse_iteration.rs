@@ -4,7 +4,7 @@
 //! eigendecomposition in [`super::eigen`]: far cheaper than a Schur form with its vectors, and
 //! (numerically) repeated roots still get a basis of their eigenspace.
 
-use nalgebra::{ComplexField, DMatrix};
+use nalgebra::{Complex, ComplexField, DMatrix};
 
 /// Iteration cap: solves per vector. With a converged eigenvalue as shift one or two solves
 /// usually suffice; a root that needs more is defective or extremely ill-conditioned, and goes to
@@ -17,10 +17,110 @@ const RESIDUAL_TOLERANCE: f64 = 64.0;
 /// Earlier roots within this many ε‖H‖ of a shift share (numerically) its eigenspace.
 const CLUSTER_RADIUS: f64 = 1e3;
 
+/// A right eigenvector and, when asked, the w with wᵀH = λwᵀ (unit 2-norm), of one root.
+pub(super) type RootVectors = (Vec<Complex<f64>>, Option<Vec<Complex<f64>>>);
+
+/// Below this many rows the vectors of all roots are computed on the calling thread: handing half
+/// of them to a second thread costs more than it saves (tens of µs against O(n³) flops).
+const PARALLEL_FROM: usize = 40;
+
+/// The vectors of every root in `values` (real roots in real arithmetic, pairs in complex), or
+/// `None` if any fails its residual check.
+///
+/// Why two groups: each root's vectors depend only on its own shift and on the earlier roots of
+/// its cluster (same kind, within [`CLUSTER_RADIUS`]·ε‖H‖; see [`InverseIteration::vectors`]).
+/// So the roots split into whole clusters on two threads (rayon, so a sweep that already runs
+/// its points in parallel does not oversubscribe the cores) and every vector comes out bit for
+/// bit as it would in one sequential pass (docs/model.md §6.1).
+pub(super) fn root_vectors(
+    h: &DMatrix<f64>,
+    hnorm: f64,
+    values: &[Complex<f64>],
+    want_left: bool,
+) -> Option<Vec<RootVectors>> {
+    let (first, second) = if h.nrows() >= PARALLEL_FROM {
+        balanced_halves(values, CLUSTER_RADIUS * f64::EPSILON * hnorm)
+    } else {
+        ((0..values.len()).collect(), Vec::new())
+    };
+    let run = |group: &[usize]| group_vectors(h, hnorm, values, group, want_left);
+    let (a, b) = if second.is_empty() {
+        (run(&first), Some(Vec::new()))
+    } else {
+        rayon::join(|| run(&first), || run(&second))
+    };
+    let mut out: Vec<Option<RootVectors>> = vec![None; values.len()];
+    for (k, v) in first.iter().zip(a?).chain(second.iter().zip(b?)) {
+        out[*k] = Some(v);
+    }
+    out.into_iter().collect()
+}
+
+/// The vectors of the roots `group` (indices into `values`, in order), one sequential pass.
+fn group_vectors(
+    h: &DMatrix<f64>,
+    hnorm: f64,
+    values: &[Complex<f64>],
+    group: &[usize],
+    want_left: bool,
+) -> Option<Vec<RootVectors>> {
+    let mut real = InverseIteration::<f64>::new(h, hnorm);
+    let mut complex = InverseIteration::<Complex<f64>>::new(h, hnorm);
+    group
+        .iter()
+        .map(|&k| {
+            let lambda = values[k];
+            if lambda.im == 0.0 {
+                let (x, w) = real.vectors(lambda.re, want_left)?;
+                let up = |v: Vec<f64>| v.into_iter().map(|r| Complex::new(r, 0.0)).collect();
+                Some((up(x), w.map(up)))
+            } else {
+                complex.vectors(lambda, want_left)
+            }
+        })
+        .collect()
+}
+
+/// Two lists of root indices, each in ascending order, that never separate two roots of one
+/// cluster (same kind, real or complex, and within `radius` of each other, transitively), with
+/// about equal work: a complex root costs about four real ones (complex arithmetic).
+fn balanced_halves(values: &[Complex<f64>], radius: f64) -> (Vec<usize>, Vec<usize>) {
+    let n = values.len();
+    let mut cluster: Vec<usize> = (0..n).collect();
+    for k in 0..n {
+        for j in 0..k {
+            let same_kind = (values[j].im == 0.0) == (values[k].im == 0.0);
+            if same_kind && (values[j] - values[k]).norm() <= radius {
+                // Relabel k's cluster as j's (n is a few hundred at most).
+                let (from, to) = (cluster[k], cluster[j]);
+                cluster
+                    .iter_mut()
+                    .filter(|c| **c == from)
+                    .for_each(|c| *c = to);
+            }
+        }
+    }
+    let cost = |k: usize| if values[k].im == 0.0 { 1 } else { 4 };
+    let mut load = [0usize; 2];
+    let mut side = vec![0usize; n];
+    for c in 0..n {
+        let members: Vec<usize> = (0..n).filter(|&k| cluster[k] == c).collect();
+        if members.is_empty() {
+            continue;
+        }
+        let lighter = usize::from(load[1] < load[0]);
+        load[lighter] += members.iter().map(|&k| cost(k)).sum::<usize>();
+        members.iter().for_each(|&k| side[k] = lighter);
+    }
+    (0..n).partition(|&k| side[k] == 0)
+}
+
 /// Inverse iteration on one upper Hessenberg matrix for a sequence of shifts (real `f64` or
 /// complex), remembering earlier roots' vectors to separate (numerically) repeated roots.
 pub(super) struct InverseIteration<'a, T> {
     h: &'a DMatrix<f64>,
+    /// H row by row, so that each factorisation reads its rows contiguously.
+    h_rows: Vec<f64>,
     hnorm: f64,
     lu: HessenbergLu<T>,
     right: Vec<(T, Vec<T>)>,
@@ -31,12 +131,15 @@ impl<'a, T: ComplexField<RealField = f64> + Copy> InverseIteration<'a, T> {
     pub(super) fn new(h: &'a DMatrix<f64>, hnorm: f64) -> Self {
         InverseIteration {
             h,
+            h_rows: h.transpose().as_slice().to_vec(),
             hnorm,
             lu: HessenbergLu {
                 n: 0,
                 u: Vec::new(),
                 mult: Vec::new(),
                 swapped: Vec::new(),
+                carry: Vec::new(),
+                next: Vec::new(),
             },
             right: Vec::new(),
             left: Vec::new(),
@@ -50,7 +153,7 @@ impl<'a, T: ComplexField<RealField = f64> + Copy> InverseIteration<'a, T> {
         want_left: bool,
     ) -> Option<(Vec<T>, Option<Vec<T>>)> {
         let eps3 = f64::EPSILON * self.hnorm;
-        self.lu.factor(self.h, lambda, eps3);
+        self.lu.factor(&self.h_rows, self.h.nrows(), lambda, eps3);
         // Earlier roots this close share (numerically) an eigenspace with this one.
         let near = |done: &[(T, Vec<T>)]| -> Vec<Vec<T>> {
             done.iter()
@@ -152,51 +255,70 @@ fn eps_pivot(hnorm: f64) -> f64 {
 
 /// LU factors of the Hessenberg matrix H − λI with adjacent-row partial pivoting:
 /// G (H − λI) = U, G = M_{n−2}P_{n−2}⋯M_0P_0, each M_k one multiplier below the diagonal.
+///
+/// U is stored row by row. Why: step k of the elimination touches only rows k and k+1, and
+/// row-wise every step, every solve and the transposed solve run along contiguous memory; held
+/// column by column (as H is), the factorisation strode across the whole matrix at every entry,
+/// which on the 200-odd states of ONERA at 30 stations missed the cache at nearly every access.
+/// The arithmetic is the same, in the same order, either way.
 struct HessenbergLu<T> {
     n: usize,
-    /// U, column-major n × n (upper triangle used).
+    /// U, row-major n × n (upper triangle used).
     u: Vec<T>,
     mult: Vec<T>,
     swapped: Vec<bool>,
+    /// Row k of the elimination as it stands at step k, and row k + 1 of H − λI.
+    carry: Vec<T>,
+    next: Vec<T>,
 }
 
 impl<T: ComplexField<RealField = f64> + Copy> HessenbergLu<T> {
-    fn factor(&mut self, h: &DMatrix<f64>, lambda: T, eps3: f64) {
-        let n = h.nrows();
+    /// Factors H − λI, `h_rows` being H row-major (n × n). Row k + 1 of an upper Hessenberg
+    /// matrix is zero left of column k and untouched until step k, so each step pivots between
+    /// the carried row k and row k + 1 read fresh from H, and writes row k of U once.
+    fn factor(&mut self, h_rows: &[f64], n: usize, lambda: T, eps3: f64) {
         self.n = n;
-        self.u.clear();
-        self.u.extend(h.as_slice().iter().map(|&v| T::from_real(v)));
-        for i in 0..n {
-            self.u[i + i * n] -= lambda;
+        // Every entry on and above the diagonal is written below; the rest is never read.
+        if self.u.len() != n * n {
+            self.u.clear();
+            self.u.resize(n * n, T::zero());
         }
         self.mult.clear();
         self.mult.resize(n.saturating_sub(1), T::zero());
         self.swapped.clear();
         self.swapped.resize(n.saturating_sub(1), false);
-        let u = &mut self.u;
+        if n == 0 {
+            return;
+        }
+        let shifted_row = |row: &mut Vec<T>, i: usize| {
+            row.clear();
+            row.extend(h_rows[i * n..(i + 1) * n].iter().map(|&v| T::from_real(v)));
+            row[i] -= lambda;
+        };
+        shifted_row(&mut self.carry, 0);
         let tiny = T::from_real(eps3);
-        for k in 0..n.saturating_sub(1) {
-            if u[k + 1 + k * n].modulus_squared() > u[k + k * n].modulus_squared() {
-                for j in k..n {
-                    u.swap(k + j * n, k + 1 + j * n);
-                }
+        for k in 0..n - 1 {
+            shifted_row(&mut self.next, k + 1);
+            if self.next[k].modulus_squared() > self.carry[k].modulus_squared() {
+                std::mem::swap(&mut self.carry, &mut self.next);
                 self.swapped[k] = true;
             }
-            if u[k + k * n].modulus_squared() < eps3 * eps3 {
+            if self.carry[k].modulus_squared() < eps3 * eps3 {
                 // A (numerically) exact shift: the standard perturbation of inverse iteration.
-                u[k + k * n] = tiny;
+                self.carry[k] = tiny;
             }
-            let m = u[k + 1 + k * n] / u[k + k * n];
+            let m = self.next[k] / self.carry[k];
             self.mult[k] = m;
-            u[k + 1 + k * n] = T::zero();
-            for j in k + 1..n {
-                let ukj = u[k + j * n];
-                u[k + 1 + j * n] -= m * ukj;
+            for (nj, cj) in self.next[k + 1..].iter_mut().zip(&self.carry[k + 1..]) {
+                *nj -= m * *cj;
             }
+            self.u[k * n + k..(k + 1) * n].copy_from_slice(&self.carry[k..]);
+            std::mem::swap(&mut self.carry, &mut self.next);
         }
-        if n > 0 && u[(n - 1) * (n + 1)].modulus_squared() < eps3 * eps3 {
-            u[(n - 1) * (n + 1)] = tiny;
+        if self.carry[n - 1].modulus_squared() < eps3 * eps3 {
+            self.carry[n - 1] = tiny;
         }
+        self.u[n * n - 1] = self.carry[n - 1];
     }
 
     /// ‖G⁻¹v‖₂: the right-hand side that a solve with `apply_g = false` actually solves for.
@@ -225,13 +347,15 @@ impl<T: ComplexField<RealField = f64> + Copy> HessenbergLu<T> {
                 v[k + 1] -= self.mult[k] * vk;
             }
         }
-        for j in (0..n).rev() {
-            v[j] /= self.u[j + j * n];
-            let vj = v[j];
-            let col = &self.u[j * n..j * n + j];
-            for (vi, uij) in v[..j].iter_mut().zip(col) {
-                *vi -= *uij * vj;
+        for i in (0..n).rev() {
+            // Row i of U against the entries already solved, last first (the order in which
+            // the column-wise substitution subtracted them).
+            let row = &self.u[i * n..(i + 1) * n];
+            let mut s = v[i];
+            for j in (i + 1..n).rev() {
+                s -= row[j] * v[j];
             }
+            v[i] = s / row[i];
         }
     }
 
@@ -239,13 +363,15 @@ impl<T: ComplexField<RealField = f64> + Copy> HessenbergLu<T> {
     /// solve here, so unlike [`Self::solve`] it cannot be folded into the start vector.)
     fn solve_transposed(&self, v: &mut [T]) {
         let n = self.n;
-        for j in 0..n {
-            let col = &self.u[j * n..j * n + j];
-            let s = col
-                .iter()
-                .zip(&v[..j])
-                .fold(v[j], |s, (uij, vi)| s - *uij * *vi);
-            v[j] = s / self.u[j + j * n];
+        for i in 0..n {
+            // Uᵀz = v by rows of U: once z_i is known it leaves every later equation, first
+            // row first (the order of the column-wise dot products).
+            let row = &self.u[i * n..(i + 1) * n];
+            v[i] /= row[i];
+            let vi = v[i];
+            for (vj, uij) in v[i + 1..].iter_mut().zip(&row[i + 1..]) {
+                *vj -= *uij * vi;
+            }
         }
         for k in (0..n.saturating_sub(1)).rev() {
             let vk1 = v[k + 1];
@@ -282,4 +408,66 @@ fn residual<T: ComplexField<RealField = f64> + Copy>(
         }
     }
     r.iter().map(|c| c.modulus_squared()).sum::<f64>().sqrt()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::numeric::hessenberg::hessenberg_eigenvalues;
+
+    /// A 64-state matrix (above [`PARALLEL_FROM`]) with a cluster of four identical
+    /// oscillators, a cluster of six identical real roots, and distinct roots coupled to
+    /// them, in Hessenberg form, with its roots one per pair.
+    fn clustered() -> (DMatrix<f64>, Vec<Complex<f64>>) {
+        let n = 64;
+        let mut a = DMatrix::<f64>::zeros(n, n);
+        for k in 0..4 {
+            a[(2 * k, 2 * k + 1)] = 1.0;
+            a[(2 * k + 1, 2 * k)] = -9.0;
+            a[(2 * k + 1, 2 * k + 1)] = -0.3;
+        }
+        for k in 8..14 {
+            a[(k, k)] = -2.0;
+        }
+        // The rest: distinct roots, coupled one way into the clusters so that these stay exact.
+        for i in 14..n {
+            for j in 0..n {
+                a[(i, j)] = ((i * 31 + j * 17) as f64).sin() * if j >= 14 { 1.0 } else { 0.1 };
+            }
+        }
+        let (_, h) = nalgebra::linalg::Hessenberg::new(a).unpack();
+        let values = hessenberg_eigenvalues(h.clone())
+            .unwrap()
+            .into_iter()
+            .filter(|l| l.im >= 0.0)
+            .collect();
+        (h, values)
+    }
+
+    #[test]
+    fn two_threads_give_the_vectors_of_one_pass_bit_for_bit() {
+        let (h, values) = clustered();
+        let hnorm = h.norm();
+        let radius = CLUSTER_RADIUS * f64::EPSILON * hnorm;
+        let (first, second) = balanced_halves(&values, radius);
+        assert!(!first.is_empty() && !second.is_empty());
+        // No cluster is split: every near pair of one kind is on one side.
+        let side = |k: usize| first.contains(&k);
+        let mut near_pairs = 0;
+        for k in 0..values.len() {
+            for j in 0..k {
+                let same_kind = (values[j].im == 0.0) == (values[k].im == 0.0);
+                if same_kind && (values[j] - values[k]).norm() <= radius {
+                    near_pairs += 1;
+                    assert_eq!(side(j), side(k), "roots {j} and {k} split");
+                }
+            }
+        }
+        // The clusters are there to be kept together (3 + 15 pairs at least, one per root).
+        assert!(near_pairs >= 3 + 15, "{near_pairs} near pairs");
+        let all: Vec<usize> = (0..values.len()).collect();
+        let sequential = group_vectors(&h, hnorm, &values, &all, true).unwrap();
+        let parallel = root_vectors(&h, hnorm, &values, true).unwrap();
+        assert_eq!(sequential, parallel);
+    }
 }

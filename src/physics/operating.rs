@@ -22,7 +22,9 @@ use crate::physics::aero::blade_element::{
 };
 use crate::physics::inflow::Station;
 use crate::physics::rotor::bem::{self, Conditions, OperatingState};
-use crate::physics::rotor::steady::{aero_blade_of, rotor_of, setting, SteadyPoint};
+use crate::physics::rotor::steady::{
+    aero_blade_of, aero_stations_of, rotor_of, setting, SteadyPoint,
+};
 use crate::physics::structure::for_preset;
 use crate::physics::system::System;
 use crate::preset::{AeroModel, Schedule, ValidPreset};
@@ -68,20 +70,12 @@ pub fn on_schedule(p: &ValidPreset) -> Result<ValidPreset> {
     }
     let blade = aero_blade_of(p)?;
     let rotor = rotor_of(p, blade);
-    // Built only if the law's pitch search asks for power: a table needs none, and the
-    // stations' polar blends are most of a BEM point's cost.
-    let stations = std::cell::OnceCell::new();
+    // Asked for only if the law's pitch search asks for power: a table needs none (the
+    // stations are built once per blade and shared, §12.6).
     let power = |s: crate::physics::rotor::schedule::Setting| {
-        let stations = match stations.get() {
-            Some(built) => built,
-            None => {
-                let built = bem::Station::gauss(blade, p.aero.stations)?;
-                stations.get_or_init(|| built)
-            }
-        };
         bem::solve(
             &rotor,
-            stations,
+            &aero_stations_of(p)?,
             &[],
             &Conditions {
                 wind_speed: p.operating.wind_speed,
@@ -146,7 +140,7 @@ pub fn steady(p: &ValidPreset, unsteady: Unsteadiness) -> Result<Operation> {
     let p = on_schedule(p)?;
     let blade = aero_blade_of(&p)?;
     let rotor = rotor_of(&p, blade);
-    let strips = bem::Station::gauss(blade, p.aero.stations)?;
+    let strips = aero_stations_of(&p)?;
     let structure = for_preset(&p)?;
     let conditions = Conditions {
         wind_speed: p.operating.wind_speed,

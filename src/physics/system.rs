@@ -57,6 +57,17 @@ pub struct System {
 }
 
 /// Generalised loads and aero-state rates at one state, with their Jacobians when asked.
+/// Which derivatives a [`System::project`] call assembles.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Derivatives {
+    None,
+    /// ∂Q/∂q and ∂Q/∂z only: all the static equilibrium's Newton step reads. Skipping the rest
+    /// saves about half of each projection on a real blade (30 stations, 60 lag states), where
+    /// the operating point takes two of them per Newton step on every BEM pass.
+    Static,
+    All,
+}
+
 struct Projection {
     force: DVector<f64>,
     zdot: DVector<f64>,
@@ -93,8 +104,16 @@ impl System {
     /// its strips on the inflow of its steady aeroelastic operating point
     /// ([`crate::physics::operating`], docs/model.md §12.6).
     pub fn new(p: &ValidPreset) -> Result<System> {
+        Self::with_equilibrium(p).map(|(system, _)| system)
+    }
+
+    /// [`System::new`] with the static equilibrium when building the system already found it
+    /// (a real blade's steady operating point ends on it, §12.6): linearising about it
+    /// ([`System::linearise_at`]) then skips a second, identical Newton solve.
+    pub fn with_equilibrium(p: &ValidPreset) -> Result<(System, Option<DVector<f64>>)> {
         if operating::in_the_wind(p) {
-            return operating::steady(p, operating::unsteadiness(p)).map(|op| op.system);
+            return operating::steady(p, operating::unsteadiness(p))
+                .map(|op| (op.system, Some(op.equilibrium)));
         }
         let scheduled = operating::on_schedule(p)?;
         let p = &scheduled;
@@ -106,7 +125,7 @@ impl System {
             &OperatingPoint::from_preset(p),
             p.aero.stations,
         );
-        System::from_parts(structure, stations, model)
+        Ok((System::from_parts(structure, stations, model)?, None))
     }
 
     /// Build from an assembled structure, stations and a model (tests and alternative models).
@@ -202,7 +221,7 @@ impl System {
     pub fn rhs(&self, x: &DVector<f64>) -> DVector<f64> {
         let nq = self.nq();
         let (q, v, z) = self.split(x);
-        let pr = self.project(q, v, z, false);
+        let pr = self.project(q, v, z, Derivatives::None);
         let mut out = DVector::zeros(self.dim());
         out.rows_mut(0, nq).copy_from(&v);
         let net = &pr.force - &self.stiffness * q - &self.damping * v;
@@ -215,7 +234,7 @@ impl System {
     pub fn jacobian(&self, x: &DVector<f64>) -> DMatrix<f64> {
         let (nq, na) = (self.nq(), self.n_aero());
         let (q, v, z) = self.split(x);
-        let pr = self.project(q, v, z, true);
+        let pr = self.project(q, v, z, Derivatives::All);
         let mut a = DMatrix::zeros(self.dim(), self.dim());
         a.view_mut((0, nq), (nq, nq)).fill_with_identity();
         a.view_mut((nq, 0), (nq, nq))
@@ -372,7 +391,16 @@ impl System {
 
     /// Equilibrium and the state matrix there.
     pub fn linearise(&self) -> Result<LinearSystem> {
-        let x_eq = self.equilibrium()?;
+        self.linearise_at(None)
+    }
+
+    /// The state matrix at `known`, an equilibrium of this system found while building it
+    /// ([`System::with_equilibrium`]), or at the one solved here when there is none.
+    pub fn linearise_at(&self, known: Option<DVector<f64>>) -> Result<LinearSystem> {
+        let x_eq = match known {
+            Some(x) => x,
+            None => self.equilibrium()?,
+        };
         let a = self.jacobian(&x_eq);
         check_finite("state matrix", &a)?;
         Ok(self.tangent(x_eq, a))
@@ -432,7 +460,12 @@ impl System {
         let nq = self.nq();
         let x = self.steady_state_of(q);
         let (qv, v, z) = self.split(&x);
-        let pr = self.project(qv, v, z, want_jac);
+        let wanted = if want_jac {
+            Derivatives::Static
+        } else {
+            Derivatives::None
+        };
+        let pr = self.project(qv, v, z, wanted);
         let res = load * &pr.force - &self.stiffness * q;
         if !res.iter().all(|v| v.is_finite()) {
             return Err(Error::numerical(
@@ -479,11 +512,13 @@ impl System {
         q: nalgebra::DVectorView<f64>,
         v: nalgebra::DVectorView<f64>,
         z: nalgebra::DVectorView<f64>,
-        want_jac: bool,
+        wanted: Derivatives,
     ) -> Projection {
         let (nq, na, ns) = (self.nq(), self.n_aero(), self.ns);
-        let jac_dim = |r: usize, c: usize| {
-            if want_jac {
+        let want_jac = wanted != Derivatives::None;
+        let want_all = wanted == Derivatives::All;
+        let sized = |on: bool, r: usize, c: usize| {
+            if on {
                 DMatrix::zeros(r, c)
             } else {
                 DMatrix::zeros(0, 0)
@@ -492,12 +527,12 @@ impl System {
         let mut pr = Projection {
             force: DVector::zeros(nq),
             zdot: DVector::zeros(na),
-            dq: jac_dim(nq, nq),
-            dv: jac_dim(nq, nq),
-            dz: jac_dim(nq, na),
-            gq: jac_dim(na, nq),
-            gv: jac_dim(na, nq),
-            gz: jac_dim(na, na),
+            dq: sized(want_jac, nq, nq),
+            dv: sized(want_all, nq, nq),
+            dz: sized(want_jac, nq, na),
+            gq: sized(want_all, na, nq),
+            gv: sized(want_all, na, nq),
+            gz: sized(want_all, na, na),
         };
         let mut eval = StripEval::new(ns);
         let mut zs = Vec::with_capacity(ns);
@@ -532,7 +567,7 @@ impl System {
                         pr.dq.ger(w * dpos, &rows[l], &rows[j], 1.0);
                     }
                     let drate = eval.dloads_dk[l][j + RATES];
-                    if drate != 0.0 {
+                    if want_all && drate != 0.0 {
                         pr.dv.ger(w * drate, &rows[l], &rows[j], 1.0);
                     }
                 }
@@ -540,6 +575,9 @@ impl System {
                     let mut col = pr.dz.column_mut(si * ns + i);
                     col.axpy(w * eval.dloads_dz[l][i], &rows[l], 1.0);
                 }
+            }
+            if !want_all {
+                continue;
             }
             for i in 0..ns {
                 let r = si * ns + i;

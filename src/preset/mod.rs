@@ -24,8 +24,10 @@ pub use schema::*;
 
 use crate::error::{Error, Result};
 use crate::physics::blade::source::{read_blade, read_twist, TabulatedBlade};
+use crate::physics::rotor::bem::Station;
 use crate::physics::rotor::files::{read_aerodyn, read_hawc2, read_prebend};
 use crate::physics::rotor::schedule::Table as ScheduleTable;
+use crate::physics::rotor::stations::GaussStations;
 use crate::physics::rotor::AeroBlade;
 use serde::Deserialize;
 use std::path::Path;
@@ -250,9 +252,55 @@ impl Preset {
     /// what it holds. File errors keep the file's own path and line, after the preset and keys.
     fn read_rotor_files(&mut self) -> Result<()> {
         let keys = RotorFiles::keys_of(self);
-        if self.rotor_files.as_ref().is_some_and(|r| r.keys == keys) {
+        let held = self.rotor_files.as_ref();
+        if held.is_some_and(|r| r.keys == keys) {
             return Ok(());
         }
+        // The aerodynamic description and the table are kept apart: an operating point on its
+        // schedule sets `operating.schedule = "none"` (docs/model.md §12.6), which must not read
+        // the blade's aerodynamic files again (a third of a point's cost on the IEA 15MW).
+        let held_blade = held
+            .filter(|r| (&r.keys.0, &r.keys.1) == (&keys.0, &keys.1))
+            .map(|r| (r.blade.clone(), r.stations.clone()));
+        let held_table = held.filter(|r| r.keys.2 == keys.2).map(|r| r.table.clone());
+        let origin = self.origin.clone();
+        let invalid = |keys: &str, e: Error| Error::Invalid {
+            origin: origin.clone(),
+            message: format!("{keys}: {e}"),
+        };
+        let base = &self.base;
+        let (blade, stations) = match held_blade {
+            Some(held) => held,
+            None => (
+                self.read_aero_blade()?.map(Arc::new),
+                GaussStations::default(),
+            ),
+        };
+        let table = if let Some(table) = held_table {
+            table
+        } else {
+            match self.operating.schedule {
+                Schedule::Table => {
+                    let name = &self.operating.schedule_file;
+                    Some(Arc::new(read_schedule_table(&base.resolve(name)).map_err(
+                        |e| invalid(&format!("operating.schedule_file = \"{name}\""), e),
+                    )?))
+                }
+                _ => None,
+            }
+        };
+        self.rotor_files = Some(RotorFiles {
+            keys,
+            blade,
+            table,
+            stations,
+        });
+        Ok(())
+    }
+
+    /// Read the aerodynamic description (`aero.blade_file` … or `aero.ae_file` …) with its
+    /// prebend; `None` when the preset names no aerodynamic files.
+    fn read_aero_blade(&self) -> Result<Option<AeroBlade>> {
         let origin = self.origin.clone();
         let invalid = |keys: &str, e: Error| Error::Invalid {
             origin: origin.clone(),
@@ -308,28 +356,22 @@ impl Preset {
             }
             (blade, _) => blade,
         };
-        let table =
-            match self.operating.schedule {
-                Schedule::Table => {
-                    let name = &self.operating.schedule_file;
-                    Some(read_schedule_table(&base.resolve(name)).map_err(|e| {
-                        invalid(&format!("operating.schedule_file = \"{name}\""), e)
-                    })?)
-                }
-                _ => None,
-            };
-        self.rotor_files = Some(RotorFiles {
-            keys,
-            blade: blade.map(Arc::new),
-            table: table.map(Arc::new),
-        });
-        Ok(())
+        Ok(blade)
     }
 
     /// The aerodynamic description this checked preset holds (`None` when it names no
     /// aerodynamic files).
     pub fn aero_blade(&self) -> Option<&Arc<AeroBlade>> {
         self.rotor_files.as_ref().and_then(|r| r.blade.as_ref())
+    }
+
+    /// The `aero.stations` Gauss stations on [`Self::aero_blade`], built once and shared by
+    /// the presets edited from this one in other keys (`None` without an aerodynamic
+    /// description).
+    pub fn aero_stations(&self) -> Option<Result<Arc<Vec<Station>>>> {
+        let files = self.rotor_files.as_ref()?;
+        let blade = files.blade.as_ref()?;
+        Some(files.stations.of(blade, self.aero.stations))
     }
 
     /// The operating table this checked preset holds (`operating.schedule = "table"`).

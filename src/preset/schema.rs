@@ -5,6 +5,7 @@ use super::files::FileBase;
 use crate::physics::blade::source::TabulatedBlade;
 use crate::physics::rotor::induction::HighThrust;
 use crate::physics::rotor::schedule::Table as ScheduleTable;
+use crate::physics::rotor::stations::GaussStations;
 use crate::physics::rotor::AeroBlade;
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
@@ -432,6 +433,8 @@ pub struct RotorFiles {
     pub blade: Option<Arc<AeroBlade>>,
     /// The operating table (`None` unless `operating.schedule = "table"`).
     pub table: Option<Arc<ScheduleTable>>,
+    /// The Gauss stations built on `blade`, by count (new whenever the blade is read again).
+    pub stations: GaussStations,
 }
 
 impl RotorFiles {

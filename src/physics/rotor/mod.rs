@@ -9,6 +9,7 @@ pub mod bem;
 pub mod files;
 pub mod induction;
 pub mod schedule;
+pub mod stations;
 pub mod steady;
 
 use crate::physics::aero::polar::Polar;

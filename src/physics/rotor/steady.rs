@@ -11,6 +11,7 @@ use crate::error::{Error, Result};
 use crate::preset::{Schedule, ValidPreset};
 use serde::Serialize;
 use std::f64::consts::PI;
+use std::sync::Arc;
 
 /// One steady operating point with the setting it ran at.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -49,11 +50,19 @@ pub fn aero_blade_of(p: &ValidPreset) -> Result<&AeroBlade> {
         })
 }
 
+/// The preset's `aero.stations` Gauss stations on its aerodynamic description, built once per
+/// blade and count and shared by the presets edited from it ([`crate::physics::rotor::stations`]).
+pub fn aero_stations_of(p: &ValidPreset) -> Result<Arc<Vec<Station>>> {
+    let blade = aero_blade_of(p)?;
+    p.aero_stations()
+        .unwrap_or_else(|| Station::gauss(blade, p.aero.stations).map(Arc::new))
+}
+
 /// The steady operating point at the preset's wind speed, rigid blade.
 pub fn for_preset(p: &ValidPreset) -> Result<SteadyPoint> {
     let blade = aero_blade_of(p)?;
     let rotor = rotor_of(p, blade);
-    let stations = Station::gauss(blade, p.aero.stations)?;
+    let stations = aero_stations_of(p)?;
     let wind = p.operating.wind_speed;
     let air_density = p.operating.air_density;
     let solve_at = |s: Setting| {
