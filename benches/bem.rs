@@ -1,12 +1,14 @@
 //! Steady BEM timings (docs/model.md §12.2, README figures): one solve of the IEA 15MW rotor at
 //! 30 stations (its preset's Gauss stations, sections from the HAWC2 ae and pc files) at rated
-//! (10.7 m/s, 7.56 rpm), and the same with the sections looked up afresh (what a caller pays when
+//! (10.7 m/s, 7.56 rpm), with the preset's thrust–induction relation (Madsen's) and with Buhl's,
+//! and the same with the sections looked up afresh (what a caller pays when
 //! the stations change); the NREL 5MW operating point of its preset through the control law
 //! (rated power held by the pitch search at 13 m/s).
 //!
 //! Run: `cargo bench --bench bem`.
 
 use flutterscope::physics::rotor::bem::{solve, Conditions, Rotor, Station};
+use flutterscope::physics::rotor::induction::HighThrust;
 use flutterscope::physics::rotor::steady::{for_preset, rotor_of};
 use flutterscope::preset::Preset;
 
@@ -31,6 +33,16 @@ fn iea15mw() -> (Rotor, Vec<Station>, Conditions) {
 #[divan::bench]
 fn solve_30_stations(bencher: divan::Bencher) {
     let (rotor, stations, at) = iea15mw();
+    bencher.bench(|| solve(&rotor, &stations, &[], &at).unwrap());
+}
+
+#[divan::bench]
+fn solve_30_stations_buhl(bencher: divan::Bencher) {
+    let (rotor, stations, at) = iea15mw();
+    let rotor = Rotor {
+        high_thrust: HighThrust::Buhl,
+        ..rotor
+    };
     bencher.bench(|| solve(&rotor, &stations, &[], &at).unwrap());
 }
 
