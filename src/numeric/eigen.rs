@@ -9,6 +9,7 @@
 use super::balance::{balanced, balancing_scale};
 use super::faer_evd::real_evd;
 use super::hessenberg::hessenberg_eigenvalues;
+use super::hessenberg_reduction::hessenberg_reduction;
 use super::inverse_iteration::root_vectors;
 use super::isolate::Isolation;
 use crate::error::{Error, Result};
@@ -86,7 +87,8 @@ pub fn eigen_decomposition(a: &DMatrix<f64>) -> Result<Roots> {
 /// isolated, they reach neither solver, and B is the structure alone.
 ///
 /// Then (chosen by measurement, `cargo bench --bench stability`, `part_eigen_*`) B is
-/// balanced (D⁻¹BD) and reduced to Hessenberg form H = QᵀD⁻¹BDQ; the eigenvalues come from the
+/// balanced (D⁻¹BD) and reduced to Hessenberg form H = QᵀD⁻¹BDQ (faer's Householder
+/// reduction, `hessenberg_reduction.rs`); the eigenvalues come from the
 /// double-shift QR iteration on H *without* accumulating the Schur form or its vectors (a port
 /// of LAPACK's `dlahqr` with `wantt = wantz = false`: Ahues–Tisseur deflation, exceptional shifts,
 /// an iteration cap of 30·max(10, n) per eigenvalue). Each eigenvector, one per real root or
@@ -187,7 +189,7 @@ pub(crate) type Decomposition = (
 /// the QR iteration does not converge or a vector fails its residual check.
 pub(crate) fn fast_decomposition(b: &DMatrix<f64>, want_left: bool) -> Option<Decomposition> {
     let n = b.nrows();
-    let (q, h) = nalgebra::linalg::Hessenberg::new(b.clone()).unpack();
+    let (q, h) = hessenberg_reduction(b);
     let all = hessenberg_eigenvalues(h.clone())?;
     // One entry per real root and per conjugate pair (the member with ω > 0).
     let values: Vec<Complex<f64>> = all.into_iter().filter(|l| l.im >= 0.0).collect();

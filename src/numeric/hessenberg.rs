@@ -1,7 +1,7 @@
 //! Eigenvalues of an upper Hessenberg matrix by the double-shift QR iteration without the Schur
 //! form (a port of LAPACK's `dlahqr`), with its Householder reflector (`dlarfg`) and the
 //! eigenvalues of a 2×2 block (`dlanv2`). The eigenvalue half of the fast eigendecomposition in
-//! [`super::eigen`] (the reduction to Hessenberg form itself is nalgebra's); it returns no vectors,
+//! [`super::eigen`] (the reduction to Hessenberg form is `hessenberg_reduction.rs`); it returns no vectors,
 //! which is most of its speed.
 
 use nalgebra::{Complex, DMatrix};

@@ -14,6 +14,7 @@ pub mod cholesky;
 pub(crate) mod eigen;
 pub(crate) mod faer_evd;
 mod hessenberg;
+mod hessenberg_reduction;
 mod inverse_iteration;
 mod isolate;
 pub mod lanczos;
