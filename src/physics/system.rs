@@ -56,7 +56,6 @@ pub struct System {
     ns: usize,
 }
 
-/// Generalised loads and aero-state rates at one state, with their Jacobians when asked.
 /// Which derivatives a [`System::project`] call assembles.
 #[derive(Clone, Copy, PartialEq, Eq)]
 enum Derivatives {
@@ -68,6 +67,7 @@ enum Derivatives {
     All,
 }
 
+/// Generalised loads and aero-state rates at one state, with their Jacobians when asked.
 struct Projection {
     force: DVector<f64>,
     zdot: DVector<f64>,

@@ -263,11 +263,6 @@ impl Preset {
             .filter(|r| (&r.keys.0, &r.keys.1) == (&keys.0, &keys.1))
             .map(|r| (r.blade.clone(), r.stations.clone()));
         let held_table = held.filter(|r| r.keys.2 == keys.2).map(|r| r.table.clone());
-        let origin = self.origin.clone();
-        let invalid = |keys: &str, e: Error| Error::Invalid {
-            origin: origin.clone(),
-            message: format!("{keys}: {e}"),
-        };
         let base = &self.base;
         let (blade, stations) = match held_blade {
             Some(held) => held,
@@ -283,7 +278,7 @@ impl Preset {
                 Schedule::Table => {
                     let name = &self.operating.schedule_file;
                     Some(Arc::new(read_schedule_table(&base.resolve(name)).map_err(
-                        |e| invalid(&format!("operating.schedule_file = \"{name}\""), e),
+                        |e| self.file_error(&format!("operating.schedule_file = \"{name}\""), e),
                     )?))
                 }
                 _ => None,
@@ -298,14 +293,17 @@ impl Preset {
         Ok(())
     }
 
+    /// A file's error named after the preset and the keys that name the file.
+    fn file_error(&self, keys: &str, e: Error) -> Error {
+        Error::Invalid {
+            origin: self.origin.clone(),
+            message: format!("{keys}: {e}"),
+        }
+    }
+
     /// Read the aerodynamic description (`aero.blade_file` … or `aero.ae_file` …) with its
     /// prebend; `None` when the preset names no aerodynamic files.
     fn read_aero_blade(&self) -> Result<Option<AeroBlade>> {
-        let origin = self.origin.clone();
-        let invalid = |keys: &str, e: Error| Error::Invalid {
-            origin: origin.clone(),
-            message: format!("{keys}: {e}"),
-        };
         let (a, base) = (&self.aero, &self.base);
         let blade = if !a.blade_file.is_empty() {
             let airfoils: Vec<BladeFile> = a.airfoils.iter().map(|f| base.resolve(f)).collect();
@@ -316,7 +314,7 @@ impl Preset {
                     &base.resolve(&a.pitch_axis_file),
                 )
                 .map_err(|e| {
-                    invalid(
+                    self.file_error(
                         &format!(
                             "aero.blade_file = \"{}\" (with aero.airfoils, aero.pitch_axis_file = \"{}\")",
                             a.blade_file, a.pitch_axis_file
@@ -334,7 +332,7 @@ impl Preset {
                     &base.resolve(&self.blade.twist_file),
                 )
                 .map_err(|e| {
-                    invalid(
+                    self.file_error(
                         &format!(
                             "aero.ae_file = \"{}\" (aero.ae_set = {}, aero.pc_file = \"{}\", \
                              twist from blade.twist_file = \"{}\")",
@@ -350,7 +348,7 @@ impl Preset {
         let blade = match (blade, a.prebend_file.is_empty()) {
             (Some(mut b), false) => {
                 b.prebend = read_prebend(&base.resolve(&a.prebend_file)).map_err(|e| {
-                    invalid(&format!("aero.prebend_file = \"{}\"", a.prebend_file), e)
+                    self.file_error(&format!("aero.prebend_file = \"{}\"", a.prebend_file), e)
                 })?;
                 Some(b)
             }

@@ -53,9 +53,13 @@ pub fn aero_blade_of(p: &ValidPreset) -> Result<&AeroBlade> {
 /// The preset's `aero.stations` Gauss stations on its aerodynamic description, built once per
 /// blade and count and shared by the presets edited from it ([`crate::physics::rotor::stations`]).
 pub fn aero_stations_of(p: &ValidPreset) -> Result<Arc<Vec<Station>>> {
-    let blade = aero_blade_of(p)?;
-    p.aero_stations()
-        .unwrap_or_else(|| Station::gauss(blade, p.aero.stations).map(Arc::new))
+    // The preset holds stations exactly when it holds a blade; without one, the blade's error.
+    match p.aero_stations() {
+        Some(stations) => stations,
+        None => {
+            aero_blade_of(p).and_then(|blade| Station::gauss(blade, p.aero.stations).map(Arc::new))
+        }
+    }
 }
 
 /// The steady operating point at the preset's wind speed, rigid blade.
