@@ -186,7 +186,7 @@ pub fn analyse_system(ls: &LinearSystem) -> Result<Stability> {
             let share: f64 = if roots.left.ncols() == 0 {
                 1.0
             } else {
-                roots.participation(k)[..2 * nq].iter().sum()
+                roots.participation_of_first(k, 2 * nq)
             };
             let im = if lambda.im.abs() <= tol {
                 0.0

@@ -44,14 +44,35 @@ impl Roots {
     /// of the states, so they tell a structural root from an aerodynamic-lag root without
     /// arbitrary weights.
     pub fn participation(&self, k: usize) -> Vec<f64> {
-        let raw: Vec<f64> = self
-            .vectors
-            .column(k)
+        shares(self.raw_participation(k).collect())
+    }
+
+    /// The summed participation share of the first `states` states in root `k` (0 when no
+    /// state participates), without the per-state vector.
+    pub fn participation_of_first(&self, k: usize, states: usize) -> f64 {
+        let (mut part, mut total) = (0.0, 0.0);
+        for (i, p) in self.raw_participation(k).enumerate() {
+            total += p;
+            if i < states {
+                part += p;
+            }
+        }
+        if total > 0.0 {
+            part / total
+        } else {
+            part
+        }
+    }
+
+    /// `|l_i| |r_i|` of root `k`, state by state (one square root a state, not two).
+    fn raw_participation<'a>(&'a self, k: usize) -> impl Iterator<Item = f64> + 'a {
+        let n = self.vectors.nrows();
+        let (right, left) = (self.vectors.as_slice(), self.left.as_slice());
+        let column = |m: &'a [Complex<f64>]| m.get(k * n..(k + 1) * n).unwrap_or(&[]);
+        column(right)
             .iter()
-            .zip(self.left.column(k).iter())
-            .map(|(r, l)| r.norm() * l.norm())
-            .collect();
-        shares(raw)
+            .zip(column(left))
+            .map(|(r, l)| (r.norm_sqr() * l.norm_sqr()).sqrt())
     }
 }
 

@@ -5,6 +5,7 @@
 //! which is most of its speed.
 
 use nalgebra::{Complex, DMatrix};
+use std::ops::RangeInclusive;
 
 /// Iteration cap, as in LAPACK: an eigenvalue (or pair) that takes more than
 /// `ITERATIONS_PER_EIGENVALUE · max(MIN_CAP_ORDER, n)` double-shift sweeps ends the iteration
@@ -161,32 +162,15 @@ pub(super) fn hessenberg_eigenvalues(mut h: DMatrix<f64>) -> Option<Vec<Complex<
                 }
                 let v2 = v[1];
                 let t2 = t1 * v2;
-                if nr == 3 {
-                    let v3 = v[2];
-                    let t3 = t1 * v3;
-                    for j in k..=i2 {
-                        let sum = h[(k, j)] + v2 * h[(k + 1, j)] + v3 * h[(k + 2, j)];
-                        h[(k, j)] -= sum * t1;
-                        h[(k + 1, j)] -= sum * t2;
-                        h[(k + 2, j)] -= sum * t3;
-                    }
-                    for j in i1..=(k + 3).min(i) {
-                        let sum = h[(j, k)] + v2 * h[(j, k + 1)] + v3 * h[(j, k + 2)];
-                        h[(j, k)] -= sum * t1;
-                        h[(j, k + 1)] -= sum * t2;
-                        h[(j, k + 2)] -= sum * t3;
-                    }
-                } else if nr == 2 {
-                    for j in k..=i2 {
-                        let sum = h[(k, j)] + v2 * h[(k + 1, j)];
-                        h[(k, j)] -= sum * t1;
-                        h[(k + 1, j)] -= sum * t2;
-                    }
-                    for j in i1..=i {
-                        let sum = h[(j, k)] + v2 * h[(j, k + 1)];
-                        h[(j, k)] -= sum * t1;
-                        h[(j, k + 1)] -= sum * t2;
-                    }
+                let reflector = Reflector {
+                    size: nr,
+                    v: [1.0, v2, if nr == 3 { v[2] } else { 0.0 }],
+                    t: [t1, t2, if nr == 3 { t1 * v[2] } else { 0.0 }],
+                };
+                if nr >= 2 {
+                    let bottom = if nr == 3 { (k + 3).min(i) } else { i };
+                    reflector.on_rows(&mut h, k, k..=i2);
+                    reflector.on_columns(&mut h, k, i1..=bottom);
                 }
             }
         }
@@ -245,6 +229,63 @@ fn eigenvalues_2x2(a: f64, b: f64, c: f64, d: f64) -> (Complex<f64>, Complex<f64
         let re = 0.5 * (a + d);
         let im = scale.sqrt() * (-z).sqrt();
         (Complex::new(re, im), Complex::new(re, -im))
+    }
+}
+
+/// A Householder reflector `I − t₁ vvᵀ` of `size` 2 or 3 with `v = [1, v₂, v₃]` and
+/// `t = [t₁, t₁v₂, t₁v₃]` (unused entries zero), as the QR sweep applies it.
+struct Reflector {
+    size: usize,
+    v: [f64; 3],
+    t: [f64; 3],
+}
+
+impl Reflector {
+    /// Applied from the left to rows `k..k + size` of the columns `cols`. Those entries of a
+    /// column are adjacent in column-major storage, so the loop walks column slices instead of
+    /// indexing H twice per entry: this and [`Reflector::on_columns`] are the QR iteration's
+    /// hot loops.
+    fn on_rows(&self, h: &mut DMatrix<f64>, k: usize, cols: RangeInclusive<usize>) {
+        let n = h.nrows();
+        let [_, v2, v3] = self.v;
+        let (first, last) = (*cols.start(), *cols.end());
+        for col in h.as_mut_slice()[first * n..(last + 1) * n].chunks_exact_mut(n) {
+            let r = &mut col[k..k + self.size];
+            let sum = if self.size == 3 {
+                r[0] + v2 * r[1] + v3 * r[2]
+            } else {
+                r[0] + v2 * r[1]
+            };
+            for (x, t) in r.iter_mut().zip(self.t) {
+                *x -= sum * t;
+            }
+        }
+    }
+
+    /// Applied from the right to columns `k..k + size` over the rows `rows`, each column a
+    /// contiguous slice.
+    fn on_columns(&self, h: &mut DMatrix<f64>, k: usize, rows: RangeInclusive<usize>) {
+        let n = h.nrows();
+        let [_, v2, v3] = self.v;
+        let [t1, t2, t3] = self.t;
+        let block = &mut h.as_mut_slice()[k * n..(k + self.size) * n];
+        let (c0, rest) = block.split_at_mut(n);
+        let (c1, c2) = rest.split_at_mut(n);
+        let (c0, c1) = (&mut c0[rows.clone()], &mut c1[rows.clone()]);
+        if self.size == 3 {
+            for ((a, b), c) in c0.iter_mut().zip(c1).zip(&mut c2[rows]) {
+                let sum = *a + v2 * *b + v3 * *c;
+                *a -= sum * t1;
+                *b -= sum * t2;
+                *c -= sum * t3;
+            }
+        } else {
+            for (a, b) in c0.iter_mut().zip(c1) {
+                let sum = *a + v2 * *b;
+                *a -= sum * t1;
+                *b -= sum * t2;
+            }
+        }
     }
 }
 

@@ -263,7 +263,7 @@ fn eps_pivot(hnorm: f64) -> f64 {
 /// row-wise every step, every solve and the transposed solve run along contiguous memory; held
 /// column by column (as H is), the factorisation strode across the whole matrix at every entry,
 /// which on the 200-odd states of ONERA at 30 stations missed the cache at nearly every access.
-/// The arithmetic is the same, in the same order, either way.
+/// The back-substitution's dot products run in four partial sums ([`dot`]).
 struct HessenbergLu<T> {
     n: usize,
     /// U, row-major n × n (upper triangle used).
@@ -351,14 +351,9 @@ impl<T: ComplexField<RealField = f64> + Copy> HessenbergLu<T> {
             }
         }
         for i in (0..n).rev() {
-            // Row i of U against the entries already solved, last first (the order in which
-            // the column-wise substitution subtracted them).
+            // Row i of U against the entries already solved.
             let row = &self.u[i * n..(i + 1) * n];
-            let mut s = v[i];
-            for j in (i + 1..n).rev() {
-                s -= row[j] * v[j];
-            }
-            v[i] = s / row[i];
+            v[i] = (v[i] - dot(&row[i + 1..], &v[i + 1..])) / row[i];
         }
     }
 
@@ -384,6 +379,26 @@ impl<T: ComplexField<RealField = f64> + Copy> HessenbergLu<T> {
             }
         }
     }
+}
+
+/// `Σ aᵢbᵢ` in four interleaved partial sums. One running sum makes every term wait for the
+/// last addition (the back-substitution's n²/2 terms per solve ran at the adder's latency, not
+/// its throughput); four independent ones keep it busy. A fixed order, so every run and thread
+/// gives the same bits.
+fn dot<T: ComplexField<RealField = f64> + Copy>(a: &[T], b: &[T]) -> T {
+    let mut lanes = [T::zero(); 4];
+    let (a4, b4) = (a.chunks_exact(4), b.chunks_exact(4));
+    let (a_rest, b_rest) = (a4.remainder(), b4.remainder());
+    for (x, y) in a4.zip(b4) {
+        for l in 0..4 {
+            lanes[l] += x[l] * y[l];
+        }
+    }
+    let mut tail = T::zero();
+    for (x, y) in a_rest.iter().zip(b_rest) {
+        tail += *x * *y;
+    }
+    (lanes[0] + lanes[1]) + (lanes[2] + lanes[3]) + tail
 }
 
 /// ‖Hx − λx‖₂ (or ‖Hᵀx − λx‖₂) for upper Hessenberg H.

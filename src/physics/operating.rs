@@ -166,6 +166,7 @@ pub fn steady(p: &ValidPreset, unsteady: Unsteadiness) -> Result<Operation> {
     let mut shape = vec![0.0; 2 * n];
     let mut change = f64::INFINITY;
     let mut relaxation = Relaxation::default();
+    let mut last: Option<System> = None;
     for pass in 1..=MAX_PASSES {
         let deflection: Vec<bem::Deflection> = (0..n)
             .map(|i| bem::Deflection {
@@ -175,7 +176,10 @@ pub fn steady(p: &ValidPreset, unsteady: Unsteadiness) -> Result<Operation> {
             .collect();
         let flow = bem::solve(&rotor, &strips, &deflection, &conditions)?;
         let stations = frozen_inflow(&strips, &flow, conditions.pitch);
-        let system = System::from_parts(Arc::clone(&structure), stations, Box::new(model.clone()))?;
+        let system = match &last {
+            None => System::from_parts(Arc::clone(&structure), stations, Box::new(model.clone())),
+            Some(earlier) => earlier.on_inflow(stations, Box::new(model.clone())),
+        }?;
         let equilibrium = system
             .equilibrium()
             .map_err(|e| e.at(p.operating_point()))?;
@@ -197,6 +201,7 @@ pub fn steady(p: &ValidPreset, unsteady: Unsteadiness) -> Result<Operation> {
             });
         }
         shape = relaxation.step(&shape, &settled);
+        last = Some(system);
     }
     Err(Error::numerical(format!(
         "static aeroelastic equilibrium: the elastic twist had not settled after {MAX_PASSES} \

@@ -45,7 +45,7 @@ pub struct System {
     stations: Vec<Station>,
     model: Box<dyn StripModel>,
     /// The rows e_φ, e_u and e_v that map q to each strip's φ, u and v.
-    rows: Vec<[DVector<f64>; RATES]>,
+    rows: Arc<Vec<[DVector<f64>; RATES]>>,
     /// The same at the tip.
     tip_rows: [DVector<f64>; RATES],
     /// (M − M_a)⁻¹, factored once: every rhs and Jacobian needs it.
@@ -138,29 +138,13 @@ impl System {
             let r = structure.motion_rows(x);
             [r.twist, r.flap, r.edge]
         };
-        let rows: Vec<[DVector<f64>; RATES]> = stations.iter().map(|s| motion(s.x)).collect();
+        let rows: Arc<Vec<_>> = Arc::new(stations.iter().map(|s| motion(s.x)).collect());
         let tip_rows = motion(structure.length());
-        let mut mass = structure.mass().clone();
-        for (s, rows) in stations.iter().zip(&rows) {
-            let ma = model.apparent_mass(s);
-            for l in 0..LOADS {
-                for j in 0..RATES {
-                    if ma[l][j] != 0.0 {
-                        // Loads M_a q̈ move to the left-hand side: M − M_a.
-                        mass.ger(-s.weight * ma[l][j], &rows[l], &rows[j], 1.0);
-                    }
-                }
-            }
-        }
-        check_finite("mass matrix", &mass)?;
-        let mass_inv = mass.clone().lu().try_inverse().ok_or_else(|| {
-            Error::numerical("the mass matrix (structure plus apparent mass) is singular")
-        })?;
-        check_finite("inverse mass matrix", &mass_inv)?;
         let stiffness = structure.stiffness();
         check_finite("stiffness matrix", &stiffness)?;
         let damping = structure.damping().clone();
         check_finite("damping matrix", &damping)?;
+        let mass_inv = mass_inverse(structure.as_ref(), &stations, &rows, model.as_ref())?;
         let ns = model.states_per_station();
         Ok(System {
             structure,
@@ -172,6 +156,36 @@ impl System {
             stiffness,
             damping,
             ns,
+        })
+    }
+
+    /// This system on another inflow: `stations` at the same span positions with their own speed
+    /// and angles, and `model` the same strip model (a steady operating point's next BEM pass,
+    /// docs/model.md §12.6). The structure's rows at the stations and its matrices are shared,
+    /// not rebuilt; only the apparent mass, which turns with the inflow angle, is assembled
+    /// again.
+    pub fn on_inflow(&self, stations: Vec<Station>, model: Box<dyn StripModel>) -> Result<System> {
+        debug_assert!(self
+            .stations
+            .iter()
+            .zip(&stations)
+            .all(|(a, b)| a.x == b.x && a.weight == b.weight));
+        let mass_inv = mass_inverse(
+            self.structure.as_ref(),
+            &stations,
+            &self.rows,
+            model.as_ref(),
+        )?;
+        Ok(System {
+            structure: Arc::clone(&self.structure),
+            stations,
+            model,
+            rows: Arc::clone(&self.rows),
+            tip_rows: self.tip_rows.clone(),
+            mass_inv,
+            stiffness: self.stiffness.clone(),
+            damping: self.damping.clone(),
+            ns: self.ns,
         })
     }
 
@@ -260,8 +274,9 @@ impl System {
     /// before the full load, the error says where and why (static divergence).
     pub fn equilibrium(&self) -> Result<DVector<f64>> {
         let q0 = DVector::zeros(self.nq());
-        let scale = self.load_scale()?;
-        match self.newton(q0, 1.0, scale) {
+        let (rigid, jac) = self.static_residual(&q0, 1.0, true)?;
+        let scale = self.load_scale(&rigid);
+        match self.newton_from(q0, rigid, Some(jac), 1.0, scale) {
             Ok(q) => Ok(self.steady_state_of(&q)),
             Err(_) => self
                 .load_continuation(scale)
@@ -269,26 +284,44 @@ impl System {
         }
     }
 
-    /// Load scale of the convergence test: the rigid (q = 0) load, floored by the stiffness.
-    fn load_scale(&self) -> Result<f64> {
-        let (res, _) = self.static_residual(&DVector::zeros(self.nq()), 1.0, false)?;
-        Ok(res
+    /// Load scale of the convergence test: the rigid (q = 0) load `rigid`, floored by the
+    /// stiffness.
+    fn load_scale(&self, rigid: &DVector<f64>) -> f64 {
+        rigid
             .norm()
             .max(self.stiffness.amax() * 1e-12)
-            .max(f64::MIN_POSITIVE))
+            .max(f64::MIN_POSITIVE)
     }
 
-    /// Newton from `q` on `K q = s Q(q)` at load factor `s`, with a backtracking line search
-    /// (the full Newton step overshoots and cycles on soft blades).
-    fn newton(&self, mut q: DVector<f64>, load: f64, scale: f64) -> Result<DVector<f64>> {
-        let (mut res, mut jac) = self.static_residual(&q, load, true)?;
+    /// Newton from `q` on `K q = s Q(q)` at load factor `s` (see [`System::newton_from`]).
+    fn newton(&self, q: DVector<f64>, load: f64, scale: f64) -> Result<DVector<f64>> {
+        let (res, jac) = self.static_residual(&q, load, true)?;
+        self.newton_from(q, res, Some(jac), load, scale)
+    }
+
+    /// Newton from `q`, whose residual `res` (and tangent `jac`, when known) the caller has, with
+    /// a backtracking line search (the full Newton step overshoots and cycles on soft blades).
+    /// The tangent is assembled only where a step is taken: the residual of an accepted trial
+    /// is the next iterate's, and the affine models converge on their first step, so the
+    /// usual solve assembles one tangent.
+    fn newton_from(
+        &self,
+        mut q: DVector<f64>,
+        mut res: DVector<f64>,
+        mut jac: Option<DMatrix<f64>>,
+        load: f64,
+        scale: f64,
+    ) -> Result<DVector<f64>> {
         for _ in 0..NEWTON_MAX_ITERATIONS {
             let rnorm = res.norm();
             if rnorm <= 1e-12 * scale {
                 return Ok(q);
             }
-            let step = jac
-                .clone()
+            let tangent = match jac.take() {
+                Some(j) => j,
+                None => self.static_residual(&q, load, true)?.1,
+            };
+            let step = tangent
                 .lu()
                 .solve(&(-&res))
                 .filter(|s| s.iter().all(|v| v.is_finite()))
@@ -308,7 +341,7 @@ impl System {
                 let trial = &q + t * &step;
                 let (r, _) = self.static_residual(&trial, load, false)?;
                 if r.norm() <= (1.0 - 1e-4 * t) * rnorm {
-                    q = trial;
+                    (q, res) = (trial, r);
                     break;
                 }
                 t *= 0.5;
@@ -319,7 +352,6 @@ impl System {
                     )));
                 }
             }
-            (res, jac) = self.static_residual(&q, load, true)?;
         }
         Err(Error::numerical(format!(
             "static equilibrium did not converge in {NEWTON_MAX_ITERATIONS} Newton steps \
@@ -845,6 +877,34 @@ impl LinearSystem {
         let q = x.rows(0, self.nq);
         (self.tip_twist.dot(&q), self.tip_flap.dot(&q))
     }
+}
+
+/// `(M − M_a)⁻¹`: the structure's mass with the strips' apparent mass `M_a` moved to the
+/// left-hand side (docs/model.md §5, §12.5).
+fn mass_inverse(
+    structure: &dyn Structure,
+    stations: &[Station],
+    rows: &[[DVector<f64>; RATES]],
+    model: &dyn StripModel,
+) -> Result<DMatrix<f64>> {
+    let mut mass = structure.mass().clone();
+    for (s, rows) in stations.iter().zip(rows) {
+        let ma = model.apparent_mass(s);
+        for l in 0..LOADS {
+            for j in 0..RATES {
+                if ma[l][j] != 0.0 {
+                    // Loads M_a q̈ move to the left-hand side: M − M_a.
+                    mass.ger(-s.weight * ma[l][j], &rows[l], &rows[j], 1.0);
+                }
+            }
+        }
+    }
+    check_finite("mass matrix", &mass)?;
+    let mass_inv = mass.lu().try_inverse().ok_or_else(|| {
+        Error::numerical("the mass matrix (structure plus apparent mass) is singular")
+    })?;
+    check_finite("inverse mass matrix", &mass_inv)?;
+    Ok(mass_inv)
 }
 
 /// Every entry finite, or a numerical error naming the matrix.

@@ -17,6 +17,7 @@ use super::{AeroBlade, AeroSection};
 use crate::error::{Error, Result};
 use crate::numeric::root::brent_with_values;
 use crate::physics::basis::gauss_legendre;
+use rayon::prelude::*;
 use serde::Serialize;
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
 
@@ -176,8 +177,11 @@ pub fn solve(
     }
     let deflected = |i: usize| deflection.get(i).copied().unwrap_or_default();
     let places = placements(rotor, stations, deflected);
+    // Each station's root is its own: the stations share out over the cores (rayon, so a sweep
+    // that already runs its points in parallel is not oversubscribed), in their order, every
+    // flow the same as one pass would give.
     let flows = stations
-        .iter()
+        .par_iter()
         .zip(&places)
         .enumerate()
         .map(|(i, (s, place))| {
