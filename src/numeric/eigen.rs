@@ -7,10 +7,9 @@
 //! iteration) falls back on faer's full decomposition.
 
 use super::balance::{balanced, balancing_scale};
+use super::eigenpairs::eigenpairs;
 use super::faer_evd::real_evd;
-use super::hessenberg::hessenberg_eigenvalues;
 use super::hessenberg_reduction::hessenberg_reduction;
-use super::inverse_iteration::root_vectors;
 use super::isolate::Isolation;
 use crate::error::{Error, Result};
 use nalgebra::{Complex, DMatrix};
@@ -211,10 +210,10 @@ pub(crate) type Decomposition = (
 pub(crate) fn fast_decomposition(b: &DMatrix<f64>, want_left: bool) -> Option<Decomposition> {
     let n = b.nrows();
     let (q, h) = hessenberg_reduction(b);
-    let all = hessenberg_eigenvalues(h.clone())?;
-    // One entry per real root and per conjugate pair (the member with ω > 0).
-    let values: Vec<Complex<f64>> = all.into_iter().filter(|l| l.im >= 0.0).collect();
     let hnorm = h.norm().max(f64::MIN_POSITIVE);
+    // One entry per real root and per conjugate pair (the member with ω > 0), with its vectors
+    // (real roots in real arithmetic, pairs in complex; on two threads, `eigenpairs.rs`).
+    let (values, vectors) = eigenpairs(&h, hnorm, want_left)?;
     let k = values.len();
     let mut xr = DMatrix::<f64>::zeros(n, k);
     let mut xi = DMatrix::<f64>::zeros(n, k);
@@ -223,9 +222,6 @@ pub(crate) fn fast_decomposition(b: &DMatrix<f64>, want_left: bool) -> Option<De
     } else {
         (DMatrix::zeros(n, 0), DMatrix::zeros(n, 0))
     };
-    // Real roots in real arithmetic (a quarter of the work), pairs in complex; whole clusters
-    // on two threads.
-    let vectors = root_vectors(&h, hnorm, &values, want_left)?;
     for (c, (x, w)) in vectors.into_iter().enumerate() {
         for i in 0..n {
             xr[(i, c)] = x[i].re;

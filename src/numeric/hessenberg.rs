@@ -27,7 +27,19 @@ const DAT2: f64 = -0.4375;
 /// or below ε(|h_{k−1,k−1}| + |h_{k,k}|) and Ahues & Tisseur's conservative test. `None` when
 /// an eigenvalue takes more than 30·max(10, n) sweeps ([`ITERATIONS_PER_EIGENVALUE`],
 /// [`MIN_CAP_ORDER`]).
-pub(super) fn hessenberg_eigenvalues(mut h: DMatrix<f64>) -> Option<Vec<Complex<f64>>> {
+pub(super) fn hessenberg_eigenvalues(h: DMatrix<f64>) -> Option<Vec<Complex<f64>>> {
+    hessenberg_eigenvalues_as_found(h, |_, _| {})
+}
+
+/// [`hessenberg_eigenvalues`], telling `found` each eigenvalue as it deflates, with its place
+/// on the diagonal (its index in the returned list): the bottom of the matrix converges first,
+/// so another thread can start on those roots' vectors while the iteration goes on
+/// (`eigenpairs.rs`). A converged value is final; if the iteration later fails, the result is
+/// `None` all the same.
+pub(super) fn hessenberg_eigenvalues_as_found(
+    mut h: DMatrix<f64>,
+    mut found: impl FnMut(usize, Complex<f64>),
+) -> Option<Vec<Complex<f64>>> {
     let n = h.nrows();
     let mut out = vec![Complex::new(0.0, 0.0); n];
     if n == 0 {
@@ -179,11 +191,14 @@ pub(super) fn hessenberg_eigenvalues(mut h: DMatrix<f64>) -> Option<Vec<Complex<
         }
         if l == i {
             out[i] = Complex::new(h[(i, i)], 0.0);
+            found(i, out[i]);
         } else {
             let (a, b) =
                 eigenvalues_2x2(h[(i - 1, i - 1)], h[(i - 1, i)], h[(i, i - 1)], h[(i, i)]);
             out[i - 1] = a;
             out[i] = b;
+            found(i - 1, a);
+            found(i, b);
         }
         kdefl = 0;
         next = l.checked_sub(1);

@@ -15,14 +15,14 @@ const MAX_SOLVES: usize = 4;
 const RESIDUAL_TOLERANCE: f64 = 64.0;
 
 /// Earlier roots within this many ε‖H‖ of a shift share (numerically) its eigenspace.
-const CLUSTER_RADIUS: f64 = 1e3;
+pub(super) const CLUSTER_RADIUS: f64 = 1e3;
 
 /// A right eigenvector and, when asked, the w with wᵀH = λwᵀ (unit 2-norm), of one root.
 pub(super) type RootVectors = (Vec<Complex<f64>>, Option<Vec<Complex<f64>>>);
 
 /// Below this many rows the vectors of all roots are computed on the calling thread: handing half
 /// of them to a second thread costs more than it saves (tens of µs against O(n³) flops).
-const PARALLEL_FROM: usize = 40;
+pub(super) const PARALLEL_FROM: usize = 40;
 
 /// The vectors of every root in `values` (real roots in real arithmetic, pairs in complex), or
 /// `None` if any fails its residual check.
@@ -57,34 +57,51 @@ pub(super) fn root_vectors(
 }
 
 /// The vectors of the roots `group` (indices into `values`, in order), one sequential pass.
-fn group_vectors(
+pub(super) fn group_vectors(
     h: &DMatrix<f64>,
     hnorm: f64,
     values: &[Complex<f64>],
     group: &[usize],
     want_left: bool,
 ) -> Option<Vec<RootVectors>> {
-    let mut real = InverseIteration::<f64>::new(h, hnorm);
-    let mut complex = InverseIteration::<Complex<f64>>::new(h, hnorm);
+    let mut solver = RootSolver::new(h, hnorm);
     group
         .iter()
-        .map(|&k| {
-            let lambda = values[k];
-            if lambda.im == 0.0 {
-                let (x, w) = real.vectors(lambda.re, want_left)?;
-                let up = |v: Vec<f64>| v.into_iter().map(|r| Complex::new(r, 0.0)).collect();
-                Some((up(x), w.map(up)))
-            } else {
-                complex.vectors(lambda, want_left)
-            }
-        })
+        .map(|&k| solver.vectors(values[k], want_left))
         .collect()
 }
 
-/// Two lists of root indices, each in ascending order, that never separate two roots of one
-/// cluster (same kind, real or complex, and within `radius` of each other, transitively), with
-/// about equal work: a complex root costs about four real ones (complex arithmetic).
-fn balanced_halves(values: &[Complex<f64>], radius: f64) -> (Vec<usize>, Vec<usize>) {
+/// Inverse iteration for roots of either kind on one matrix: real roots in real arithmetic (a
+/// quarter of the work), pairs in complex.
+pub(super) struct RootSolver<'a> {
+    real: InverseIteration<'a, f64>,
+    complex: InverseIteration<'a, Complex<f64>>,
+}
+
+impl<'a> RootSolver<'a> {
+    pub(super) fn new(h: &'a DMatrix<f64>, hnorm: f64) -> Self {
+        RootSolver {
+            real: InverseIteration::new(h, hnorm),
+            complex: InverseIteration::new(h, hnorm),
+        }
+    }
+
+    /// The vectors of root `lambda` (see [`InverseIteration::vectors`]).
+    pub(super) fn vectors(&mut self, lambda: Complex<f64>, want_left: bool) -> Option<RootVectors> {
+        if lambda.im == 0.0 {
+            let (x, w) = self.real.vectors(lambda.re, want_left)?;
+            let up = |v: Vec<f64>| v.into_iter().map(|r| Complex::new(r, 0.0)).collect();
+            Some((up(x), w.map(up)))
+        } else {
+            self.complex.vectors(lambda, want_left)
+        }
+    }
+}
+
+/// Each root's cluster, as the index of one member: roots of one kind (real or complex) within
+/// `radius` of each other, transitively. The roots whose vectors depend on each other
+/// ([`InverseIteration::vectors`]).
+pub(super) fn clusters(values: &[Complex<f64>], radius: f64) -> Vec<usize> {
     let n = values.len();
     let mut cluster: Vec<usize> = (0..n).collect();
     for k in 0..n {
@@ -100,6 +117,15 @@ fn balanced_halves(values: &[Complex<f64>], radius: f64) -> (Vec<usize>, Vec<usi
             }
         }
     }
+    cluster
+}
+
+/// Two lists of root indices, each in ascending order, that never separate two roots of one
+/// cluster (same kind, real or complex, and within `radius` of each other, transitively), with
+/// about equal work: a complex root costs about four real ones (complex arithmetic).
+fn balanced_halves(values: &[Complex<f64>], radius: f64) -> (Vec<usize>, Vec<usize>) {
+    let n = values.len();
+    let cluster = clusters(values, radius);
     let cost = |k: usize| if values[k].im == 0.0 { 1 } else { 4 };
     let mut load = [0usize; 2];
     let mut side = vec![0usize; n];
@@ -429,14 +455,14 @@ fn residual<T: ComplexField<RealField = f64> + Copy>(
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
     use crate::numeric::hessenberg::hessenberg_eigenvalues;
 
     /// A 64-state matrix (above [`PARALLEL_FROM`]) with a cluster of four identical
     /// oscillators, a cluster of six identical real roots, and distinct roots coupled to
     /// them, in Hessenberg form, with its roots one per pair.
-    fn clustered() -> (DMatrix<f64>, Vec<Complex<f64>>) {
+    pub(crate) fn clustered() -> (DMatrix<f64>, Vec<Complex<f64>>) {
         let n = 64;
         let mut a = DMatrix::<f64>::zeros(n, n);
         for k in 0..4 {

@@ -12,6 +12,7 @@ pub(crate) mod balance;
 pub mod banded;
 pub mod cholesky;
 pub(crate) mod eigen;
+mod eigenpairs;
 pub(crate) mod faer_evd;
 mod hessenberg;
 mod hessenberg_reduction;

@@ -276,7 +276,7 @@ impl System {
         let q0 = DVector::zeros(self.nq());
         let (rigid, jac) = self.static_residual(&q0, 1.0, true)?;
         let scale = self.load_scale(&rigid);
-        match self.newton_from(q0, rigid, Some(jac), 1.0, scale) {
+        match self.newton_from(q0, rigid, jac, 1.0, scale) {
             Ok(q) => Ok(self.steady_state_of(&q)),
             Err(_) => self
                 .load_continuation(scale)
@@ -296,22 +296,23 @@ impl System {
     /// Newton from `q` on `K q = s Q(q)` at load factor `s` (see [`System::newton_from`]).
     fn newton(&self, q: DVector<f64>, load: f64, scale: f64) -> Result<DVector<f64>> {
         let (res, jac) = self.static_residual(&q, load, true)?;
-        self.newton_from(q, res, Some(jac), load, scale)
+        self.newton_from(q, res, jac, load, scale)
     }
 
-    /// Newton from `q`, whose residual `res` (and tangent `jac`, when known) the caller has, with
-    /// a backtracking line search (the full Newton step overshoots and cycles on soft blades).
-    /// The tangent is assembled only where a step is taken: the residual of an accepted trial
-    /// is the next iterate's, and the affine models converge on their first step, so the
+    /// Newton from `q`, whose residual `res` and tangent `jac` the caller has, with a
+    /// backtracking line search (the full Newton step overshoots and cycles on soft blades).
+    /// Later tangents are assembled only where a step is taken: the residual of an accepted
+    /// trial is the next iterate's, and the affine models converge on their first step, so the
     /// usual solve assembles one tangent.
     fn newton_from(
         &self,
         mut q: DVector<f64>,
         mut res: DVector<f64>,
-        mut jac: Option<DMatrix<f64>>,
+        jac: DMatrix<f64>,
         load: f64,
         scale: f64,
     ) -> Result<DVector<f64>> {
+        let mut jac = Some(jac);
         for _ in 0..NEWTON_MAX_ITERATIONS {
             let rnorm = res.norm();
             if rnorm <= 1e-12 * scale {
