@@ -105,6 +105,54 @@ fn the_state_matrix_is_the_jacobian_of_the_nonlinear_right_hand_side() {
     }
 }
 
+/// A BEM pass moves the system onto new inflow with `System::on_inflow`, sharing the first
+/// pass's structure rows and matrices: it must be exactly the system built from parts on those
+/// stations (same equilibrium, state matrix and right-hand side, bit for bit), apparent mass
+/// included, which turns with the inflow angle.
+#[test]
+fn a_system_moved_onto_new_inflow_is_the_one_built_on_it() {
+    for unsteadiness in [Unsteadiness::QuasiSteady, Unsteadiness::Theodorsen] {
+        let first = nrel_system(unsteadiness);
+        let model = BladeElement {
+            sections: first
+                .stations()
+                .iter()
+                .map(|s| ElementSection {
+                    chord: 4.6 - 3.0 * s.x / first.structure().length(),
+                    ac_ahead: 0.1,
+                    polar: du21(),
+                })
+                .collect(),
+            air_density: 1.225,
+            unsteadiness,
+        };
+        // Another inflow: faster and turned by 2°, as the next pass's BEM would give.
+        let moved: Vec<_> = first
+            .stations()
+            .iter()
+            .map(|s| {
+                let mut t = s.clone();
+                t.v0 *= 1.1;
+                t.psi += 2f64.to_radians();
+                t.alpha_r += 2f64.to_radians();
+                t
+            })
+            .collect();
+        let shared = first
+            .on_inflow(moved.clone(), Box::new(model.clone()))
+            .unwrap();
+        let structure = for_preset(&Preset::load("nrel5mw", &[]).unwrap()).unwrap();
+        let built = System::from_parts(structure, moved, Box::new(model)).unwrap();
+        let x = built.equilibrium().unwrap();
+        assert_eq!(shared.equilibrium().unwrap(), x);
+        assert_eq!(shared.jacobian(&x), built.jacobian(&x));
+        let wobble = DVector::from_fn(x.len(), |i, _| 1e-3 * ((i as f64) * 0.7).sin());
+        assert_eq!(shared.rhs(&(&x + &wobble)), built.rhs(&(&x + wobble)));
+        // And it is a different system from the first one.
+        assert_ne!(first.jacobian(&x), built.jacobian(&x));
+    }
+}
+
 #[test]
 fn every_mode_is_damped_by_the_air_flap_far_more_than_edge() {
     let system = nrel_system(Unsteadiness::QuasiSteady);
