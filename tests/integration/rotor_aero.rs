@@ -131,7 +131,7 @@ fn a_system_moved_onto_new_inflow_is_the_one_built_on_it() {
             .stations()
             .iter()
             .map(|s| {
-                let mut t = s.clone();
+                let mut t = *s;
                 t.v0 *= 1.1;
                 t.psi += 2f64.to_radians();
                 t.alpha_r += 2f64.to_radians();
