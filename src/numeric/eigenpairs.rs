@@ -7,7 +7,10 @@
 //! caller is not itself one of the thread pool's workers (the explorer's solve, one command's
 //! analysis: a sweep's points already fill the pool), a second thread starts on each root's
 //! vectors as the iteration finds it, and once the iteration ends both threads share what is
-//! left. Each vector comes out bit for bit as one sequential pass gives it: a root's vectors
+//! left. The iteration stays on the caller's thread and starts at once; the second thread is a job
+//! on rayon's pool ([`Helper`]). Handing both halves to the pool with `rayon::join` instead put
+//! the wake-up of a sleeping worker, and of the caller at the end, on the critical path (on the
+//! 2-core VM that made the key-press bench bimodal, 2.7 ms or 4 ms). Each vector comes out bit for bit as one sequential pass gives it: a root's vectors
 //! depend only on its own shift and the earlier members of its cluster of (numerically)
 //! repeated roots, so a root alone in its cluster is final as streamed, and every cluster with
 //! more than one member is computed again afterwards, whole and in order.
@@ -18,6 +21,8 @@ use super::inverse_iteration::{
 };
 use crossbeam_channel::Receiver;
 use nalgebra::{Complex, DMatrix};
+use std::sync::atomic::{AtomicU8, Ordering};
+use std::sync::Arc;
 
 /// The eigenvalues of `h` (one per real root and per conjugate pair, the member with ω ≥ 0, in
 /// the order of the diagonal) and each one's right and, when `want_left`, left vectors; `None`
@@ -52,28 +57,17 @@ fn overlapped(
     want_left: bool,
 ) -> Option<(Vec<Complex<f64>>, Vec<RootVectors>)> {
     let (sender, receiver) = crossbeam_channel::unbounded::<Found>();
-    let other = receiver.clone();
-    let work = |found: &Receiver<Found>| -> Vec<(usize, Option<RootVectors>)> {
-        let mut solver = RootSolver::new(h, hnorm);
-        found
-            .iter()
-            .map(|(place, lambda)| (place, solver.vectors(lambda, want_left)))
-            .collect()
-    };
-    let ((all, mine), theirs) = rayon::join(
-        || {
-            let all = hessenberg_eigenvalues_as_found(h.clone(), |place, lambda| {
-                if lambda.im >= 0.0 {
-                    // The receivers live until both threads return.
-                    let _ = sender.send((place, lambda));
-                }
-            });
-            // The iteration is over: once the queue is empty, both threads stop.
-            drop(sender);
-            (all, work(&receiver))
-        },
-        || work(&other),
-    );
+    let helper = Helper::start(Arc::new(h.clone()), hnorm, want_left, receiver.clone());
+    let all = hessenberg_eigenvalues_as_found(h.clone(), |place, lambda| {
+        if lambda.im >= 0.0 {
+            // The receivers live until both threads are done with them.
+            let _ = sender.send((place, lambda));
+        }
+    });
+    // The iteration is over: once the queue is empty, both threads stop.
+    drop(sender);
+    let mine = vectors_of_found(h, hnorm, want_left, &receiver);
+    let theirs = helper.finish();
     let all = all?;
     let mut streamed: Vec<Option<Option<RootVectors>>> = vec![None; all.len()];
     for (place, vectors) in mine.into_iter().chain(theirs) {
@@ -97,6 +91,64 @@ fn overlapped(
     }
     let vectors = vectors.into_iter().collect::<Option<Vec<_>>>()?;
     Some((values, vectors))
+}
+
+/// Inverse iteration on every root that comes down `found`, until it is closed and empty.
+fn vectors_of_found(
+    h: &DMatrix<f64>,
+    hnorm: f64,
+    want_left: bool,
+    found: &Receiver<Found>,
+) -> Vec<(usize, Option<RootVectors>)> {
+    let mut solver = RootSolver::new(h, hnorm);
+    found
+        .iter()
+        .map(|(place, lambda)| (place, solver.vectors(lambda, want_left)))
+        .collect()
+}
+
+/// The second thread of [`overlapped`]: a job on rayon's pool, whose threads exist already (a
+/// thread of its own cost about 0.15 ms to start on the 2-core VM, a tenth of the eigen-analysis).
+/// The pool may be busy (a Campbell diagram computing while the explorer solves a key press), so
+/// the caller never waits for the job to start: once the caller has drained the queue itself, a
+/// job that has not started is called off and finds nothing to do.
+struct Helper {
+    state: Arc<AtomicU8>,
+    results: Receiver<Vec<(usize, Option<RootVectors>)>>,
+}
+
+const WAITING: u8 = 0;
+const STARTED: u8 = 1;
+const CALLED_OFF: u8 = 2;
+
+impl Helper {
+    fn start(h: Arc<DMatrix<f64>>, hnorm: f64, want_left: bool, found: Receiver<Found>) -> Helper {
+        let state = Arc::new(AtomicU8::new(WAITING));
+        let (send, results) = crossbeam_channel::bounded(1);
+        let job_state = Arc::clone(&state);
+        rayon::spawn(move || {
+            if job_state
+                .compare_exchange(WAITING, STARTED, Ordering::AcqRel, Ordering::Acquire)
+                .is_ok()
+            {
+                let _ = send.send(vectors_of_found(&h, hnorm, want_left, &found));
+            }
+        });
+        Helper { state, results }
+    }
+
+    /// The helper's vectors: none if it never started (the caller did them all), and none if it
+    /// died (inverse iteration returns `None` rather than panic; its roots would then have no
+    /// vectors and the caller falls back to faer).
+    fn finish(self) -> Vec<(usize, Option<RootVectors>)> {
+        match self
+            .state
+            .compare_exchange(WAITING, CALLED_OFF, Ordering::AcqRel, Ordering::Acquire)
+        {
+            Ok(_) => Vec::new(),
+            Err(_) => self.results.recv().unwrap_or_default(),
+        }
+    }
 }
 
 #[cfg(test)]
@@ -125,5 +177,40 @@ mod tests {
             .install(|| eigenpairs(&h, hnorm, false).unwrap());
         let right_only = group_vectors(&h, hnorm, &values, &all, false).unwrap();
         assert_eq!(pooled.1, right_only);
+    }
+
+    /// With every thread of the pool busy, the helper cannot start: the caller does every root
+    /// itself and calls the helper off instead of waiting for it (the explorer's key press while a
+    /// Campbell diagram fills the pool).
+    #[test]
+    fn a_busy_pool_costs_the_overlap_not_the_answer() {
+        let (h, values) = clustered();
+        let hnorm = h.norm();
+        let all: Vec<usize> = (0..values.len()).collect();
+        let sequential = group_vectors(&h, hnorm, &values, &all, true).unwrap();
+        let (release, hold) = crossbeam_channel::unbounded::<()>();
+        let (busy, all_busy) = crossbeam_channel::unbounded::<()>();
+        for _ in 0..rayon::current_num_threads() {
+            let (hold, busy) = (hold.clone(), busy.clone());
+            rayon::spawn(move || {
+                let _ = busy.send(());
+                let _ = hold.recv();
+            });
+        }
+        for _ in 0..rayon::current_num_threads() {
+            all_busy.recv().unwrap();
+        }
+        let (done, result) = crossbeam_channel::bounded(1);
+        let h_owned = h.clone();
+        std::thread::spawn(move || {
+            let _ = done.send(overlapped(&h_owned, hnorm, true));
+        });
+        let answer = result.recv_timeout(std::time::Duration::from_secs(20));
+        drop(release);
+        let (found, vectors) = answer
+            .expect("the caller waited for a helper that could not start")
+            .unwrap();
+        assert_eq!(found, values);
+        assert_eq!(vectors, sequential);
     }
 }

@@ -17,7 +17,6 @@ use super::{AeroBlade, AeroSection};
 use crate::error::{Error, Result};
 use crate::numeric::root::brent_with_values;
 use crate::physics::basis::gauss_legendre;
-use rayon::prelude::*;
 use serde::Serialize;
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
 
@@ -177,11 +176,8 @@ pub fn solve(
     }
     let deflected = |i: usize| deflection.get(i).copied().unwrap_or_default();
     let places = placements(rotor, stations, deflected);
-    // Each station's root is its own: the stations share out over the cores (rayon, so a sweep
-    // that already runs its points in parallel is not oversubscribed), in their order, every
-    // flow the same as one pass would give.
     let flows = stations
-        .par_iter()
+        .iter()
         .zip(&places)
         .enumerate()
         .map(|(i, (s, place))| {
