@@ -7,13 +7,15 @@
 //! caller is not itself one of the thread pool's workers (the explorer's solve, one command's
 //! analysis: a sweep's points already fill the pool), a second thread starts on each root's
 //! vectors as the iteration finds it, and once the iteration ends both threads share what is
-//! left. The iteration stays on the caller's thread and starts at once; the second thread is a job
-//! on rayon's pool ([`Helper`]). Handing both halves to the pool with `rayon::join` instead put
-//! the wake-up of a sleeping worker, and of the caller at the end, on the critical path (on the
-//! 2-core VM that made the key-press bench bimodal, 2.7 ms or 4 ms). Each vector comes out bit for bit as one sequential pass gives it: a root's vectors
-//! depend only on its own shift and the earlier members of its cluster of (numerically)
-//! repeated roots, so a root alone in its cluster is final as streamed, and every cluster with
-//! more than one member is computed again afterwards, whole and in order.
+//! left. The iteration stays on the caller's thread and starts at once; the second thread is a
+//! job on rayon's pool ([`Helper`]). Handing both halves to the pool with `rayon::join` instead
+//! put the wake-up of a sleeping worker, and of the caller at the end, on the critical path (on
+//! the 2-core VM that made the key-press bench bimodal, 2.7 ms or 4 ms).
+//!
+//! Each vector comes out bit for bit as one sequential pass gives it: a root's vectors depend
+//! only on its own shift and the earlier members of its cluster of (numerically) repeated roots,
+//! so a root alone in its cluster is final as streamed, and every cluster with more than one
+//! member is computed again afterwards, whole and in order.
 
 use super::hessenberg::{hessenberg_eigenvalues, hessenberg_eigenvalues_as_found};
 use super::inverse_iteration::{
