@@ -321,6 +321,28 @@ pub(crate) mod tests {
         assert!((p[2] - 1.0).abs() < 1e-12);
     }
 
+    /// An `n × n` state matrix whose first states are `oscillators` identical decoupled
+    /// oscillators `ẍ = k x + c ẋ` (`[k, c]`), then `reals` identical real roots `root`; the rest
+    /// zero, for the caller to fill.
+    pub(crate) fn repeated_roots(
+        n: usize,
+        oscillators: usize,
+        [k, c]: [f64; 2],
+        reals: usize,
+        root: f64,
+    ) -> DMatrix<f64> {
+        let mut a = DMatrix::<f64>::zeros(n, n);
+        for o in 0..oscillators {
+            a[(2 * o, 2 * o + 1)] = 1.0;
+            a[(2 * o + 1, 2 * o)] = k;
+            a[(2 * o + 1, 2 * o + 1)] = c;
+        }
+        for r in 2 * oscillators..2 * oscillators + reals {
+            a[(r, r)] = root;
+        }
+        a
+    }
+
     /// Every returned pair satisfies A r = λ r (and lᴴ A = λ lᴴ) to round-off.
     pub(crate) fn assert_eigenpairs(a: &DMatrix<f64>, r: &Roots, tol: f64) {
         let ac = a.map(|v| Complex::new(v, 0.0));
@@ -344,15 +366,7 @@ pub(crate) mod tests {
     #[test]
     fn repeated_roots_get_independent_vectors() {
         // Two identical decoupled oscillators and a triple real root.
-        let mut a = DMatrix::<f64>::zeros(7, 7);
-        for k in 0..2 {
-            a[(2 * k, 2 * k + 1)] = 1.0;
-            a[(2 * k + 1, 2 * k)] = -4.0;
-            a[(2 * k + 1, 2 * k + 1)] = -0.2;
-        }
-        for k in 4..7 {
-            a[(k, k)] = -3.0;
-        }
+        let a = repeated_roots(7, 2, [-4.0, -0.2], 3, -3.0);
         assert!(fast_decomposition(&a, true).is_some());
         let r = eigen_decomposition(&a).unwrap();
         assert_eq!(r.values.len(), 5);

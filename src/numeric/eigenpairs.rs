@@ -71,19 +71,17 @@ fn overlapped(
     let mine = vectors_of_found(h, hnorm, want_left, &receiver);
     let theirs = helper.finish();
     let all = all?;
-    let mut streamed: Vec<Option<Option<RootVectors>>> = vec![None; all.len()];
+    // By place on the diagonal; a root whose vectors failed stays `None` like one never computed.
+    let mut streamed: Vec<Option<RootVectors>> = vec![None; all.len()];
     for (place, vectors) in mine.into_iter().chain(theirs) {
-        streamed[place] = Some(vectors);
+        streamed[place] = vectors;
     }
-    let places: Vec<usize> = (0..all.len()).filter(|&p| all[p].im >= 0.0).collect();
     let values = one_per_pair(&all);
-    let mut vectors: Vec<Option<RootVectors>> = places
-        .iter()
-        .map(|&p| streamed[p].take().flatten())
+    let mut vectors: Vec<Option<RootVectors>> = (0..all.len())
+        .filter(|&p| all[p].im >= 0.0)
+        .map(|p| streamed[p].take())
         .collect();
-    let cluster = clusters(&values, CLUSTER_RADIUS * f64::EPSILON * hnorm);
-    for label in 0..values.len() {
-        let members: Vec<usize> = (0..values.len()).filter(|&k| cluster[k] == label).collect();
+    for members in clusters(&values, CLUSTER_RADIUS * f64::EPSILON * hnorm) {
         if members.len() > 1 {
             let again = group_vectors(h, hnorm, &values, &members, want_left)?;
             for (k, v) in members.into_iter().zip(again) {
@@ -158,13 +156,19 @@ mod tests {
     use super::*;
     use crate::numeric::inverse_iteration::tests::clustered;
 
-    #[test]
-    fn overlapped_gives_the_vectors_of_one_pass_bit_for_bit() {
-        // Clusters of repeated roots (streamed, then computed again) beside distinct ones.
+    /// Clusters of repeated roots (streamed, then computed again) beside distinct ones: the
+    /// matrix, its norm, its roots and their vectors (right and left) from one sequential pass.
+    fn clustered_with_one_pass() -> (DMatrix<f64>, f64, Vec<Complex<f64>>, Vec<RootVectors>) {
         let (h, values) = clustered();
         let hnorm = h.norm();
         let all: Vec<usize> = (0..values.len()).collect();
         let sequential = group_vectors(&h, hnorm, &values, &all, true).unwrap();
+        (h, hnorm, values, sequential)
+    }
+
+    #[test]
+    fn overlapped_gives_the_vectors_of_one_pass_bit_for_bit() {
+        let (h, hnorm, values, sequential) = clustered_with_one_pass();
         let (found, vectors) = overlapped(&h, hnorm, true).unwrap();
         assert_eq!(found, values);
         assert_eq!(vectors, sequential);
@@ -177,6 +181,7 @@ mod tests {
             .build()
             .unwrap()
             .install(|| eigenpairs(&h, hnorm, false).unwrap());
+        let all: Vec<usize> = (0..values.len()).collect();
         let right_only = group_vectors(&h, hnorm, &values, &all, false).unwrap();
         assert_eq!(pooled.1, right_only);
     }
@@ -186,10 +191,7 @@ mod tests {
     /// Campbell diagram fills the pool).
     #[test]
     fn a_busy_pool_costs_the_overlap_not_the_answer() {
-        let (h, values) = clustered();
-        let hnorm = h.norm();
-        let all: Vec<usize> = (0..values.len()).collect();
-        let sequential = group_vectors(&h, hnorm, &values, &all, true).unwrap();
+        let (h, hnorm, values, sequential) = clustered_with_one_pass();
         let (release, hold) = crossbeam_channel::unbounded::<()>();
         let (busy, all_busy) = crossbeam_channel::unbounded::<()>();
         for _ in 0..rayon::current_num_threads() {

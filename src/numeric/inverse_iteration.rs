@@ -98,47 +98,44 @@ impl<'a> RootSolver<'a> {
     }
 }
 
-/// Each root's cluster, as the index of one member: roots of one kind (real or complex) within
-/// `radius` of each other, transitively. The roots whose vectors depend on each other
-/// ([`InverseIteration::vectors`]).
-pub(super) fn clusters(values: &[Complex<f64>], radius: f64) -> Vec<usize> {
+/// The clusters of `values`, each a list of root indices in ascending order: roots of one kind
+/// (real or complex) within `radius` of each other, transitively. The roots whose vectors depend
+/// on each other ([`InverseIteration::vectors`]).
+pub(super) fn clusters(values: &[Complex<f64>], radius: f64) -> Vec<Vec<usize>> {
     let n = values.len();
-    let mut cluster: Vec<usize> = (0..n).collect();
+    let mut label: Vec<usize> = (0..n).collect();
     for k in 0..n {
         for j in 0..k {
             let same_kind = (values[j].im == 0.0) == (values[k].im == 0.0);
             if same_kind && (values[j] - values[k]).norm() <= radius {
                 // Relabel k's cluster as j's (n is a few hundred at most).
-                let (from, to) = (cluster[k], cluster[j]);
-                cluster
+                let (from, to) = (label[k], label[j]);
+                label
                     .iter_mut()
                     .filter(|c| **c == from)
                     .for_each(|c| *c = to);
             }
         }
     }
-    cluster
+    (0..n)
+        .map(|c| (0..n).filter(|&k| label[k] == c).collect::<Vec<_>>())
+        .filter(|members| !members.is_empty())
+        .collect()
 }
 
 /// Two lists of root indices, each in ascending order, that never separate two roots of one
 /// cluster (same kind, real or complex, and within `radius` of each other, transitively), with
 /// about equal work: a complex root costs about four real ones (complex arithmetic).
 fn balanced_halves(values: &[Complex<f64>], radius: f64) -> (Vec<usize>, Vec<usize>) {
-    let n = values.len();
-    let cluster = clusters(values, radius);
     let cost = |k: usize| if values[k].im == 0.0 { 1 } else { 4 };
     let mut load = [0usize; 2];
-    let mut side = vec![0usize; n];
-    for c in 0..n {
-        let members: Vec<usize> = (0..n).filter(|&k| cluster[k] == c).collect();
-        if members.is_empty() {
-            continue;
-        }
+    let mut side = vec![0usize; values.len()];
+    for members in clusters(values, radius) {
         let lighter = usize::from(load[1] < load[0]);
         load[lighter] += members.iter().map(|&k| cost(k)).sum::<usize>();
         members.iter().for_each(|&k| side[k] = lighter);
     }
-    (0..n).partition(|&k| side[k] == 0)
+    (0..values.len()).partition(|&k| side[k] == 0)
 }
 
 /// Inverse iteration on one upper Hessenberg matrix for a sequence of shifts (real `f64` or
@@ -457,6 +454,7 @@ fn residual<T: ComplexField<RealField = f64> + Copy>(
 #[cfg(test)]
 pub(super) mod tests {
     use super::*;
+    use crate::numeric::eigen::tests::repeated_roots;
     use crate::numeric::hessenberg::hessenberg_eigenvalues;
 
     /// A 64-state matrix (above [`PARALLEL_FROM`]) with a cluster of four identical
@@ -464,15 +462,7 @@ pub(super) mod tests {
     /// them, in Hessenberg form, with its roots one per pair.
     pub(crate) fn clustered() -> (DMatrix<f64>, Vec<Complex<f64>>) {
         let n = 64;
-        let mut a = DMatrix::<f64>::zeros(n, n);
-        for k in 0..4 {
-            a[(2 * k, 2 * k + 1)] = 1.0;
-            a[(2 * k + 1, 2 * k)] = -9.0;
-            a[(2 * k + 1, 2 * k + 1)] = -0.3;
-        }
-        for k in 8..14 {
-            a[(k, k)] = -2.0;
-        }
+        let mut a = repeated_roots(n, 4, [-9.0, -0.3], 6, -2.0);
         // The rest: distinct roots, coupled one way into the clusters so that these stay exact.
         for i in 14..n {
             for j in 0..n {
