@@ -114,8 +114,9 @@ pub enum Command {
         #[arg(long)]
         json: bool,
     },
-    /// Steady operating point of the rotor (BEM, rigid blade): power, thrust, torque, tip speed
-    /// ratio and the flow at every station; with --vary, power and thrust curves.
+    /// Steady operating point of the rotor (BEM on the blade in its static aeroelastic
+    /// equilibrium): power, thrust, torque, tip speed ratio, tip deflection and the flow at every
+    /// station; with --vary, power and thrust curves.
     Operating {
         #[command(flatten)]
         preset: PresetArgs,
