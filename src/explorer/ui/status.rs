@@ -111,11 +111,7 @@ fn onward(state: &AppState, job: &BoundaryJob, b: &Boundary) -> Onward {
         });
     };
     let kind = kind_word(b);
-    let pct = if job.current.abs() > 1e-12 {
-        format!(", {:+.0} %", 100.0 * (c - job.current) / job.current.abs())
-    } else {
-        String::new()
-    };
+    let pct = distance(job.key, job.current, c);
     // Overspeed: a real blade's margin is a multiple of its rated rotor speed.
     let rated = state.preset.operating.rated_rotor_speed;
     if job.key == "operating.rotor_speed" && rated > 0.0 && !job.unstable {
@@ -138,6 +134,20 @@ fn onward(state: &AppState, job: &BoundaryJob, b: &Boundary) -> Onward {
     } else {
         format!("{kind} at {}{pct}{}", with_unit(job.key, c), mode_note(b))
     })
+}
+
+/// How far the boundary `c` lies from the current value: relative for a speed (", +45 %"), whose
+/// zero is physical; in the key's own unit for an angle (", +18.1 deg"), whose zero is only a
+/// convention (a pitch of 0.5° would read +7000 %).
+fn distance(key: &str, current: f64, c: f64) -> String {
+    if unit(key) == "deg" {
+        let d = decimals(key);
+        format!(", {:+.d$} deg", c - current)
+    } else if current.abs() > 1e-12 {
+        format!(", {:+.0} %", 100.0 * (c - current) / current.abs())
+    } else {
+        String::new()
+    }
 }
 
 /// The wind-speed margin along the schedule: the lowest wind between cut-in and cut-out at
@@ -329,3 +339,18 @@ const HINTS: [&str; 3] = [
     "←→ adjust  ↑↓ select  a aero  k kick  f boundary  c Campbell  s shape  space pause  ? help  q quit",
     "←→ adjust ↑↓ select a aero k kick c Campbell s shape ? help q quit",
 ];
+
+#[cfg(test)]
+mod tests {
+    use super::distance;
+
+    #[test]
+    fn a_margin_in_angle_is_a_difference_and_in_speed_a_ratio() {
+        // A pitch of 0.5° with flutter at 35.5°: 35 degrees away, not "+7000 %".
+        assert_eq!(distance("operating.pitch", 0.5, 35.5), ", +35.0 deg");
+        assert_eq!(distance("section.ply_angle", 45.0, 30.0), ", -15.0 deg");
+        assert_eq!(distance("operating.wind_speed", 10.0, 15.0), ", +50 %");
+        // No ratio to a zero speed.
+        assert_eq!(distance("operating.tunnel_speed", 0.0, 137.0), "");
+    }
+}
