@@ -38,8 +38,19 @@ fn mode_panels(s: &TrackedSweep, x_label: &str) -> (Panel, Panel) {
         Mark::Line
     };
     let on_scale = s.campbell_modes();
-    for (i, m) in s.modes.iter().enumerate() {
-        let color = PALETTE[i % PALETTE.len()];
+    // Lowest mode first, in the legend and in the palette: the modes on the frequency scale (lowest
+    // typical frequency first), then the others. A legend the panel's height cuts short then
+    // leaves out high modes, not flap 1, and the modes drawn on the frequency scale never share
+    // a colour.
+    let order: Vec<usize> = on_scale
+        .shown
+        .iter()
+        .copied()
+        .chain((0..s.modes.len()).filter(|i| !on_scale.shown.contains(i)))
+        .collect();
+    for (rank, &i) in order.iter().enumerate() {
+        let m = &s.modes[i];
+        let color = PALETTE[rank % PALETTE.len()];
         if on_scale.shown.contains(&i) {
             freq.series.push(
                 Series::from_xy(&m.label, &s.values, &m.frequency_hz, mark).with_color(color),

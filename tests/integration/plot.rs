@@ -441,7 +441,7 @@ mod from_results {
     use flutterscope::analysis::simulate::{Response, RunStatus};
     use flutterscope::analysis::sweep::{RowStatus, SweepRow, TrackedMode, TrackedSweep};
     use flutterscope::plot::from_results;
-    use flutterscope::plot::GuideKind;
+    use flutterscope::plot::{GuideKind, PALETTE};
 
     fn mode(label: &str, f: Vec<f64>, z: Vec<f64>) -> TrackedMode {
         let re = z.iter().map(|z| -z).collect();
@@ -503,6 +503,25 @@ mod from_results {
         assert_eq!(labels, ["1P", "3P", "6P"]);
         assert_eq!(freq.y_range.map(|r| r.0), Some(0.0));
         assert!(fig.title.contains("operating schedule"));
+    }
+
+    /// The legend (on the damping panel) and the colours start from the lowest mode, whatever
+    /// order the sweep holds its modes in: a legend cut short leaves out the high modes.
+    #[test]
+    fn campbell_legend_and_colours_go_lowest_mode_first() {
+        let mut sweep = rotor_sweep();
+        sweep.modes.reverse();
+        let fig = from_results::sweep("test", &sweep);
+        let (freq, damp) = (&fig.panels[0], &fig.panels[1]);
+        let names: Vec<&str> = damp.series.iter().map(|s| s.name.as_str()).collect();
+        assert_eq!(names, ["flap 1", "flap 2", "torsion 1"]);
+        let drawn: Vec<&str> = freq.series.iter().map(|s| s.name.as_str()).collect();
+        assert_eq!(drawn, ["flap 1", "flap 2"]);
+        // One colour per mode, the same in both panels, the palette's first for the lowest.
+        assert_eq!(damp.series[0].style.color, Some(PALETTE[0]));
+        assert_eq!(freq.series[0].style.color, damp.series[0].style.color);
+        assert_eq!(freq.series[1].style.color, damp.series[1].style.color);
+        assert_ne!(damp.series[0].style.color, damp.series[1].style.color);
     }
 
     #[test]
