@@ -29,6 +29,7 @@ use crate::physics::structure::for_preset;
 use crate::physics::system::System;
 use crate::preset::{AeroModel, Schedule, ValidPreset};
 use nalgebra::{DMatrix, DVector};
+use std::collections::VecDeque;
 use std::sync::Arc;
 
 /// Largest change of the elastic twist at any station (rad), or of its flap over the tip radius,
@@ -222,9 +223,9 @@ pub fn steady(p: &ValidPreset, unsteady: Unsteadiness) -> Result<Operation> {
 /// near static divergence) in 11 passes instead of 37.
 #[derive(Default)]
 struct Anderson {
-    /// The inputs and outputs of the last passes, oldest first.
-    inputs: Vec<Vec<f64>>,
-    outputs: Vec<Vec<f64>>,
+    /// The outputs and residuals (output − input) of the last passes, oldest first.
+    outputs: VecDeque<DVector<f64>>,
+    residuals: VecDeque<DVector<f64>>,
 }
 
 /// Passes an Anderson step combines beyond the last.
@@ -233,42 +234,32 @@ const ANDERSON_DEPTH: usize = 3;
 impl Anderson {
     /// The next input after a pass took `input` to `output`.
     fn step(&mut self, input: &[f64], output: &[f64]) -> Vec<f64> {
-        self.inputs.push(input.to_vec());
-        self.outputs.push(output.to_vec());
-        if self.inputs.len() > ANDERSON_DEPTH + 1 {
-            self.inputs.remove(0);
-            self.outputs.remove(0);
+        let plain = DVector::from_column_slice(output);
+        self.residuals.push_back(DVector::from_iterator(
+            input.len(),
+            output.iter().zip(input).map(|(g, x)| g - x),
+        ));
+        self.outputs.push_back(plain.clone());
+        if self.outputs.len() > ANDERSON_DEPTH + 1 {
+            self.outputs.pop_front();
+            self.residuals.pop_front();
         }
-        let residual = |k: usize| -> DVector<f64> {
-            DVector::from_iterator(
-                input.len(),
-                self.outputs[k]
-                    .iter()
-                    .zip(&self.inputs[k])
-                    .map(|(g, x)| g - x),
-            )
-        };
-        let passes = self.inputs.len();
-        let plain = output.to_vec();
+        let passes = self.outputs.len();
         if passes == 1 {
-            return plain;
+            return output.to_vec();
         }
         // Differences of consecutive residuals and outputs, one column per pair of passes.
-        let residuals: Vec<DVector<f64>> = (0..passes).map(residual).collect();
-        let n = input.len();
-        let df = DMatrix::from_fn(n, passes - 1, |r, c| residuals[c + 1][r] - residuals[c][r]);
-        let dg = DMatrix::from_fn(n, passes - 1, |r, c| {
-            self.outputs[c + 1][r] - self.outputs[c][r]
-        });
+        let (f, g) = (&self.residuals, &self.outputs);
+        let df = DMatrix::from_fn(input.len(), passes - 1, |r, c| f[c + 1][r] - f[c][r]);
+        let dg = DMatrix::from_fn(input.len(), passes - 1, |r, c| g[c + 1][r] - g[c][r]);
         let svd = df.svd(true, true);
         // Columns that are (nearly) dependent are dropped by the tolerance.
         let tolerance = 1e-10 * svd.singular_values.max();
-        match svd.solve(&residuals[passes - 1], tolerance) {
-            Ok(gamma) if gamma.iter().all(|g| g.is_finite()) => {
-                let next = DVector::from_vec(plain) - dg * gamma;
-                next.iter().copied().collect()
+        match svd.solve(&f[passes - 1], tolerance) {
+            Ok(gamma) if gamma.iter().all(|v| v.is_finite()) => {
+                (plain - dg * gamma).iter().copied().collect()
             }
-            _ => plain,
+            _ => output.to_vec(),
         }
     }
 }

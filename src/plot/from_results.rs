@@ -51,7 +51,7 @@ fn mode_panels(s: &TrackedSweep, x_label: &str) -> (Panel, Panel) {
     for (rank, &i) in order.iter().enumerate() {
         let m = &s.modes[i];
         let color = PALETTE[rank % PALETTE.len()];
-        if on_scale.shown.contains(&i) {
+        if rank < on_scale.shown.len() {
             freq.series.push(
                 Series::from_xy(&m.label, &s.values, &m.frequency_hz, mark).with_color(color),
             );

@@ -73,7 +73,7 @@ fn madsen_polynomial(ct: f64) -> f64 {
 /// `|g''/2g'|` of order one on [0, 1), so the induction after a step of 1e-8 is within about
 /// 1e-16 of the root (far below what the inflow angle's 1e-10 rad resolves).
 const LAST_NEWTON_STEP: f64 = 1e-8;
-/// Newton steps allowed (from the starting bounds below, a handful).
+/// Newton steps allowed (from momentum theory's induction the solve takes a handful).
 const MAX_NEWTON_STEPS: usize = 200;
 
 /// The induction `a = P(C_T/F)` where the element's own thrust sets the local thrust coefficient:
