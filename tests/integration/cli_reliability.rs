@@ -95,6 +95,7 @@ const COMMANDS: &[&[&str]] = &[
         "operating.rotor_speed=0:60:30",
     ],
     &["reproduce", "table1"],
+    &["operating", "--preset", "nrel5mw"],
 ];
 
 #[test]
