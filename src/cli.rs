@@ -47,8 +47,18 @@ pub struct PresetArgs {
 }
 
 impl PresetArgs {
+    /// The preset after `--set`, every key set one the model uses for this blade
+    /// ([`crate::preset::Preset::acts`]).
     pub fn load(&self) -> crate::error::Result<crate::preset::ValidPreset> {
-        crate::preset::Preset::load(&self.preset, &self.set)
+        let p = self.load_for_layup()?;
+        p.overrides_act(&self.set)?;
+        Ok(p)
+    }
+
+    /// The preset after `--set`, any key allowed: for `section`, which evaluates the layup
+    /// whatever the blade uses.
+    pub fn load_for_layup(&self) -> crate::error::Result<crate::preset::ValidPreset> {
+        crate::commands::load_preset(&self.preset, &self.set)
     }
 }
 
@@ -167,7 +177,9 @@ pub enum Command {
         #[arg(long)]
         json: bool,
         /// Compute slice I of N (1-based) of the grid, for batch schedulers; `auto` takes it
-        /// from a Slurm array job (SLURM_ARRAY_TASK_ID, SLURM_ARRAY_TASK_COUNT).
+        /// from a Slurm array job: task k of SLURM_ARRAY_TASK_COUNT in index order computes
+        /// slice k, counted from SLURM_ARRAY_TASK_MIN (default 0) in steps of
+        /// SLURM_ARRAY_TASK_STEP (default 1; 0 is refused) to SLURM_ARRAY_TASK_ID.
         #[arg(long, value_name = "I/N|auto")]
         shard: Option<String>,
         /// Write a plot (SVG or PNG by extension).

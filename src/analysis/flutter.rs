@@ -130,6 +130,7 @@ pub fn flutter_search(
 pub fn search(p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<Search> {
     let (key, from, to, points) = (range.key.as_str(), range.from, range.to, range.points);
     let spec = key_spec(key)?;
+    p.acts(key)?;
     if spec.integer {
         return Err(Error::usage(format!(
             "flutter: {key} is an integer setting; vary a continuous key (e.g. operating.wind_speed)"

@@ -12,8 +12,7 @@ pub fn run(p: &ValidPreset, json: bool) -> Result<()> {
     if json {
         return super::print_json(&s);
     }
-    print!("{}", render(p, &s));
-    Ok(())
+    super::print_text(&render(p, &s))
 }
 
 /// The text report: a table of the structural modes, the aero-lag roots apart, the verdict.

@@ -51,14 +51,15 @@ pub fn run(
             rated_multiple: overspeed,
         })?;
     } else {
-        println!("{}: {}", p.display_name(), search.message);
+        let mut out = format!("{}: {}\n", p.display_name(), search.message);
         if let Some(multiple) = overspeed {
-            println!(
+            out += &format!(
                 "overspeed margin: {multiple:.3}× the rated rotor speed ({} rpm, \
-                 operating.rated_rotor_speed)",
+                 operating.rated_rotor_speed)\n",
                 p.operating.rated_rotor_speed
             );
         }
+        super::print_text(&out)?;
     }
     if let Some(path) = plot {
         // The tracked modes on the search grid: damping ratio and frequency along the key.

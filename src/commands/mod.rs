@@ -3,6 +3,7 @@
 
 use crate::cli::Command;
 use crate::error::{Error, Result};
+use std::io::Write;
 
 pub mod eigen;
 pub mod flutter;
@@ -76,7 +77,12 @@ pub fn run(command: Command) -> Result<()> {
             vary,
             json,
             plot,
-        } => section::run(&preset.load()?, vary.as_deref(), json, plot.as_deref()),
+        } => section::run(
+            &preset.load_for_layup()?,
+            vary.as_deref(),
+            json,
+            plot.as_deref(),
+        ),
         Command::Reproduce { what, json, plot } => reproduce::run(what, json, plot.as_deref()),
         Command::Snapshot {
             preset,
@@ -89,6 +95,16 @@ pub fn run(command: Command) -> Result<()> {
             None => presets::run(json),
         },
     }
+}
+
+/// A preset by name or path after `--set` overrides, its notes (what the overrides left unused)
+/// on stderr.
+pub fn load_preset(name: &str, overrides: &[String]) -> Result<crate::preset::ValidPreset> {
+    let p = crate::preset::Preset::load(name, overrides)?;
+    for note in &p.notes {
+        eprintln!("note: {note}");
+    }
+    Ok(p)
 }
 
 /// No subcommand in a terminal: the explorer on the default preset.
@@ -104,17 +120,58 @@ pub fn print_json<T: serde::Serialize>(value: &T) -> Result<()> {
     print_text(&text)
 }
 
-/// Write a report to stdout. A reader that closed the pipe early (`| head`) has what it wanted:
-/// that is not an error, and must not be the panic `print!` turns it into.
+/// Write a report to stdout ([`stdout`]).
 pub fn print_text(text: &str) -> Result<()> {
-    use std::io::Write;
-    let mut out = std::io::stdout().lock();
-    match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
-        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => {
-            Err(Error::Io(format!("cannot write to stdout: {e}")))
-        }
-        _ => Ok(()),
+    let mut out = stdout()?;
+    out.write_all(text.as_bytes())
+        .and_then(|()| out.flush())
+        .map_err(stdout_error)
+}
+
+/// Standard output for a command's report, or the error that it cannot take one. A full device
+/// (`> /dev/full`) fails on the write itself ([`stdout_error`]); a descriptor closed when the
+/// program started (`>&-`) does not: the Rust runtime reopens it on /dev/null, so everything
+/// written would vanish and the command would succeed with nothing to show for it.
+pub fn stdout() -> Result<std::io::StdoutLock<'static>> {
+    if closed_at_start() {
+        return Err(Error::Io(
+            "cannot write to stdout: it was closed when flutterscope started (redirect it to a \
+             file, a pipe or /dev/null instead)"
+                .to_string(),
+        ));
     }
+    Ok(std::io::stdout().lock())
+}
+
+/// A failed write to stdout as the command's error (a reader that closed the pipe early,
+/// `| head`, ends the process quietly by SIGPIPE before this is reached).
+pub fn stdout_error(e: std::io::Error) -> Error {
+    Error::Io(format!("cannot write to stdout: {e}"))
+}
+
+/// Whether descriptor 1 is the /dev/null the Rust runtime opened, read-write, in place of a
+/// descriptor that was closed at start. A shell's `> /dev/null` opens it write-only.
+#[cfg(unix)]
+fn closed_at_start() -> bool {
+    use std::os::unix::fs::MetadataExt;
+    // SAFETY: F_GETFL and fstat only read descriptor 1's flags and status into owned memory.
+    let (flags, stat) = unsafe {
+        let mut stat: libc::stat = std::mem::zeroed();
+        let flags = libc::fcntl(libc::STDOUT_FILENO, libc::F_GETFL);
+        (
+            flags,
+            (libc::fstat(libc::STDOUT_FILENO, &mut stat) == 0).then_some(stat),
+        )
+    };
+    let Some(stat) = stat else { return true };
+    flags & libc::O_ACCMODE == libc::O_RDWR
+        && stat.st_mode & libc::S_IFMT == libc::S_IFCHR
+        && std::fs::metadata("/dev/null").is_ok_and(|null| null.rdev() == stat.st_rdev)
+}
+
+#[cfg(not(unix))]
+fn closed_at_start() -> bool {
+    false
 }
 
 /// Most points one `--vary KEY=FROM:TO:STEP` axis may have.

@@ -26,17 +26,21 @@ pub fn run(json: bool) -> Result<()> {
         return super::print_json(&serde_json::json!({ "presets": entries }));
     }
     let width = entries.iter().map(|e| e.name.len()).max().unwrap_or(0);
+    let mut out = String::new();
     for e in &entries {
-        println!("{:width$}  {}", e.name, e.description);
+        out += &format!("{:width$}  {}\n", e.name, e.description);
     }
-    println!("\nUse one with --preset NAME, or --preset path/to/file.toml for your own.");
-    Ok(())
+    out += "\nUse one with --preset NAME, or --preset path/to/file.toml for your own.\n";
+    super::print_text(&out)
 }
 
 /// One preset as TOML with every key, the defaults it leaves out included.
 pub fn show(name: &str, overrides: &[String]) -> Result<()> {
-    let p = Preset::load(name, overrides)?;
-    println!("# {} (every key, defaults included)", p.origin);
-    print!("{}", p.to_toml());
-    Ok(())
+    let p = super::load_preset(name, overrides)?;
+    p.overrides_act(overrides)?;
+    super::print_text(&format!(
+        "# {} (every key, defaults included)\n{}",
+        p.origin,
+        p.to_toml()
+    ))
 }

@@ -2,11 +2,11 @@
 //! `section.source` says — laminate A matrices, reduced wall stiffnesses, C22/C23/C33 and the mass
 //! properties; with `--vary KEY=A:B:STEP`, C22/C23/C33 over a grid like the paper's Table 1.
 
-use crate::commands::{parse_vary, print_json};
+use crate::commands::{parse_vary, print_json, print_text};
 use crate::error::{Error, Result};
 use crate::physics::laminate::{layup_section, LayupSection, Stiffness3, WallLaminate};
 use crate::physics::section::SectionProps;
-use crate::preset::{ContourShape, SectionSource, ValidPreset};
+use crate::preset::{key_spec, ContourShape, SectionSource, ValidPreset};
 use serde::Serialize;
 use std::path::Path;
 
@@ -75,8 +75,7 @@ pub fn run(p: &ValidPreset, vary: Option<&str>, json: bool, plot: Option<&Path>)
                     section: s,
                 })
             } else {
-                print!("{}", section_text(p, &s));
-                Ok(())
+                print_text(&section_text(p, &s))
             }
         }
         Some(spec) => {
@@ -102,18 +101,23 @@ pub fn run(p: &ValidPreset, vary: Option<&str>, json: bool, plot: Option<&Path>)
                     sections,
                 })
             } else {
-                print!("{}", vary_text(p, &key, &values, &sections));
-                Ok(())
+                print_text(&vary_text(p, &key, &values, &sections))
             }
         }
     }
 }
 
-/// The layup section at every grid value of `key` (range- and cross-checked like `--set`).
+/// The layup section at every grid value of `key` (range- and cross-checked like `--set`). A
+/// key the model does not use for this blade (the ply angle of a tabulated blade) is varied
+/// all the same: the layup is evaluated whatever the blade uses.
 pub fn vary_sections(p: &ValidPreset, key: &str, values: &[f64]) -> Result<Vec<LayupSection>> {
+    let spec = key_spec(key)?;
     values
         .iter()
-        .map(|&v| layup_section(&p.with(key, v)?))
+        .map(|&v| {
+            spec.check(&p.origin, v)?;
+            layup_section(&p.edited(|q| (spec.set)(q, v))?)
+        })
         .collect()
 }
 

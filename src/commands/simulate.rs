@@ -1,7 +1,7 @@
 //! `flutterscope simulate`: tip twist and flap over time.
 
 use crate::analysis::simulate::{simulate, Response, RunStatus};
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::preset::ValidPreset;
 use std::io::Write;
 use std::path::Path;
@@ -16,7 +16,7 @@ pub fn run(p: &ValidPreset, json: bool, csv: bool, plot: Option<&Path>) -> Resul
     } else if csv {
         write_csv(&r)?;
     } else {
-        print!("{}", summary(p, &r));
+        super::print_text(&summary(p, &r))?;
     }
     if let Some(path) = plot {
         let fig =
@@ -28,8 +28,8 @@ pub fn run(p: &ValidPreset, json: bool, csv: bool, plot: Option<&Path>) -> Resul
 }
 
 fn write_csv(r: &Response) -> Result<()> {
-    let io = |e: std::io::Error| Error::Io(format!("cannot write CSV: {e}"));
-    let mut out = std::io::BufWriter::new(std::io::stdout().lock());
+    let io = super::stdout_error;
+    let mut out = std::io::BufWriter::new(super::stdout()?);
     writeln!(out, "t,tip_twist,tip_flap").map_err(io)?;
     for ((t, a), u) in r.t.iter().zip(&r.tip_twist).zip(&r.tip_flap) {
         writeln!(out, "{t},{a},{u}").map_err(io)?;

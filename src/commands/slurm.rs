@@ -43,7 +43,13 @@ pub fn from_env(env: impl Fn(&str) -> Option<String>) -> Result<Shard> {
             )),
         };
     let min = number("SLURM_ARRAY_TASK_MIN")?.unwrap_or(0);
-    let step = number("SLURM_ARRAY_TASK_STEP")?.unwrap_or(1).max(1);
+    let step = number("SLURM_ARRAY_TASK_STEP")?.unwrap_or(1);
+    if step == 0 {
+        return Err(Error::usage(
+            "--shard auto: SLURM_ARRAY_TASK_STEP = 0; an array's step is at least 1 (`sbatch \
+             --array=A-B:S`)",
+        ));
+    }
     let offset = id
         .checked_sub(min)
         .filter(|d| d % step == 0)

@@ -11,6 +11,5 @@ pub fn run(preset: &PresetArgs, size: &str, view: ViewKind, marker: MarkerKind) 
     let (cols, rows) = parse_size(size)?;
     let p = preset.load()?;
     let state = settled_state(&preset.preset, p, &Physics, view, marker);
-    print!("{}", render_text(&state, cols, rows));
-    Ok(())
+    super::print_text(&render_text(&state, cols, rows))
 }

@@ -56,8 +56,8 @@ pub fn run(
             .map(|()| summary)
         })
     } else {
-        let io = |e: std::io::Error| Error::Io(format!("cannot write CSV: {e}"));
-        let mut out = std::io::BufWriter::new(std::io::stdout().lock());
+        let io = super::stdout_error;
+        let mut out = std::io::BufWriter::new(super::stdout()?);
         writeln!(out, "{}", csv_header(&grid.keys)).map_err(io)?;
         grid_sweep(p, &grid, shard, &progress, &mut |batch| {
             for r in batch {

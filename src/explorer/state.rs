@@ -9,7 +9,8 @@ use crate::analysis::simulate::{RunStatus, TipSample};
 use crate::explorer::display::{ColorMode, MarkerKind};
 use crate::explorer::engine::Solved;
 use crate::explorer::keys::Action;
-use crate::preset::{key_spec, Preset, SectionSource, ValidPreset};
+use crate::preset::rules::not_acting;
+use crate::preset::{key_spec, Preset, ValidPreset};
 use std::sync::Arc;
 
 /// Grid points the background boundary search brackets on (as `flutterscope flutter`).
@@ -87,22 +88,12 @@ pub fn param_index(p: &ValidPreset, key: &str) -> usize {
 }
 
 /// Whether the parameters pane offers `param` for `p`: a knob that can change nothing for the
-/// preset's blade is left out (the ply angle on direct stiffnesses or on a tabulated blade,
-/// whose sections come from its files; the loss factor on a tabulated blade, damped per mode
-/// family; the bend–twist coupling on the uniform blade, which refuses it). Knobs that only
-/// wait for another setting the explorer can change (wind speed without aerodynamics) stay,
+/// preset's blade is left out, as `--set` and `--vary` refuse it ([`not_acting`]). Knobs that
+/// only wait for another setting the explorer can change (wind speed without aerodynamics) stay,
 /// dimmed by the pane.
 pub fn offered(p: &ValidPreset, param: &Param) -> bool {
-    let tabulated = p.tabulated_blade().is_some();
     match param.kind {
-        ParamKind::Number { key, .. } => match key {
-            "section.ply_angle" => !tabulated && p.section.source != SectionSource::Direct,
-            "structure.loss_factor" => !tabulated,
-            // A real blade's inflow is the BEM's (docs/model.md §12.6): no tunnel.
-            "operating.tunnel_speed" => !tabulated,
-            "blade.bend_twist_coupling" => tabulated,
-            _ => true,
-        },
+        ParamKind::Number { key, .. } => not_acting(p, key).is_none(),
         ParamKind::Aero => true,
     }
 }

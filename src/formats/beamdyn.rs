@@ -48,6 +48,8 @@ impl BeamDynPrimary {
 /// One station of the blade file.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BeamDynStation {
+    /// The line of its eta (1-based), where errors about the station point.
+    pub line: usize,
     /// Non-dimensional position along the reference axis, 0 at the root to 1 at the tip.
     pub eta: f64,
     /// Sectional stiffness matrix as printed (N, N·m, N·m² by block).
@@ -59,6 +61,8 @@ pub struct BeamDynStation {
 /// The BeamDyn blade file.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BeamDynBlade {
+    /// The file's name as errors give it.
+    pub path: String,
     /// 0: no damping; 1: damping proportional to stiffness with the factors `mu`.
     pub damp_type: u32,
     /// Stiffness-proportional damping factors, one per sectional degree of freedom in the matrix
@@ -107,6 +111,9 @@ pub fn parse_primary(text: &str, origin: &str) -> Result<BeamDynPrimary> {
         let table =
             Table::new(kp_member, "key-point rows", &KP_COLUMNS).at(format!("in member {m}"));
         let (rows, next) = src.rows(units + 1, &table)?;
+        // A repeated or reversed key point is a hand edit gone wrong (the member's count then
+        // leaves its last point, the tip, unread), not a blade.
+        src.increasing(&rows, 2, "kp_zr")?;
         members.push(
             rows.iter()
                 .map(|r| {
@@ -206,16 +213,18 @@ pub fn parse_blade(text: &str, origin: &str) -> Result<BeamDynBlade> {
         };
         let (stiffness, next) = matrix("stiffness", next)?;
         let (mass, next) = matrix("mass", next)?;
-        etas.push(eta_row);
         stations.push(BeamDynStation {
+            line: eta_row.idx + 1,
             eta,
             stiffness,
             mass,
         });
+        etas.push(eta_row);
         pos = next;
     }
     src.increasing(&etas, 0, "eta")?;
     Ok(BeamDynBlade {
+        path: origin.to_string(),
         damp_type,
         mu,
         stations,

@@ -148,6 +148,8 @@ impl Table {
 
 impl<'a> Source<'a> {
     fn new(path: &'a str, text: &'a str) -> Source<'a> {
+        // Windows editors start UTF-8 text with a byte-order mark; it is no part of line 1.
+        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
         Source {
             path,
             lines: text.lines().collect(),

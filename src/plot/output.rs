@@ -42,8 +42,35 @@ pub fn write(fig: &Figure, path: &Path) -> Result<()> {
         Format::Svg => render_svg(fig)?.into_bytes(),
         Format::Png => render_png(fig)?,
     };
-    std::fs::write(path, bytes)
+    write_whole(path, &bytes)
         .map_err(|e| Error::Io(format!("cannot write plot '{}': {e}", path.display())))
+}
+
+/// `bytes` into a temporary file beside `path`, then renamed onto it: a write that fails (a full
+/// disk, a quota, a file-size limit) leaves no truncated plot and the file that was there as it
+/// was.
+fn write_whole(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    use std::io::Write;
+    let name = path
+        .file_name()
+        .ok_or_else(|| std::io::Error::new(std::io::ErrorKind::InvalidInput, "not a file name"))?;
+    let mut temporary = std::ffi::OsString::from(".");
+    temporary.push(name);
+    temporary.push(format!(".{}.tmp", std::process::id()));
+    let temporary = path.with_file_name(temporary);
+    let written = std::fs::OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(&temporary)
+        .and_then(|mut file| {
+            file.write_all(bytes)?;
+            file.sync_all()
+        })
+        .and_then(|()| std::fs::rename(&temporary, path));
+    if written.is_err() {
+        let _ = std::fs::remove_file(&temporary);
+    }
+    written
 }
 
 /// The figure as an SVG document.

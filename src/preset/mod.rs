@@ -82,10 +82,12 @@ impl ValidPreset {
         self.with_all(&[(key, value)])
     }
 
-    /// This preset with every `(key, value)` set, validated again.
+    /// This preset with every `(key, value)` set, validated again; a key that cannot change
+    /// what the model computes for this blade is an error ([`Preset::acts`]).
     pub fn with_all(&self, values: &[(&str, f64)]) -> Result<ValidPreset> {
         let mut p = self.0.clone();
         for (key, value) in values {
+            p.acts(key)?;
             p.set(key, *value)?;
         }
         p.validate()
@@ -156,12 +158,14 @@ impl Preset {
         let mut preset: Preset = toml::from_str(text).map_err(file_err)?;
         // The keys as written (after the overrides): which ones the text leaves to defaults.
         let mut table: toml::Table = text.parse().map_err(file_err)?;
+        let mut notes = Vec::new();
         if !overrides.is_empty() {
             // Overrides edit the parsed table; its errors have no spans and read "…\nin
             // `table`", kept on one line and blamed on the --set.
             for ov in overrides {
                 apply_override(&mut table, ov)?;
             }
+            notes.extend(set_aside_schedule_file(&mut table, overrides));
             preset = Preset::deserialize(table.clone()).map_err(|e| {
                 let msg = e.to_string().trim_end().replace('\n', " ");
                 preset_err(format!("{msg} (after --set {})", overrides.join(" --set ")))
@@ -169,6 +173,7 @@ impl Preset {
         }
         preset.origin = origin.to_string();
         preset.base = base;
+        preset.notes = notes;
         // A rotor speed or pitch set on the command line holds against the schedule, as an
         // edit does ([`Preset::set`]).
         for ov in overrides {
@@ -404,6 +409,24 @@ impl Preset {
         self.tabulated.as_ref().map(|t| &t.blade)
     }
 
+    /// `Ok` when setting `key` can change what the model computes for this preset's blade, else
+    /// the error naming the key and what acts instead ([`rules::not_acting`]).
+    pub fn acts(&self, key: &str) -> Result<()> {
+        match rules::not_acting(self, key) {
+            None => Ok(()),
+            Some(reason) => Err(Error::usage(format!("{}: {key} {reason}", self.origin))),
+        }
+    }
+
+    /// `Ok` when every numeric key `overrides` (`key=value`) sets acts for this blade
+    /// ([`Preset::acts`]).
+    pub fn overrides_act(&self, overrides: &[String]) -> Result<()> {
+        overrides
+            .iter()
+            .filter_map(|ov| ov.split_once('='))
+            .try_for_each(|(key, _)| self.acts(key.trim()))
+    }
+
     /// Value of a numeric key.
     pub fn get(&self, key: &str) -> Result<f64> {
         Ok((key_spec(key)?.get)(self))
@@ -492,6 +515,35 @@ fn read_schedule_table(file: &BladeFile) -> Result<ScheduleTable> {
             .collect(),
         origin: name,
     })
+}
+
+/// A `--set operating.schedule` away from "table" on a preset that runs along a table file: the
+/// file is then unused, so it is set aside (the rule that a schedule file belongs to a table
+/// schedule, [`rules::check_rotor_keys`], holds for what a preset file says) and the note that
+/// says so is returned. A `--set operating.schedule_file` as well keeps what it sets.
+fn set_aside_schedule_file(table: &mut toml::Table, overrides: &[String]) -> Option<String> {
+    let sets = |key: &str| {
+        overrides
+            .iter()
+            .any(|ov| ov.split_once('=').is_some_and(|(k, _)| k.trim() == key))
+    };
+    if !sets("operating.schedule") || sets("operating.schedule_file") {
+        return None;
+    }
+    let operating = table.get_mut("operating")?.as_table_mut()?;
+    let schedule = operating.get("schedule")?.as_str()?.to_string();
+    if schedule == Schedule::Table.name() {
+        return None;
+    }
+    let file = operating.get("schedule_file")?.as_str()?.to_string();
+    if file.trim().is_empty() {
+        return None;
+    }
+    operating.remove("schedule_file");
+    Some(format!(
+        "operating.schedule = \"{schedule}\" (--set): the preset's operating.schedule_file = \
+         \"{file}\" is not used"
+    ))
 }
 
 /// Apply one `key=value` override to the raw TOML table, creating intermediate tables. The value

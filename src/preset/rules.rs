@@ -18,11 +18,9 @@ pub fn check_blade_keys(p: &Preset) -> Result<()> {
     let b = &p.blade;
     let message = match (b.source, b.file.trim().is_empty()) {
         (BladeSource::Uniform, _) if b.bend_twist_coupling != 0.0 => format!(
-            "blade.bend_twist_coupling = {} does not apply to blade.source = \"uniform\": it \
-             adds to the flap–twist coupling of a tabulated blade's stations (blade.source = \
-             \"beamdyn\" or \"hawc2\"); the uniform blade's coupling is section.c23, or \
-             section.ply_angle for a table or layup section",
-            b.bend_twist_coupling
+            "blade.bend_twist_coupling = {} {}",
+            b.bend_twist_coupling,
+            not_acting(p, "blade.bend_twist_coupling").unwrap_or_default()
         ),
         (BladeSource::Uniform, false) => format!(
             "blade.file = \"{}\" does not apply to blade.source = \"uniform\" (the paper's \
@@ -56,6 +54,46 @@ pub fn check_blade_keys(p: &Preset) -> Result<()> {
         origin: p.origin.clone(),
         message,
     })
+}
+
+/// Why numeric `key` can change nothing the model computes for `p`'s blade, and what acts in its
+/// place; `None` when it acts. A `--set` or `--vary` of such a key is an error
+/// ([`super::Preset::acts`]) and the explorer does not offer it. The `section` command is apart:
+/// it evaluates the layup whatever the blade uses.
+pub fn not_acting(p: &Preset, key: &str) -> Option<String> {
+    let (source, file) = (p.blade.source, &p.blade.file);
+    let tabulated = source.is_tabulated();
+    let reason = match key {
+        "section.ply_angle" if tabulated => format!(
+            "does not apply to blade.source = \"{}\": the sections come from blade.file = \
+             \"{file}\"; the coupling added to them is blade.bend_twist_coupling",
+            source.name()
+        ),
+        "section.ply_angle" if p.section.source == SectionSource::Direct => "does not apply to \
+             section.source = \"direct\": its stiffnesses are section.c22, section.c23 and \
+             section.c33 (the ply angle turns the plies of section.source = \"table\" or \
+             \"layup\")"
+            .to_string(),
+        "structure.loss_factor" if tabulated => format!(
+            "does not apply to blade.source = \"{}\": a tabulated blade is damped per mode \
+             family, by structure.damping_flap, structure.damping_edge and \
+             structure.damping_torsion (unset: the damping blade.file states)",
+            source.name()
+        ),
+        // A real blade's inflow is the BEM's (docs/model.md §12.6): no tunnel.
+        "operating.tunnel_speed" if tabulated => format!(
+            "does not apply to blade.source = \"{}\": a rotor blade's inflow is the BEM's, from \
+             operating.wind_speed, operating.rotor_speed and operating.pitch",
+            source.name()
+        ),
+        "blade.bend_twist_coupling" if !tabulated => "does not apply to blade.source = \
+             \"uniform\": it adds to the flap–twist coupling of a tabulated blade's stations \
+             (blade.source = \"beamdyn\" or \"hawc2\"); the uniform blade's coupling is \
+             section.c23, or section.ply_angle for a table or layup section"
+            .to_string(),
+        _ => return None,
+    };
+    Some(reason)
 }
 
 /// The rotor's file keys agree with each other and with the blade (docs/model.md §12.1): one

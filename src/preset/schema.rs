@@ -42,6 +42,10 @@ pub struct Preset {
     /// hand: those hold, the schedule gives the rest (docs/model.md §12.3).
     #[serde(skip)]
     pub schedule_overrides: ScheduleOverrides,
+    /// What loading the preset left unused at the user's request (a schedule file a `--set
+    /// operating.schedule` set aside), for the command line to say.
+    #[serde(skip)]
+    pub notes: Vec<String>,
 }
 
 /// Rotor speed and pitch set by hand while `operating.schedule` runs: overspeed, idling.
@@ -572,6 +576,7 @@ impl Default for Preset {
             tabulated: None,
             rotor_files: None,
             schedule_overrides: ScheduleOverrides::default(),
+            notes: Vec::new(),
         }
     }
 }

@@ -631,10 +631,14 @@ pc_file = "presets/blades/iea15mw/IEA_15MW_RWT_pc.dat"
         e.contains("aero.ae_set = 2") && e.contains("1 ae set(s)"),
         "{e}"
     );
+    // The law sets the operation table's file aside; what the law itself needs is missing.
     let e = Preset::load("iea15mw", &["operating.schedule=law".into()])
         .unwrap_err()
         .to_string();
-    assert!(e.contains("operating.schedule_file"), "{e}");
+    assert!(
+        e.contains("operating.schedule = \"law\" needs operating.rated_power"),
+        "{e}"
+    );
     let e = Preset::load("nrel5mw", &["operating.rotor_speed_min=13".into()])
         .unwrap_err()
         .to_string();

@@ -4,6 +4,7 @@
 mod bem;
 mod blade;
 mod cli_basic;
+mod cli_reliability;
 mod coupling;
 mod eigen;
 mod explorer;

@@ -65,10 +65,15 @@ pub fn from_beamdyn(
         .map(|(k, s)| {
             let (stiffness, m) = (&s.stiffness, &s.mass);
             let z = s.eta * length;
-            let section = reduce(stiffness, &frame).map_err(|message| Error::Invalid {
-                origin: origin.to_string(),
-                message: format!("station {} (eta = {}): {message}", k + 1, s.eta),
-            })?;
+            // A station's faults are the blade file's, at the station's line.
+            let at_station = |message: String| {
+                Error::format(
+                    blade.path.clone(),
+                    s.line,
+                    format!("station {} (eta = {}): {message}", k + 1, s.eta),
+                )
+            };
+            let section = reduce(stiffness, &frame).map_err(at_station)?;
             let mass = m[0][0];
             let cg = if mass > 0.0 {
                 frame.position([m[1][5] / mass, -m[0][5] / mass])
@@ -76,7 +81,11 @@ pub fn from_beamdyn(
                 [0.0, 0.0]
             };
             let inertia = frame.second_moments([[m[4][4], -m[3][4]], [-m[3][4], m[3][3]]]);
-            Ok(section.at_station(z, twist_at(z), mass, cg, inertia))
+            let section = section.at_station(z, twist_at(z), mass, cg, inertia);
+            match section.fault() {
+                Some(fault) => Err(at_station(fault)),
+                None => Ok(section),
+            }
         })
         .collect::<Result<Vec<Section>>>()?;
     BladeTable::new(origin, hub_radius, sections)

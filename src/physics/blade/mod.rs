@@ -97,6 +97,17 @@ impl Section {
 
     /// The named quantities that must be finite and, for masses and stiffnesses, positive.
     fn check(&self, origin: &str, index: usize) -> Result<()> {
+        match self.fault() {
+            None => Ok(()),
+            Some(message) => Err(Error::Invalid {
+                origin: origin.to_string(),
+                message: format!("station {} (z = {} m): {message}", index + 1, self.z),
+            }),
+        }
+    }
+
+    /// What [`Section::check`] finds wrong with this section, without where it is.
+    fn fault(&self) -> Option<String> {
         let positive = [
             ("mass per length", self.mass),
             ("flap stiffness", self.ei_flap),
@@ -118,24 +129,19 @@ impl Section {
             ("tension centre ξ", self.tension_centre[0]),
             ("tension centre η", self.tension_centre[1]),
         ];
-        let at = format!("station {} (z = {} m)", index + 1, self.z);
-        let invalid = |message: String| Error::Invalid {
-            origin: origin.to_string(),
-            message: format!("{at}: {message}"),
-        };
         if let Some((name, v)) = positive.iter().find(|(_, v)| !(v.is_finite() && *v > 0.0)) {
-            return Err(invalid(format!("{name} = {v} must be positive")));
+            return Some(format!("{name} = {v} must be positive"));
         }
         if let Some((name, v)) = finite.iter().find(|(_, v)| !v.is_finite()) {
-            return Err(invalid(format!("{name} = {v} is not finite")));
+            return Some(format!("{name} = {v} is not finite"));
         }
         if self.inertia[0] < 0.0 || self.inertia[1] < 0.0 {
-            return Err(invalid(format!(
+            return Some(format!(
                 "mass moments ∫ρξ² = {}, ∫ρη² = {} must not be negative",
                 self.inertia[0], self.inertia[1]
-            )));
+            ));
         }
-        Ok(())
+        None
     }
 }
 
