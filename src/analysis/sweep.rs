@@ -61,13 +61,6 @@ pub struct TrackedSweep {
     pub failed: Vec<FailedPoint>,
 }
 
-impl TrackedSweep {
-    /// Why point `k` could not be solved, if it could not.
-    pub fn failure_at(&self, k: usize) -> Option<&FailedPoint> {
-        self.failed.iter().find(|f| f.index == k)
-    }
-}
-
 /// One grid point's result: its analysis, or the numerical error that stopped it.
 pub type PointResult = std::result::Result<Stability, Error>;
 
