@@ -53,6 +53,26 @@ fn sweep_10k_quasi_steady(b: divan::Bencher) {
     });
 }
 
+/// The paper's blade as the README sweeps it: 2,001 wind speeds, 5 to 30 m/s, tracked
+/// (`sweep --preset liu2017 --vary operating.wind_speed=5:30:0.0125` in process).
+#[divan::bench(sample_count = 3, sample_size = 1)]
+fn sweep_2001_wind_speeds_liu2017(b: divan::Bencher) {
+    let p = preset("liu2017", &[]);
+    let grid = Grid {
+        keys: vec!["operating.wind_speed".into()],
+        axes: vec![(0..=2000).map(|k| 5.0 + 0.0125 * k as f64).collect()],
+    };
+    b.bench(|| {
+        let mut rows = 0usize;
+        grid_sweep(&p, &grid, None, &|_| {}, &mut |batch| {
+            rows += batch.len();
+            Ok(())
+        })
+        .unwrap();
+        rows
+    });
+}
+
 /// Goland flutter speed, 41-point bracket + bisection.
 #[divan::bench(sample_count = 5, sample_size = 1)]
 fn flutter_search_goland(b: divan::Bencher) {

@@ -14,12 +14,13 @@
 
 use crate::analysis::cancel::Cancel;
 use crate::analysis::eigen::{analyse, Mode, Stability};
-use crate::analysis::tracking::{follow, Point, REFINEMENT_DEPTH};
+use crate::analysis::tracking::{follow, match_modes, Matching, Point, REFINEMENT_DEPTH};
 use crate::error::{Error, Result};
 use crate::preset::{key_spec, ValidPreset};
 use rayon::prelude::*;
 use serde::Serialize;
 use std::ops::Range;
+use std::sync::{Arc, Mutex};
 
 /// One tracked mode along a one-dimensional sweep.
 #[derive(Debug, Clone, Serialize)]
@@ -60,13 +61,6 @@ pub struct TrackedSweep {
     pub failed: Vec<FailedPoint>,
 }
 
-impl TrackedSweep {
-    /// Why point `k` could not be solved, if it could not.
-    pub fn failure_at(&self, k: usize) -> Option<&FailedPoint> {
-        self.failed.iter().find(|f| f.index == k)
-    }
-}
-
 /// One grid point's result: its analysis, or the numerical error that stopped it.
 pub type PointResult = std::result::Result<Stability, Error>;
 
@@ -97,7 +91,7 @@ pub fn track_cancellable(
             .ok()
             .map(|s| s.eigenvalues)
     };
-    Ok(tracked_with_gaps(key, grid, &points, &resolve))
+    Ok(tracked_with_gaps(key, grid, points, &resolve))
 }
 
 /// A point's result, keeping a numerical failure as that point's result; any other error (bad
@@ -114,107 +108,192 @@ pub fn point_result(r: Result<Stability>) -> Result<PointResult> {
 /// structural modes, or none if it cannot be solved.
 pub type Resolve<'a> = dyn Fn(f64) -> Option<Vec<Mode>> + Sync + 'a;
 
-/// Tracks through points some of which failed (no modes there; the tracks cross them).
+/// A solved point as tracking keeps it: its value along the line and its structural modes.
+struct Held {
+    value: f64,
+    modes: Vec<Mode>,
+}
+
+impl Held {
+    fn point(&self) -> Point<'_> {
+        Point {
+            value: self.value,
+            modes: &self.modes,
+        }
+    }
+}
+
+/// What tracking says of one point of a line.
+struct TrackedPoint {
+    /// The point's structural modes (none if it could not be solved).
+    held: Option<Arc<Held>>,
+    /// For each name known so far along the line ([`LineTracker::names`]), its root's index in
+    /// the point's modes, if it has one there.
+    index: Vec<Option<usize>>,
+    /// Names (by index) that moved to another root branch over the step into this point, with
+    /// where (the step's midpoint).
+    switches: Vec<(usize, f64)>,
+}
+
+/// Mode tracking along one line, fed its points in order.
 ///
 /// A track is a mode *name* ([`crate::analysis::identify`]): at every point it is the root that
 /// carries that name there, so a sweep names each root exactly as `eigen` does at that point.
-/// Between consecutive points each track is checked against its branch ([`follow`]: eigenvector
-/// correlation and eigenvalue continuity, re-solving midpoints through `resolve` where the match
-/// is ambiguous); where the name has moved to another branch (a veering that swaps the modes'
-/// content) the track records where, in [`TrackedMode::switches`].
-pub fn tracked_with_gaps(
-    key: &str,
-    grid: &[f64],
-    points: &[PointResult],
-    resolve: &Resolve,
-) -> TrackedSweep {
-    let lists: Vec<&[Mode]> = points
-        .iter()
-        .map(|s| s.as_ref().map_or(&[][..], |s| s.eigenvalues.as_slice()))
-        .collect();
-    // Every name checks its branch over the same steps, so a midpoint one name re-solves the
-    // next needs too: solve each once (a real blade's re-solve rebuilds its operating point).
-    let solved: std::sync::Mutex<std::collections::HashMap<u64, Option<Vec<Mode>>>> =
-        Default::default();
-    let once = |value: f64| -> Option<Vec<Mode>> {
-        let known = solved.lock().ok()?.get(&value.to_bits()).cloned();
-        known.unwrap_or_else(|| {
-            let modes = resolve(value);
-            if let Ok(mut cache) = solved.lock() {
-                cache.insert(value.to_bits(), modes.clone());
+/// Between consecutive points holding a name, the name's root is checked against its branch
+/// ([`follow`]: eigenvector correlation and eigenvalue continuity); where the name has moved to
+/// another branch (a veering that swaps the modes' content) the step is a switch. Only the last
+/// point holding each name is kept, so memory does not grow with the line's length; a name
+/// first appearing partway along the line is tracked from there on.
+#[derive(Default)]
+struct LineTracker {
+    /// Names in order of first appearance along the line.
+    names: Vec<String>,
+    /// Per name: the last point holding it and the name's root there.
+    last: Vec<Option<(Arc<Held>, usize)>>,
+}
+
+impl LineTracker {
+    /// Track the next point of the line: its value and its structural modes, or none where it
+    /// could not be solved (no name is held there; the tracks cross it).
+    fn push(&mut self, value: f64, modes: Option<Vec<Mode>>, resolve: &Resolve) -> TrackedPoint {
+        let Some(modes) = modes else {
+            return TrackedPoint {
+                held: None,
+                index: vec![None; self.names.len()],
+                switches: Vec::new(),
+            };
+        };
+        let here = Arc::new(Held { value, modes });
+        let mut index = vec![None; self.names.len()];
+        for (j, m) in here.modes.iter().enumerate() {
+            match self.names.iter().position(|n| *n == m.label) {
+                Some(k) => index[k] = Some(j),
+                None => {
+                    self.names.push(m.label.clone());
+                    self.last.push(None);
+                    index.push(Some(j));
+                }
             }
-            modes
-        })
-    };
-    let resolve: &Resolve = &once;
-    let mut names: Vec<&str> = Vec::new();
-    for m in lists.iter().flat_map(|l| l.iter()) {
-        if !names.contains(&m.label.as_str()) {
-            names.push(&m.label);
+        }
+        let switches = self.switches(&here, &index, resolve);
+        for (k, j) in index.iter().enumerate() {
+            if let Some(j) = *j {
+                self.last[k] = Some((Arc::clone(&here), j));
+            }
+        }
+        TrackedPoint {
+            held: Some(here),
+            index,
+            switches,
         }
     }
-    // Names in parallel: their branch checks re-solve midpoints independently.
-    let modes = names
-        .into_par_iter()
-        .map(|name| {
-            let index: Vec<Option<usize>> = lists
-                .iter()
-                .map(|l| l.iter().position(|m| m.label == name))
-                .collect();
-            let pick = |f: fn(&Mode) -> f64| -> Vec<f64> {
-                index
-                    .iter()
-                    .zip(&lists)
-                    .map(|(i, modes)| i.map_or(f64::NAN, |i| f(&modes[i])))
-                    .collect()
+
+    /// The names whose root at `here` is not the branch continuation of their root at the last
+    /// point holding them. The matching of two points serves every name checked over that step;
+    /// only a name whose match is ambiguous is followed through re-solved midpoints.
+    fn switches(
+        &self,
+        here: &Held,
+        index: &[Option<usize>],
+        resolve: &Resolve,
+    ) -> Vec<(usize, f64)> {
+        let mut matchings: Vec<(*const Held, Matching)> = Vec::new();
+        let mut doubtful: Vec<(usize, &Held, usize, usize)> = Vec::new();
+        let mut switches = Vec::new();
+        for (k, j) in index.iter().enumerate() {
+            let (Some(j), Some((before, i))) = (*j, &self.last[k]) else {
+                continue;
             };
-            TrackedMode {
-                label: name.to_string(),
-                frequency_hz: pick(|m| m.frequency_hz),
-                damping_ratio: pick(|m| m.damping_ratio),
-                re: pick(|m| m.re),
-                second_re: pick(|m| m.second_re.unwrap_or(f64::NAN)),
-                switches: branch_switches(grid, &lists, &index, resolve),
+            let key = Arc::as_ptr(before);
+            let m = match matchings.iter().position(|(p, _)| *p == key) {
+                Some(at) => &matchings[at].1,
+                None => {
+                    matchings.push((key, match_modes(&before.modes, &here.modes)));
+                    &matchings[matchings.len() - 1].1
+                }
+            };
+            if m.ambiguous[*i] {
+                doubtful.push((k, before, *i, j));
+            } else if m.partner[*i] != Some(j) {
+                switches.push((k, 0.5 * (before.value + here.value)));
             }
-        })
-        .collect();
+        }
+        if doubtful.is_empty() {
+            return switches;
+        }
+        // Names whose matches over the same step are in doubt share its midpoints: solve each
+        // once (a real blade's re-solve rebuilds its operating point), the names in parallel.
+        let solved: Mutex<Vec<(f64, Option<Vec<Mode>>)>> = Mutex::default();
+        let once = |value: f64| -> Option<Vec<Mode>> {
+            let known = solved
+                .lock()
+                .ok()
+                .and_then(|s| s.iter().find(|(v, _)| *v == value).map(|(_, m)| m.clone()));
+            known.unwrap_or_else(|| {
+                let modes = resolve(value);
+                if let Ok(mut s) = solved.lock() {
+                    s.push((value, modes.clone()));
+                }
+                modes
+            })
+        };
+        let b = here.point();
+        let refined: Vec<(usize, f64)> = doubtful
+            .into_par_iter()
+            .filter(|&(_, before, i, j)| {
+                follow(&before.point(), i, &b, REFINEMENT_DEPTH, &once) != Some(j)
+            })
+            .map(|(k, before, _, _)| (k, 0.5 * (before.value + here.value)))
+            .collect();
+        switches.extend(refined);
+        switches.sort_by_key(|&(k, _)| k);
+        switches
+    }
+}
+
+/// Tracks through points some of which failed (no modes there; the tracks cross them), kept
+/// whole: every name's values at every point, NaN where it has no root (before its first
+/// appearance too), and where it switched branch ([`LineTracker`]).
+fn tracked_with_gaps(
+    key: &str,
+    grid: &[f64],
+    points: Vec<PointResult>,
+    resolve: &Resolve,
+) -> TrackedSweep {
+    let failed = failed_points(grid, &points);
+    let mut tracker = LineTracker::default();
+    let mut modes: Vec<TrackedMode> = Vec::new();
+    for (k, (r, &value)) in points.into_iter().zip(grid).enumerate() {
+        let t = tracker.push(value, r.ok().map(|s| s.eigenvalues), resolve);
+        for (n, i) in t.index.iter().enumerate() {
+            if n == modes.len() {
+                modes.push(TrackedMode {
+                    label: tracker.names[n].clone(),
+                    frequency_hz: vec![f64::NAN; k],
+                    damping_ratio: vec![f64::NAN; k],
+                    re: vec![f64::NAN; k],
+                    second_re: vec![f64::NAN; k],
+                    switches: Vec::new(),
+                });
+            }
+            let root = i.zip(t.held.as_ref()).map(|(i, h)| &h.modes[i]);
+            let value = |f: fn(&Mode) -> f64| root.map_or(f64::NAN, f);
+            let m = &mut modes[n];
+            m.frequency_hz.push(value(|m| m.frequency_hz));
+            m.damping_ratio.push(value(|m| m.damping_ratio));
+            m.re.push(value(|m| m.re));
+            m.second_re.push(value(|m| m.second_re.unwrap_or(f64::NAN)));
+        }
+        for (n, at) in t.switches {
+            modes[n].switches.push(at);
+        }
+    }
     TrackedSweep {
         parameter: key.to_string(),
         values: grid.to_vec(),
         modes,
-        failed: failed_points(grid, points),
+        failed,
     }
-}
-
-/// Where a named track leaves its branch: between consecutive points holding the name, the
-/// midpoint of each step over which the name's root is not the branch continuation of its root
-/// before.
-fn branch_switches(
-    grid: &[f64],
-    lists: &[&[Mode]],
-    index: &[Option<usize>],
-    resolve: &Resolve,
-) -> Vec<f64> {
-    let held: Vec<(usize, usize)> = index
-        .iter()
-        .enumerate()
-        .filter_map(|(k, i)| i.map(|i| (k, i)))
-        .collect();
-    held.windows(2)
-        .filter(|w| {
-            let ((k, i), (l, j)) = (w[0], w[1]);
-            let a = Point {
-                value: grid[k],
-                modes: lists[k],
-            };
-            let b = Point {
-                value: grid[l],
-                modes: lists[l],
-            };
-            follow(&a, i, &b, REFINEMENT_DEPTH, resolve) != Some(j)
-        })
-        .map(|w| 0.5 * (grid[w[0].0] + grid[w[1].0]))
-        .collect()
 }
 
 /// The points of `grid` whose result is an error, with the error.
@@ -264,8 +343,21 @@ impl Shard {
     }
 }
 
-/// Most points a grid sweep takes (the product of its axes).
+/// Most points a grid sweep takes (the product of its axes). Not for memory, which does not
+/// grow with the points ([`grid_sweep`]), but time: a mistyped STEP asking for more would run
+/// for days (10⁸ points of the paper's blade take about three hours on one core).
 pub const MAX_GRID_POINTS: usize = 100_000_000;
+
+/// `count` points said against `limit`: how many, and how many times the limit that is.
+pub fn beyond_limit(count: f64, limit: usize) -> String {
+    let times = count / limit as f64;
+    let times = if times < 1e4 {
+        format!("{times:.1}")
+    } else {
+        format!("{times:.1e}")
+    };
+    format!("{count:.4e} points, {times} times the limit of {limit}")
+}
 
 /// A product grid: `keys[k]` takes the values `axes[k]`; the last key varies fastest.
 #[derive(Debug, Clone, PartialEq)]
@@ -312,10 +404,11 @@ impl Grid {
             .try_fold(1usize, |acc, a| acc.checked_mul(a.len()));
         if total.is_none_or(|t| t > MAX_GRID_POINTS) {
             let sizes: Vec<String> = self.axes.iter().map(|a| a.len().to_string()).collect();
+            let size = self.axes.iter().map(|a| a.len() as f64).product::<f64>();
             return Err(Error::usage(format!(
-                "sweep: the grid is too large: {} points; the limit is {MAX_GRID_POINTS} \
-                 (100 million)",
-                sizes.join(" × ")
+                "sweep: the grid is too large: {} = {} (100 million)",
+                sizes.join(" × "),
+                beyond_limit(size, MAX_GRID_POINTS)
             )));
         }
         for (key, axis) in self.keys.iter().zip(&self.axes) {
@@ -447,14 +540,23 @@ impl SweepSummary {
     }
 }
 
-/// Points solved per parallel batch: bounds memory on huge grids while keeping cores busy.
-const BATCH_POINTS: usize = 4096;
+/// Points solved per parallel chunk, per thread: enough to keep every core busy between the
+/// chunks, few enough that the points waiting to be tracked and written stay a few megabytes.
+const CHUNK_POINTS_PER_THREAD: usize = 32;
 
-/// Solve the shard's slice of `grid`, handing rows to `sink` batch by batch in grid order.
-/// `progress` is called with the number of points just solved (warm-up included). Every point
-/// of the grid is in the output: a solved point as one row per tracked mode of its line, a point
-/// that could not be solved (a numerical failure) as one `failed` row. Input errors fail before
-/// any point is solved ([`Grid::check`]).
+/// Chunks solved ahead of the one being tracked and written.
+const CHUNKS_AHEAD: usize = 1;
+
+/// Consecutive solved points of the grid, from flat index `first`.
+type Chunk = (usize, Vec<PointResult>);
+
+/// Solve the shard's slice of `grid`, handing rows to `sink` in grid order as the points are
+/// solved, chunk by chunk: the points are solved on all cores a chunk ahead of their tracking,
+/// and only the chunks in flight and, per mode, the last point holding it are kept, so memory
+/// does not grow with the number of points. `progress` is called with the number of points just
+/// solved (warm-up included). Every point of the grid is in the output: a solved point as one
+/// row per mode named so far along its line, a point that could not be solved (a numerical
+/// failure) as one `failed` row. Input errors fail before any point is solved ([`Grid::check`]).
 pub fn grid_sweep(
     p: &ValidPreset,
     grid: &Grid,
@@ -473,108 +575,124 @@ pub fn grid_sweep(
         return Ok(summary);
     }
     let line = grid.line_length();
-    let first_line = own.start / line;
-    let last_line = (own.end - 1) / line;
-    let mut next_line = first_line;
-    while next_line <= last_line {
-        // A batch of whole lines, clipped to the shard's end.
-        let mut lines = Vec::new();
-        let mut points = 0;
-        while next_line <= last_line && (lines.is_empty() || points + line <= BATCH_POINTS) {
-            let start = next_line * line;
-            let end = ((next_line + 1) * line).min(own.end);
-            points += end - start;
-            lines.push(start..end);
-            next_line += 1;
-        }
-        let flat: Vec<usize> = lines.iter().flat_map(|r| r.clone()).collect();
-        let solved: Vec<PointResult> = flat
-            .par_iter()
-            .map(|&i| {
-                let s = point_result(solve_point(p, grid, i));
-                progress(1);
-                s
-            })
-            .collect::<Result<_>>()?;
-        let mut rows = Vec::new();
-        let mut offset = 0;
-        for r in &lines {
-            let n = r.len();
-            let pts = &solved[offset..offset + n];
-            offset += n;
-            let axis: Vec<f64> = r
-                .clone()
-                .map(|i| grid.values(i)[grid.keys.len() - 1])
-                .collect();
-            let line_start = grid.values(r.start);
-            let resolve = |v: f64| {
-                let mut values = line_start.clone();
-                if let Some(last) = values.last_mut() {
-                    *last = v;
+    // A shard starting inside a line tracks it from its start, so its names are the whole run's.
+    let first = own.start / line * line;
+    let chunk = CHUNK_POINTS_PER_THREAD * rayon::current_num_threads().max(1);
+    std::thread::scope(|scope| {
+        let (solved, chunks) = std::sync::mpsc::sync_channel::<Result<Chunk>>(CHUNKS_AHEAD);
+        let end = own.end;
+        scope.spawn(move || {
+            for at in (first..end).step_by(chunk) {
+                let points: Result<Vec<PointResult>> = (at..(at + chunk).min(end))
+                    .into_par_iter()
+                    .map(|i| {
+                        let s = point_result(solve_point(p, grid, i));
+                        progress(1);
+                        s
+                    })
+                    .collect();
+                let stop = points.is_err();
+                // A closed channel: the writer stopped (an output error); so does the solving.
+                if solved.send(points.map(|s| (at, s))).is_err() || stop {
+                    return;
                 }
-                let keyed: Vec<(&str, f64)> =
-                    grid.keys.iter().map(String::as_str).zip(values).collect();
-                p.with_all(&keyed)
-                    .and_then(|q| analyse(&q))
-                    .ok()
-                    .map(|s| s.eigenvalues)
-            };
-            let tracked = tracked_with_gaps(&grid.keys[grid.keys.len() - 1], &axis, pts, &resolve);
-            for m in &tracked.modes {
-                summary.switches.extend(m.switches.iter().map(|&at| {
-                    let mut values = line_start.clone();
-                    if let Some(last) = values.last_mut() {
-                        *last = at;
-                    }
-                    NameSwitch {
-                        values,
-                        mode: m.label.clone(),
-                    }
-                }));
             }
-            for (k, i) in r.clone().enumerate() {
+        });
+        let mut tracker = LineTracker::default();
+        for received in chunks {
+            let (at, points) = received?;
+            let mut rows = Vec::new();
+            for (i, point) in (at..).zip(points) {
+                if i % line == 0 {
+                    tracker = LineTracker::default();
+                }
+                let values = grid.values(i);
+                let resolve = |v: f64| {
+                    let mut values = values.clone();
+                    if let Some(last) = values.last_mut() {
+                        *last = v;
+                    }
+                    let keyed: Vec<(&str, f64)> =
+                        grid.keys.iter().map(String::as_str).zip(values).collect();
+                    p.with_all(&keyed)
+                        .and_then(|q| analyse(&q))
+                        .ok()
+                        .map(|s| s.eigenvalues)
+                };
+                let value = values[values.len() - 1];
+                let (modes, failure) = match point {
+                    Ok(s) => (Some(s.eigenvalues), None),
+                    Err(e) => (None, Some(e.to_string())),
+                };
+                let tracked = tracker.push(value, modes, &resolve);
                 if !own.contains(&i) {
                     continue;
                 }
-                let values = grid.values(i);
-                if let Some(f) = tracked.failure_at(k) {
-                    rows.push(SweepRow {
-                        values,
-                        mode: None,
-                        frequency_hz: f64::NAN,
-                        damping_ratio: f64::NAN,
-                        re: f64::NAN,
-                        second_re: f64::NAN,
-                        status: RowStatus::Failed,
-                        error: Some(f.error.clone()),
-                    });
-                    continue;
-                }
-                for m in &tracked.modes {
-                    let status = if m.re[k].is_nan() {
-                        RowStatus::NoRoot
-                    } else if !m.second_re[k].is_nan() {
-                        RowStatus::Overdamped
-                    } else {
-                        RowStatus::Ok
-                    };
-                    rows.push(SweepRow {
-                        values: values.clone(),
-                        mode: Some(m.label.clone()),
-                        frequency_hz: m.frequency_hz[k],
-                        damping_ratio: m.damping_ratio[k],
-                        re: m.re[k],
-                        second_re: m.second_re[k],
-                        status,
-                        error: None,
-                    });
-                }
+                summary
+                    .switches
+                    .extend(tracked.switches.iter().map(|&(n, at)| NameSwitch {
+                        values: with_last(&values, at),
+                        mode: tracker.names[n].clone(),
+                    }));
+                point_rows(&mut rows, values, &tracked, &tracker.names, failure);
             }
+            rows.iter().for_each(|r| summary.count(r));
+            sink(&rows)?;
         }
-        rows.iter().for_each(|r| summary.count(r));
-        sink(&rows)?;
+        Ok(summary)
+    })
+}
+
+/// `values` with its last (the tracked key's) replaced by `last`.
+fn with_last(values: &[f64], last: f64) -> Vec<f64> {
+    let mut out = values.to_vec();
+    if let Some(l) = out.last_mut() {
+        *l = last;
     }
-    Ok(summary)
+    out
+}
+
+/// The rows of one grid point: one `failed` row where it could not be solved (`failure` says
+/// why), else one row per name known along its line.
+fn point_rows(
+    rows: &mut Vec<SweepRow>,
+    values: Vec<f64>,
+    tracked: &TrackedPoint,
+    names: &[String],
+    failure: Option<String>,
+) {
+    let Some(held) = tracked.held.as_ref().filter(|_| failure.is_none()) else {
+        rows.push(SweepRow {
+            values,
+            mode: None,
+            frequency_hz: f64::NAN,
+            damping_ratio: f64::NAN,
+            re: f64::NAN,
+            second_re: f64::NAN,
+            status: RowStatus::Failed,
+            error: failure,
+        });
+        return;
+    };
+    for (name, i) in names.iter().zip(&tracked.index) {
+        let root = i.map(|i| &held.modes[i]);
+        let status = match root {
+            None => RowStatus::NoRoot,
+            Some(m) if m.second_re.is_some() => RowStatus::Overdamped,
+            Some(_) => RowStatus::Ok,
+        };
+        let value = |f: fn(&Mode) -> f64| root.map_or(f64::NAN, f);
+        rows.push(SweepRow {
+            values: values.clone(),
+            mode: Some(name.clone()),
+            frequency_hz: value(|m| m.frequency_hz),
+            damping_ratio: value(|m| m.damping_ratio),
+            re: value(|m| m.re),
+            second_re: value(|m| m.second_re.unwrap_or(f64::NAN)),
+            status,
+            error: None,
+        });
+    }
 }
 
 fn solve_point(p: &ValidPreset, grid: &Grid, i: usize) -> Result<Stability> {
@@ -640,7 +758,10 @@ mod tests {
             .check(&p)
             .unwrap_err()
             .to_string();
-        assert!(e.contains("100000 × 100000 points"), "{e}");
+        assert!(
+            e.contains("100000 × 100000 = 1.0000e10 points, 100.0 times the limit of 100000000 (100 million)"),
+            "{e}"
+        );
     }
 
     #[test]

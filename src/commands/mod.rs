@@ -208,21 +208,66 @@ pub fn parse_vary(spec: &str) -> Result<(String, Vec<f64>)> {
     let count = ((to - from) / step + 1e-9).floor() + 1.0;
     if count > MAX_AXIS_POINTS as f64 {
         let count = if count.is_finite() {
-            format!("{count:.4e} points")
+            format!(
+                "{} (10 million) per --vary",
+                crate::analysis::sweep::beyond_limit(count, MAX_AXIS_POINTS)
+            )
         } else {
-            "more points than a number holds".to_string()
+            format!(
+                "more points than a number holds; the limit is {MAX_AXIS_POINTS} (10 million) \
+                 per --vary"
+            )
         };
         return Err(bad(&format!(
-            "the grid is too large: {count}; the limit is {MAX_AXIS_POINTS} (10 million) per \
-             --vary, so STEP must be at least (TO − FROM)/{}",
+            "the grid is too large: {count}, so STEP must be at least (TO − FROM)/{}",
             MAX_AXIS_POINTS - 1
         )));
     }
     crate::preset::key_spec(key.trim())?;
-    let grid = (0..count as usize)
-        .map(|i| from + step * i as f64)
-        .collect();
+    let grid = axis(from, step, count as usize, decimals(&[parts[0], parts[2]]));
+    if let Some(&last) = grid.last() {
+        if to - last > 1e-9 * step {
+            eprintln!(
+                "note: --vary '{spec}': the grid stops at {last}, the last FROM + k·STEP not \
+                 beyond TO = {to}"
+            );
+        }
+    }
     Ok((key.trim().to_string(), grid))
+}
+
+/// `count` values from `from` by `step`, each the decimal the user's numbers carry (`decimals`
+/// after the point: `0.1 · 3` is 0.3, not 0.30000000000000004), counted in integers of that
+/// decimal where they fit a double exactly.
+fn axis(from: f64, step: f64, count: usize, decimals: Option<i32>) -> Vec<f64> {
+    let exact = decimals.and_then(|d| {
+        let scale = 10f64.powi(d);
+        let (a, s) = ((from * scale).round(), (step * scale).round());
+        let limit = 2f64.powi(53);
+        (s > 0.0 && a.abs() + s * count as f64 <= limit).then_some((a, s, scale))
+    });
+    (0..count)
+        .map(|i| match exact {
+            Some((a, s, scale)) => (a + s * i as f64) / scale,
+            None => from + step * i as f64,
+        })
+        .collect()
+}
+
+/// The most digits after the decimal point among `numbers` as written (`2.5e-3` has 4), or
+/// none beyond what a double's decimal holds exactly.
+fn decimals(numbers: &[&str]) -> Option<i32> {
+    numbers
+        .iter()
+        .map(|s| {
+            let s = s.trim().to_ascii_lowercase();
+            let (mantissa, exponent) = s.split_once('e').unwrap_or((&s, "0"));
+            let exponent: i32 = exponent.parse().ok()?;
+            let after = mantissa.split_once('.').map_or(0, |(_, f)| f.len() as i32);
+            Some((after - exponent).max(0))
+        })
+        .try_fold(0, |d, n| n.map(|n| d.max(n)))
+        .filter(|&d| d <= 15)
 }
 
 #[cfg(test)]

@@ -1,7 +1,8 @@
 //! `flutterscope sweep`: tracked modes over a grid of one or more keys (CSV or JSON), on all
 //! cores, optionally one shard of the grid.
 
-use crate::analysis::sweep::{grid_sweep, Grid, SweepRow, SweepSummary};
+use crate::analysis::sweep::{grid_sweep, Grid, Shard, SweepRow, SweepSummary};
+use super::stdout_error;
 use crate::error::{Error, Result};
 use crate::preset::ValidPreset;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -30,50 +31,29 @@ pub fn run(
     grid.check(p)?;
     // Rows kept for the plot (one key: the tracked modes along it).
     let mut plotted: Vec<SweepRow> = Vec::new();
-    let keep = plot.is_some();
     let shard = shard.map(super::slurm::shard).transpose()?;
     let own = shard.map_or(grid.total(), |s| s.range(grid.total()).len());
     let bar = progress_bar(own as u64);
     let progress = |n: u64| bar.inc(n);
+    let mut out = std::io::BufWriter::new(super::stdout()?);
+    let mut keep = |batch: &[SweepRow]| {
+        if plot.is_some() {
+            plotted.extend_from_slice(batch);
+        }
+    };
     let result = if json {
-        let mut rows = Vec::new();
-        grid_sweep(p, &grid, shard, &progress, &mut |batch| {
-            rows.extend_from_slice(batch);
-            if keep {
-                plotted.extend_from_slice(batch);
-            }
-            Ok(())
-        })
-        .and_then(|summary| {
-            super::print_json(&serde_json::json!({
-                "parameters": grid.keys,
-                "points": summary.points,
-                "failed_points": summary.failed,
-                "no_root_rows": summary.no_root,
-                "switches": summary.switches,
-                "rows": rows,
-            }))
-            .map(|()| summary)
-        })
+        write_json(&mut out, p, &grid, shard, &progress, &mut keep)
     } else {
-        let io = super::stdout_error;
-        let mut out = std::io::BufWriter::new(super::stdout()?);
-        writeln!(out, "{}", csv_header(&grid.keys)).map_err(io)?;
-        grid_sweep(p, &grid, shard, &progress, &mut |batch| {
-            for r in batch {
-                writeln!(out, "{}", csv_row(r)).map_err(io)?;
-            }
-            if keep {
-                plotted.extend_from_slice(batch);
-            }
-            Ok(())
-        })
-        .and_then(|summary| out.flush().map_err(io).map(|()| summary))
+        write_csv(&mut out, p, &grid, shard, &progress, &mut keep)
     };
     bar.finish_and_clear();
     let summary = result?;
+    drop(out);
     for line in warnings(&grid.keys, &summary) {
         eprintln!("{line}");
+    }
+    if let Some(e) = all_failed(&grid.keys, &summary) {
+        return Err(e);
     }
     if let Some(path) = plot {
         let tracked = crate::plot::from_results::tracked_from_rows(&grid.keys[0], &plotted);
@@ -93,19 +73,102 @@ pub fn run(
     Ok(())
 }
 
+/// The sweep as CSV, a line per row as the points are solved.
+fn write_csv(
+    out: &mut impl Write,
+    p: &ValidPreset,
+    grid: &Grid,
+    shard: Option<Shard>,
+    progress: &(dyn Fn(u64) + Sync),
+    keep: &mut dyn FnMut(&[SweepRow]),
+) -> Result<SweepSummary> {
+    writeln!(out, "{}", csv_header(&grid.keys)).map_err(stdout_error)?;
+    let summary = grid_sweep(p, grid, shard, progress, &mut |batch| {
+        for r in batch {
+            writeln!(out, "{}", csv_row(r)).map_err(stdout_error)?;
+        }
+        keep(batch);
+        out.flush().map_err(stdout_error)
+    })?;
+    Ok(summary)
+}
+
+/// The sweep as one JSON object, its rows written as the points are solved and the counts,
+/// known only at the end, after them.
+fn write_json(
+    out: &mut impl Write,
+    p: &ValidPreset,
+    grid: &Grid,
+    shard: Option<Shard>,
+    progress: &(dyn Fn(u64) + Sync),
+    keep: &mut dyn FnMut(&[SweepRow]),
+) -> Result<SweepSummary> {
+    let points = shard.map_or(grid.total(), |s| s.range(grid.total()).len());
+    write!(
+        out,
+        "{{\n  \"parameters\": {},\n  \"points\": {points},\n  \"rows\": [",
+        pretty(&grid.keys, 2)?
+    )
+    .map_err(stdout_error)?;
+    let mut first = true;
+    let summary = grid_sweep(p, grid, shard, progress, &mut |batch| {
+        for r in batch {
+            let sep = if std::mem::take(&mut first) { "" } else { "," };
+            write!(out, "{sep}\n    {}", pretty(r, 4)?).map_err(stdout_error)?;
+        }
+        keep(batch);
+        out.flush().map_err(stdout_error)
+    })?;
+    let close = if first { "]" } else { "\n  ]" };
+    writeln!(
+        out,
+        "{close},\n  \"failed_points\": {},\n  \"no_root_rows\": {},\n  \"switches\": {}\n}}",
+        summary.failed,
+        summary.no_root,
+        pretty(&summary.switches, 2)?
+    )
+    .and_then(|()| out.flush())
+    .map_err(stdout_error)?;
+    Ok(summary)
+}
+
+/// `value` as pretty JSON whose lines after the first are indented by `indent` spaces (its
+/// place inside the sweep's object).
+fn pretty(value: &impl serde::Serialize, indent: usize) -> Result<String> {
+    let text = serde_json::to_string_pretty(value)
+        .map_err(|e| Error::Io(format!("cannot encode JSON: {e}")))?;
+    Ok(text.replace('\n', &format!("\n{}", " ".repeat(indent))))
+}
+
+/// A sweep none of whose points could be solved has no result to give: an error, after its
+/// `failed` rows.
+fn all_failed(keys: &[String], s: &SweepSummary) -> Option<Error> {
+    let r = s.first_failed.as_ref().filter(|_| s.failed == s.points)?;
+    Some(Error::numerical(format!(
+        "none of the sweep's {} grid point(s) could be solved (every row has status `failed`); \
+         the first, at {}: {}",
+        s.points,
+        at_values(keys, &r.values),
+        r.error.as_deref().unwrap_or("unknown error")
+    )))
+}
+
+/// `key = value` for each grid key, as the warnings name a point.
+fn at_values(keys: &[String], values: &[f64]) -> String {
+    keys.iter()
+        .zip(values)
+        .map(|(k, v)| format!("{k} = {v}"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
 /// What the rows without values mean, counted: failed points (a warning, with the first one's
 /// values and error) and modes without a root at a solved point (a note: physics, not failure).
 pub fn warnings(keys: &[String], s: &SweepSummary) -> Vec<String> {
-    let at_values = |values: &[f64]| {
-        keys.iter()
-            .zip(values)
-            .map(|(k, v)| format!("{k} = {v}"))
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
+    let at_values = |values: &[f64]| at_values(keys, values);
     let at = |r: &SweepRow| at_values(&r.values);
     let mut out = Vec::new();
-    if let Some(r) = &s.first_failed {
+    if let Some(r) = s.first_failed.as_ref().filter(|_| s.failed < s.points) {
         out.push(format!(
             "warning: {} of {} grid point(s) could not be solved (rows with status `failed`, no \
              values); the first, at {}: {}",
@@ -184,23 +247,22 @@ pub fn csv_header(keys: &[String]) -> String {
 /// One CSV line; a row whose status is not `ok` leaves its numbers empty (a failed point its
 /// mode too).
 pub fn csv_row(r: &SweepRow) -> String {
-    let num = |v: f64| {
+    use std::fmt::Write;
+    // Written in place: a sweep writes millions of these.
+    let mut line = String::with_capacity(128);
+    for v in &r.values {
+        let _ = write!(line, "{v},");
+    }
+    line.push_str(r.mode.as_deref().unwrap_or_default());
+    for v in [r.frequency_hz, r.damping_ratio, r.re, r.second_re] {
+        line.push(',');
         if v.is_finite() {
-            format!("{v}")
-        } else {
-            String::new()
+            let _ = write!(line, "{v}");
         }
-    };
-    let mut cols: Vec<String> = r.values.iter().map(|v| format!("{v}")).collect();
-    cols.push(r.mode.clone().unwrap_or_default());
-    cols.extend([
-        num(r.frequency_hz),
-        num(r.damping_ratio),
-        num(r.re),
-        num(r.second_re),
-    ]);
-    cols.push(r.status.name().to_string());
-    cols.join(",")
+    }
+    line.push(',');
+    line.push_str(r.status.name());
+    line
 }
 
 /// A bar on stderr when it is a terminal, nothing otherwise (logs and pipes stay clean).

@@ -382,3 +382,173 @@ fn name_switches_are_reported() {
         assert!(at > 0.0 && at < 200.0 && at % 10.0 != 0.0, "{s}");
     }
 }
+
+/// The stall preset has no static equilibrium at 0 rpm: a sweep of that point alone has no
+/// result at all, and says so by its exit status, after the `failed` row.
+#[test]
+fn a_sweep_whose_every_point_failed_exits_non_zero() {
+    for json in [false, true] {
+        let mut args = vec![
+            "sweep",
+            "--preset",
+            "liu2017-stall",
+            "--vary",
+            "operating.rotor_speed=0:0:1",
+        ];
+        if json {
+            args.push("--json");
+        }
+        let r = run(&args);
+        assert_eq!(r.code, Some(1), "{args:?}: {}", r.stderr);
+        assert!(
+            r.stderr
+                .contains("error: numerical: none of the sweep's 1 grid point(s) could be solved")
+                && r.stderr
+                    .contains("at operating.rotor_speed = 0: numerical: static equilibrium"),
+            "{args:?}: {}",
+            r.stderr
+        );
+        if json {
+            let v: serde_json::Value = serde_json::from_str(&r.stdout).unwrap();
+            assert_eq!(
+                (v["points"].clone(), v["failed_points"].clone()),
+                (1.into(), 1.into())
+            );
+            assert_eq!(v["rows"][0]["status"], "failed");
+        } else {
+            assert!(r.stdout.ends_with("\n0,,,,,,failed\n"), "{}", r.stdout);
+        }
+    }
+}
+
+/// Rows come out as the points are solved, in grid order: a sweep far too long to wait for has
+/// printed its first points while it runs (CSV and JSON), so a sweep that is stopped keeps what
+/// it finished.
+#[test]
+fn a_long_sweep_prints_its_first_points_while_it_runs() {
+    use std::io::BufRead;
+    for json in [false, true] {
+        let mut args = vec![
+            "sweep",
+            "--preset",
+            "liu2017",
+            "--vary",
+            "operating.wind_speed=5:30:0.0001",
+        ];
+        if json {
+            args.push("--json");
+        }
+        let mut child = std::process::Command::new(assert_cmd::cargo::cargo_bin("flutterscope"))
+            .args(&args)
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::null())
+            .spawn()
+            .unwrap();
+        let out = std::io::BufReader::new(child.stdout.take().unwrap());
+        let (lines, received) = std::sync::mpsc::channel();
+        std::thread::spawn(move || {
+            for line in out.lines().map_while(std::result::Result::ok) {
+                if lines.send(line).is_err() {
+                    break;
+                }
+            }
+        });
+        // The first points' wind speeds, in grid order: CSV rows start with it; JSON rows hold
+        // it as the line after `"values": [`.
+        let mut seen: Vec<String> = Vec::new();
+        let mut after_values = false;
+        while seen.len() < 2 {
+            let line = received
+                .recv_timeout(std::time::Duration::from_secs(120))
+                .unwrap_or_else(|e| panic!("{args:?}: no rows while the sweep runs ({e})"));
+            let value = if json {
+                let v = std::mem::replace(&mut after_values, line.ends_with("\"values\": ["));
+                v.then(|| line.trim().to_string())
+            } else {
+                line.split(',')
+                    .next()
+                    .filter(|v| v.starts_with('5'))
+                    .map(str::to_string)
+            };
+            if let Some(v) = value.filter(|v| seen.last() != Some(v)) {
+                seen.push(v);
+            }
+        }
+        let running = child.try_wait().unwrap().is_none();
+        child.kill().unwrap();
+        child.wait().unwrap();
+        assert!(running, "{args:?}: the sweep had finished");
+        let first = if json { "5.0" } else { "5" };
+        assert_eq!(seen, [first, "5.0001"], "{args:?}");
+    }
+}
+
+/// Swept values are the decimals the grid is written in (0.1 · 3 is 0.3, not
+/// 0.30000000000000004), and a grid whose STEP does not divide the range says where it stops.
+#[test]
+fn swept_values_are_the_grids_decimals_and_its_end_is_told() {
+    let r = run(&[
+        "sweep",
+        "--preset",
+        "liu2017",
+        "--vary",
+        "operating.pitch=0:0.3:0.1",
+    ]);
+    assert_eq!(r.code, Some(0), "{}", r.stderr);
+    let mut values: Vec<&str> = r
+        .stdout
+        .lines()
+        .skip(1)
+        .map(|l| &l[..l.find(',').unwrap()])
+        .collect();
+    values.dedup();
+    assert_eq!(values, ["0", "0.1", "0.2", "0.3"], "{}", r.stdout);
+    assert!(!r.stderr.contains("grid stops"), "{}", r.stderr);
+    let r = run(&[
+        "sweep",
+        "--preset",
+        "liu2017",
+        "--vary",
+        "operating.rotor_speed=0:100:33",
+    ]);
+    assert_eq!(r.code, Some(0), "{}", r.stderr);
+    assert!(
+        r.stderr.contains(
+            "note: --vary 'operating.rotor_speed=0:100:33': the grid stops at 99, the last \
+             FROM + k·STEP not beyond TO = 100"
+        ),
+        "{}",
+        r.stderr
+    );
+}
+
+/// A grid beyond the point-count limits says the limit and how far beyond it the request is.
+#[test]
+fn a_grid_too_large_says_by_how_much() {
+    let r = run(&["sweep", "--vary", "operating.rotor_speed=0:100:0.000001"]);
+    assert_eq!(r.code, Some(2), "{}", r.stderr);
+    assert!(
+        r.stderr.contains(
+            "too large: 1.0000e8 points, 10.0 times the limit of 10000000 (10 million) per --vary"
+        ),
+        "{}",
+        r.stderr
+    );
+    let r = run(&[
+        "sweep",
+        "--vary",
+        "operating.pitch=0:20:0.001",
+        "--vary",
+        "operating.rotor_speed=0:100:0.001",
+    ]);
+    assert_eq!(r.code, Some(2), "{}", r.stderr);
+    assert!(
+        r.stderr.contains(
+            "too large: 20001 × 100001 = 2.0001e9 points, 20.0 times the limit of 100000000 \
+             (100 million)"
+        ),
+        "{}",
+        r.stderr
+    );
+    assert_eq!(r.stdout, "");
+}
