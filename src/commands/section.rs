@@ -12,7 +12,7 @@ use std::path::Path;
 
 /// The header line's note: this command evaluates the layup even when the model does not.
 fn source_note(p: &ValidPreset) -> String {
-    let source = source_name(p.section.source);
+    let source = p.section.source.name();
     if p.tabulated_blade().is_some() {
         format!(
             "always evaluated from the layup; the model uses the {} blade of blade.file = \"{}\", \
@@ -26,14 +26,6 @@ fn source_note(p: &ValidPreset) -> String {
         format!(
             "always evaluated from the layup; the model uses section.source = \"{source}\", not these"
         )
-    }
-}
-
-fn source_name(s: SectionSource) -> &'static str {
-    match s {
-        SectionSource::Direct => "direct",
-        SectionSource::Table => "table",
-        SectionSource::Layup => "layup",
     }
 }
 
@@ -71,7 +63,7 @@ pub fn run(p: &ValidPreset, vary: Option<&str>, json: bool, plot: Option<&Path>)
                 print_json(&SectionReport {
                     preset: p.display_name(),
                     evaluated: "layup",
-                    preset_section_source: source_name(p.section.source),
+                    preset_section_source: p.section.source.name(),
                     section: s,
                 })
             } else {
@@ -95,7 +87,7 @@ pub fn run(p: &ValidPreset, vary: Option<&str>, json: bool, plot: Option<&Path>)
                 print_json(&VaryReport {
                     preset: p.display_name(),
                     evaluated: "layup",
-                    preset_section_source: source_name(p.section.source),
+                    preset_section_source: p.section.source.name(),
                     key,
                     values,
                     sections,

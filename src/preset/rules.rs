@@ -91,6 +91,87 @@ pub fn not_acting(p: &Preset, key: &str) -> Option<String> {
              (blade.source = \"beamdyn\" or \"hawc2\"); the uniform blade's coupling is \
              section.c23, or section.ply_angle for a table or layup section"
             .to_string(),
+        // The uniform blade's own section and strip keys (docs/model.md §2, §5): a tabulated
+        // blade's sections come from its file and its strips from its polars.
+        _ if tabulated && key.starts_with("section.") => format!(
+            "does not apply to blade.source = \"{}\": the sections (stiffness, mass, chord, \
+             centres) come from blade.file = \"{file}\"",
+            source.name()
+        ),
+        "operating.twist_root" | "operating.twist_tip" if tabulated => format!(
+            "does not apply to blade.source = \"{}\": a tabulated blade's twist comes from its \
+             files (the BeamDyn key points, or blade.twist_file for a HAWC2 st file), and \
+             operating.pitch turns it",
+            source.name()
+        ),
+        "operating.induction" if tabulated => format!(
+            "does not apply to blade.source = \"{}\": a rotor blade's induction is the BEM's, \
+             at every station, from operating.wind_speed, operating.rotor_speed and \
+             operating.pitch",
+            source.name()
+        ),
+        "aero.lift_slope" | "aero.drag_coefficient" if tabulated => format!(
+            "does not apply to blade.source = \"{}\": a tabulated blade's strips read lift and \
+             drag from each station's polar (aero.airfoils or aero.pc_file)",
+            source.name()
+        ),
+        // The rotor's keys shape the BEM (docs/model.md §12), which only a tabulated blade has.
+        "operating.blades" | "operating.precone" | "operating.shaft_tilt" if !tabulated => {
+            "does not apply to blade.source = \"uniform\": it shapes the rotor's steady BEM, \
+             which runs on a tabulated blade (blade.source = \"beamdyn\" or \"hawc2\"); the \
+             uniform blade's inflow is operating.wind_speed with operating.induction"
+                .to_string()
+        }
+        "structure.damping_flap" | "structure.damping_edge" | "structure.damping_torsion"
+            if !tabulated =>
+        {
+            "does not apply to blade.source = \"uniform\": the uniform blade is damped by \
+             structure.loss_factor (the per-family damping ratios are a tabulated blade's)"
+                .to_string()
+        }
+        "blade.st_set" | "blade.st_subset" if source != BladeSource::Hawc2 => format!(
+            "does not apply to blade.source = \"{}\": it chooses a subset of a HAWC2 st file \
+             (blade.source = \"hawc2\")",
+            source.name()
+        ),
+        "aero.ae_set" if p.aero.ae_file.trim().is_empty() => "does not apply without \
+             aero.ae_file: it chooses a set of a HAWC2 ae file"
+            .to_string(),
+        "operating.rated_power"
+        | "operating.rotor_speed_min"
+        | "operating.rotor_speed_max"
+        | "operating.tip_speed_ratio"
+            if p.operating.schedule != Schedule::Law =>
+        {
+            format!(
+                "does not apply to operating.schedule = \"{}\": it is a parameter of the \
+                 control law (operating.schedule = \"law\")",
+                p.operating.schedule.name()
+            )
+        }
+        "section.c22" | "section.c23" | "section.c33"
+            if p.section.source != SectionSource::Direct =>
+        {
+            format!(
+                "does not apply to section.source = \"{}\": the stiffnesses come from {}",
+                p.section.source.name(),
+                match p.section.source {
+                    SectionSource::Table => "the paper's Table 1 at section.ply_angle",
+                    _ => "the laminate (section.layup, section.contour, section.ply_angle)",
+                }
+            )
+        }
+        "section.mass_per_length"
+        | "section.polar_inertia"
+        | "section.ka2"
+        | "section.km1_2"
+        | "section.km2_2"
+            if p.section.source == SectionSource::Layup =>
+        {
+            "does not apply to section.source = \"layup\": the mass and inertia come from the \
+             laminate and its materials (section.layup, section.contour)"
+                .to_string()
+        }
         _ => return None,
     };
     Some(reason)

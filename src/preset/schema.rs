@@ -155,6 +155,17 @@ pub enum SectionSource {
     Layup,
 }
 
+impl SectionSource {
+    /// As written in a preset.
+    pub fn name(self) -> &'static str {
+        match self {
+            SectionSource::Direct => "direct",
+            SectionSource::Table => "table",
+            SectionSource::Layup => "layup",
+        }
+    }
+}
+
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Section {

@@ -87,11 +87,7 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
         frame.render_widget(Paragraph::new(lines).block(block), area);
         return;
     }
-    let source = match state.preset.section.source {
-        SectionSource::Direct => "direct",
-        SectionSource::Table => "table",
-        SectionSource::Layup => "layup",
-    };
+    let source = state.preset.section.source.name();
     lines.push(Line::styled(format!("section ({source})"), theme.dim()));
     let stiff = |name: &str, v: Option<f64>| {
         let value = v.map(|v| sig(v, 4)).unwrap_or_else(|| "—".into());
