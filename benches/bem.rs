@@ -2,14 +2,14 @@
 //! 30 stations (its preset's Gauss stations, sections from the HAWC2 ae and pc files) at rated
 //! (10.7 m/s, 7.56 rpm), with the preset's thrust–induction relation (Madsen's) and with Buhl's,
 //! and the same with the sections looked up afresh (what a caller pays when
-//! the stations change); the NREL 5MW operating point of its preset through the control law
-//! (rated power held by the pitch search at 13 m/s).
+//! the stations change). The control law's operating point is the deflected blade's
+//! (`benches/rotor.rs`).
 //!
 //! Run: `cargo bench --bench bem`.
 
 use flutterscope::physics::rotor::bem::{solve, Conditions, Rotor, Station};
 use flutterscope::physics::rotor::induction::HighThrust;
-use flutterscope::physics::rotor::steady::{for_preset, rotor_of};
+use flutterscope::physics::rotor::steady::rotor_of;
 use flutterscope::preset::Preset;
 
 fn main() {
@@ -55,10 +55,4 @@ fn stations_and_solve_30(bencher: divan::Bencher) {
         let stations = Station::gauss(&blade, 30).unwrap();
         solve(&rotor, &stations, &[], &at).unwrap()
     });
-}
-
-#[divan::bench]
-fn nrel5mw_law_above_rated(bencher: divan::Bencher) {
-    let p = Preset::load("nrel5mw", &["operating.wind_speed=13".into()]).unwrap();
-    bencher.bench(|| for_preset(&p).unwrap());
 }

@@ -28,6 +28,27 @@ fn operating_point(bencher: divan::Bencher) {
     bencher.bench(|| steady(divan::black_box(&p), Unsteadiness::Theodorsen).unwrap());
 }
 
+/// The NREL 5MW above rated on its control law (13 m/s, quasi-steady): the pitch that holds
+/// rated power found pass by pass on the deflected blade, the structure following it.
+#[divan::bench]
+fn law_operating_point_above_rated(bencher: divan::Bencher) {
+    let p = Preset::load("nrel5mw", &["operating.wind_speed=13".into()]).unwrap();
+    bencher.bench(|| steady(divan::black_box(&p), Unsteadiness::QuasiSteady).unwrap());
+}
+
+/// The same at the pitch the law found, held by hand: the operating point without the search.
+#[divan::bench]
+fn operating_point_at_the_law_pitch(bencher: divan::Bencher) {
+    let law = Preset::load("nrel5mw", &["operating.wind_speed=13".into()]).unwrap();
+    let pitch = steady(&law, Unsteadiness::QuasiSteady)
+        .unwrap()
+        .preset
+        .operating
+        .pitch;
+    let p = law.with("operating.pitch", pitch).unwrap();
+    bencher.bench(|| steady(divan::black_box(&p), Unsteadiness::QuasiSteady).unwrap());
+}
+
 /// Operating point, linearisation and eigen-analysis with mode names: what a key press costs.
 #[divan::bench]
 fn stability_at_an_operating_point(bencher: divan::Bencher) {

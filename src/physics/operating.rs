@@ -22,14 +22,14 @@ use crate::physics::aero::blade_element::{
 };
 use crate::physics::inflow::Station;
 use crate::physics::rotor::bem::{self, Conditions, OperatingState};
-use crate::physics::rotor::steady::{
-    aero_blade_of, aero_stations_of, rotor_of, setting, SteadyPoint,
-};
-use crate::physics::structure::for_preset;
+use crate::physics::rotor::schedule::{Law, PitchSearch};
+use crate::physics::rotor::steady::{aero_blade_of, aero_stations_of, rotor_of, SteadyPoint};
+use crate::physics::structure::{for_preset, Structure};
 use crate::physics::system::System;
 use crate::preset::{AeroModel, Schedule, ValidPreset};
 use nalgebra::{DMatrix, DVector};
 use std::collections::VecDeque;
+use std::f64::consts::PI;
 use std::sync::Arc;
 
 /// Largest change of the elastic twist at any station (rad), or of its flap over the tip radius,
@@ -64,43 +64,113 @@ impl Operation {
 /// The preset with `operating.rotor_speed` and `operating.pitch` taken from its schedule at its
 /// wind speed, except where an edit set one by hand ([`crate::preset::ScheduleOverrides`]:
 /// overspeed at the schedule's pitch, say), and the schedule then set to `none`; the preset
-/// itself when it has no schedule.
+/// itself when it has no schedule. A law's pitch above rated is the one its blade needs in its
+/// static aeroelastic equilibrium ([`steady`]).
 pub fn on_schedule(p: &ValidPreset) -> Result<ValidPreset> {
-    if p.operating.schedule == Schedule::None {
-        return Ok(p.clone());
-    }
-    let blade = aero_blade_of(p)?;
-    let rotor = rotor_of(p, blade);
-    // Asked for only if the law's pitch search asks for power: a table needs none (the
-    // stations are built once per blade and shared, §12.6).
-    let power = |s: crate::physics::rotor::schedule::Setting| {
-        bem::solve(
-            &rotor,
-            &aero_stations_of(p)?,
-            &[],
-            &Conditions {
-                wind_speed: p.operating.wind_speed,
-                rotor_speed: s.rotor_speed,
-                pitch: s.pitch,
-                air_density: p.operating.air_density,
-            },
-        )
-        .map(|st| st.power)
-    };
-    let s = setting(p, &rotor, power).map_err(|e| e.at(p.operating_point()))?;
-    let held = p.schedule_overrides;
-    p.edited(|q| {
-        // Back to the preset's units, rounded to 1e-9 (far below any schedule's precision) so
-        // that a table's 12.1 rpm reads 12.1 again after its trip through rad/s.
-        let tidy = |x: f64| (x * 1e9).round() / 1e9;
-        if !held.rotor_speed {
-            q.operating.rotor_speed = tidy(s.rotor_speed * 30.0 / std::f64::consts::PI);
+    match scheduled(p)? {
+        Scheduled::Set(q) => Ok(q),
+        Scheduled::Law(q, law) => {
+            let pitch = law_point(&q, &law, unsteadiness(p))?.preset.operating.pitch;
+            held_against(p, &q, pitch)
         }
-        if !held.pitch {
-            q.operating.pitch = tidy(s.pitch.to_degrees());
+    }
+}
+
+/// The rotor speed (rpm) `p` runs at on its schedule: what [`on_schedule`] sets, without the
+/// law's pitch search (the speed does not depend on the pitch).
+pub fn scheduled_rotor_speed(p: &ValidPreset) -> Result<f64> {
+    Ok(match scheduled(p)? {
+        Scheduled::Set(q) => q.operating.rotor_speed,
+        Scheduled::Law(_, _) if p.schedule_overrides.rotor_speed => p.operating.rotor_speed,
+        Scheduled::Law(q, _) => q.operating.rotor_speed,
+    })
+}
+
+/// Where a preset's setting comes from once its schedule is read.
+enum Scheduled {
+    /// Rotor speed and pitch both known: the preset at them, schedule `none`.
+    Set(ValidPreset),
+    /// The law's pitch still to find, on the preset at the law's rotor speed.
+    Law(ValidPreset, Law),
+}
+
+/// `p` at its schedule's rotor speed, and its pitch where the schedule gives it without the
+/// blade's equilibrium (a table, a pitch held by hand).
+fn scheduled(p: &ValidPreset) -> Result<Scheduled> {
+    let o = &p.operating;
+    let held = p.schedule_overrides;
+    let (rotor_speed, pitch) = match o.schedule {
+        Schedule::None => return Ok(Scheduled::Set(p.clone())),
+        Schedule::Table => {
+            let s = p
+                .schedule_table()
+                .ok_or_else(|| {
+                    Error::numerical("operating.schedule = \"table\" without its table")
+                })?
+                .at(o.wind_speed)
+                .map_err(|e| e.at(p.operating_point()))?;
+            (s.rotor_speed, Some(s.pitch))
+        }
+        Schedule::Law => {
+            let law = Law {
+                rated_power: o.rated_power,
+                rotor_speed_min: o.rotor_speed_min * PI / 30.0,
+                rotor_speed_max: o.rotor_speed_max * PI / 30.0,
+                tip_speed_ratio: o.tip_speed_ratio,
+                tip_radius: rotor_of(p, aero_blade_of(p)?).tip_radius,
+            };
+            let rotor_speed = law.rotor_speed(o.wind_speed);
+            if !held.pitch {
+                // The law's pitch belongs to its own rotor speed: overspeed runs at the pitch
+                // the law sets at this wind.
+                return Ok(Scheduled::Law(at_setting(p, Some(rotor_speed), None)?, law));
+            }
+            (rotor_speed, None)
+        }
+    };
+    let set = |held: bool, x| (!held).then_some(x);
+    at_setting(
+        p,
+        set(held.rotor_speed, rotor_speed),
+        pitch.and_then(|x| set(held.pitch, x)),
+    )
+    .map(Scheduled::Set)
+}
+
+/// `p` with its schedule set to `none` at the rotor speed (rad/s) and pitch (rad) given, the
+/// preset's own where not.
+fn at_setting(
+    p: &ValidPreset,
+    rotor_speed: Option<f64>,
+    pitch: Option<f64>,
+) -> Result<ValidPreset> {
+    p.edited(|q| {
+        if let Some(rotor_speed) = rotor_speed {
+            q.operating.rotor_speed = tidy(rotor_speed * 30.0 / PI);
+        }
+        if let Some(pitch) = pitch {
+            q.operating.pitch = tidy(pitch.to_degrees());
         }
         q.operating.schedule = Schedule::None;
         q.operating.schedule_file.clear();
+    })
+}
+
+/// Back to the preset's units, rounded to 1e-9 (far below any schedule's precision) so that a
+/// table's 12.1 rpm reads 12.1 again after its trip through rad/s.
+fn tidy(x: f64) -> f64 {
+    (x * 1e9).round() / 1e9
+}
+
+/// `law_preset` (the law's rotor speed) with the law's `pitch` (deg), at the rotor speed `p`
+/// holds by hand if it holds one.
+fn held_against(p: &ValidPreset, law_preset: &ValidPreset, pitch: f64) -> Result<ValidPreset> {
+    let held = p.schedule_overrides.rotor_speed;
+    law_preset.edited(|q| {
+        q.operating.pitch = pitch;
+        if held {
+            q.operating.rotor_speed = p.operating.rotor_speed;
+        }
     })
 }
 
@@ -136,19 +206,39 @@ pub fn unsteadiness(p: &ValidPreset) -> Unsteadiness {
 }
 
 /// The steady aeroelastic operating point of `p` (a tabulated blade with its aerodynamic
-/// description) with the strip model `unsteady`.
+/// description) with the strip model `unsteady`, at its schedule's setting.
 pub fn steady(p: &ValidPreset, unsteady: Unsteadiness) -> Result<Operation> {
-    let p = on_schedule(p)?;
-    let blade = aero_blade_of(&p)?;
-    let rotor = rotor_of(&p, blade);
-    let strips = aero_stations_of(&p)?;
-    let structure = for_preset(&p)?;
-    let conditions = Conditions {
-        wind_speed: p.operating.wind_speed,
-        rotor_speed: p.omega(),
-        pitch: p.pitch_rad(),
-        air_density: p.operating.air_density,
-    };
+    match scheduled(p)? {
+        Scheduled::Set(q) => settle(&q, unsteady, None),
+        Scheduled::Law(q, law) => {
+            let op = law_point(&q, &law, unsteady)?;
+            if p.schedule_overrides.rotor_speed {
+                let at = held_against(p, &q, op.preset.operating.pitch)?;
+                settle(&at, unsteady, None)
+            } else {
+                Ok(op)
+            }
+        }
+    }
+}
+
+/// The operating point of `p` (at the law's rotor speed) at the pitch its deflected blade needs
+/// for the law's rated power.
+fn law_point(p: &ValidPreset, law: &Law, unsteady: Unsteadiness) -> Result<Operation> {
+    settle(p, unsteady, Some(law))
+}
+
+/// Largest difference (rad) between the pitch a pass runs at and the pitch its structure was
+/// built at: ten times the law's pitch tolerance, the noise of each pass's pitch search.
+const STRUCTURE_PITCH_TOLERANCE: f64 = 1e-6;
+
+/// The passes of the static aeroelastic equilibrium of `p` (docs/model.md §12.6) at its rotor
+/// speed; at its pitch, or with `law`, at the pitch each pass's blade needs for rated power.
+/// The structure depends on the pitch (§11.8): it follows the passes' pitch.
+fn settle(p: &ValidPreset, unsteady: Unsteadiness, law: Option<&Law>) -> Result<Operation> {
+    let blade = aero_blade_of(p)?;
+    let rotor = rotor_of(p, blade);
+    let strips = aero_stations_of(p)?;
     let model = BladeElement {
         sections: strips
             .iter()
@@ -161,11 +251,20 @@ pub fn steady(p: &ValidPreset, unsteady: Unsteadiness) -> Result<Operation> {
         air_density: p.operating.air_density,
         unsteadiness: unsteady,
     };
+    let conditions = |pitch: f64| Conditions {
+        wind_speed: p.operating.wind_speed,
+        rotor_speed: p.omega(),
+        pitch,
+        air_density: p.operating.air_density,
+    };
     // The deflection the BEM sees, `[twist…, flap/R…]`: the flap scaled by the tip radius so
     // that one tolerance (rad) serves both.
     let n = strips.len();
     let mut shape = vec![0.0; 2 * n];
     let mut change = f64::INFINITY;
+    let mut search = PitchSearch::default();
+    // The preset at the structure's pitch, the structure, and the passes on it.
+    let mut built: Option<(ValidPreset, Arc<dyn Structure>)> = None;
     let mut acceleration = Anderson::default();
     let mut last: Option<System> = None;
     for pass in 1..=MAX_PASSES {
@@ -175,15 +274,42 @@ pub fn steady(p: &ValidPreset, unsteady: Unsteadiness) -> Result<Operation> {
                 flap: shape[n + i] * rotor.tip_radius,
             })
             .collect();
-        let flow = bem::solve(&rotor, &strips, &deflection, &conditions)?;
-        let stations = frozen_inflow(&strips, &flow, conditions.pitch);
+        let solve = |pitch: f64| bem::solve(&rotor, &strips, &deflection, &conditions(pitch));
+        let (pitch, flow) = match law {
+            None => (p.pitch_rad(), solve(p.pitch_rad())?),
+            Some(law) => law_pitch(law, p, &mut search, solve)?,
+        };
+        // The structure turns with the pitch (§11.8): built again where the pass's pitch has
+        // moved from the one it was built at. Its pitch moves the equilibrium little (on the
+        // NREL 5MW at 25 m/s a structure 1.3° off moves the law's pitch by 1e-4°), so the passes
+        // keep their acceleration across the rebuild.
+        if built
+            .as_ref()
+            .is_some_and(|(at, _)| (pitch - at.pitch_rad()).abs() > STRUCTURE_PITCH_TOLERANCE)
+        {
+            built = None;
+            last = None;
+        }
+        let (at, structure) = match &built {
+            Some(b) => b,
+            None => {
+                let at = if law.is_some() {
+                    at_setting(p, None, Some(pitch))?
+                } else {
+                    p.clone()
+                };
+                let structure = for_preset(&at)?;
+                built.insert((at, structure))
+            }
+        };
+        let stations = frozen_inflow(&strips, &flow, pitch);
         let system = match &last {
-            None => System::from_parts(Arc::clone(&structure), stations, Box::new(model.clone())),
+            None => System::from_parts(Arc::clone(structure), stations, Box::new(model.clone())),
             Some(earlier) => earlier.on_inflow(stations, Box::new(model.clone())),
         }?;
         let equilibrium = system
             .equilibrium()
-            .map_err(|e| e.at(p.operating_point()))?;
+            .map_err(|e| e.at(at.operating_point()))?;
         let motion = system.station_motion(&equilibrium);
         let settled: Vec<f64> = (motion.iter().map(|[phi, _, _]| *phi))
             .chain(motion.iter().map(|[_, u, _]| u / rotor.tip_radius))
@@ -194,7 +320,7 @@ pub fn steady(p: &ValidPreset, unsteady: Unsteadiness) -> Result<Operation> {
             .fold(0.0, |m, (a, b)| f64::max(m, (a - b).abs()));
         if change <= TWIST_TOLERANCE {
             return Ok(Operation {
-                preset: p,
+                preset: at.clone(),
                 flow,
                 system,
                 equilibrium,
@@ -210,6 +336,29 @@ pub fn steady(p: &ValidPreset, unsteady: Unsteadiness) -> Result<Operation> {
         change,
         p.operating_point()
     )))
+}
+
+/// The law's pitch for the blade one pass deflects and the BEM there (`solve` at a pitch).
+fn law_pitch(
+    law: &Law,
+    p: &ValidPreset,
+    search: &mut PitchSearch,
+    solve: impl Fn(f64) -> Result<OperatingState>,
+) -> Result<(f64, OperatingState)> {
+    let mut tried: Vec<(f64, OperatingState)> = Vec::new();
+    let pitch = law
+        .pitch(p.operating.wind_speed, search, |pitch| {
+            let flow = solve(pitch)?;
+            let power = flow.power;
+            tried.push((pitch, flow));
+            Ok(power)
+        })
+        .map_err(|e| e.at(p.operating_point()))?;
+    let flow = match tried.into_iter().rev().find(|(x, _)| *x == pitch) {
+        Some((_, flow)) => flow,
+        None => solve(pitch)?,
+    };
+    Ok((pitch, flow))
 }
 
 /// Anderson's acceleration of the deflection fixed point (Anderson 1965; Walker & Ni, SIAM J.

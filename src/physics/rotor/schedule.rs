@@ -7,7 +7,7 @@
 //! the power is rated again (found by a bracketed root find on the pitch with the BEM, §12.2).
 
 use crate::error::{Error, Result};
-use crate::numeric::root::brent;
+use crate::numeric::root::brent_with_values;
 
 /// Rotor speed and pitch at one wind speed.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -84,30 +84,47 @@ impl Table {
 }
 
 impl Law {
-    /// The setting at `wind`; `power(Ω, θ_p)` is the rotor's aerodynamic power there (the BEM).
-    pub fn at(&self, wind: f64, mut power: impl FnMut(f64, f64) -> Result<f64>) -> Result<Setting> {
-        let rotor_speed = (self.tip_speed_ratio * wind / self.tip_radius)
-            .clamp(self.rotor_speed_min, self.rotor_speed_max);
-        let fine = power(rotor_speed, 0.0)?;
-        if fine <= self.rated_power {
-            return Ok(Setting {
-                rotor_speed,
-                pitch: 0.0,
-            });
-        }
+    /// Ω at `wind` (rad/s): the optimal tip speed ratio within the rotor-speed limits.
+    pub fn rotor_speed(&self, wind: f64) -> f64 {
+        (self.tip_speed_ratio * wind / self.tip_radius)
+            .clamp(self.rotor_speed_min, self.rotor_speed_max)
+    }
+
+    /// The pitch that holds rated power on the blade as it stands, or zero where the fine pitch
+    /// makes no more than rated; `power(θ_p)` is the rotor's aerodynamic power at a pitch (the
+    /// BEM on that blade) and `search` carries the last pass's pitch and slope. The returned
+    /// pitch is one `power` was evaluated at.
+    pub fn pitch(
+        &self,
+        wind: f64,
+        search: &mut PitchSearch,
+        mut power: impl FnMut(f64) -> Result<f64>,
+    ) -> Result<f64> {
         let mut failure = None;
-        let mut excess = |pitch: f64| match power(rotor_speed, pitch) {
-            Ok(p) => p - self.rated_power,
-            Err(e) => {
-                failure.get_or_insert(e);
-                f64::NAN
-            }
+        let mut tried: Vec<(f64, f64)> = Vec::new();
+        let mut excess = |pitch: f64| {
+            let e = match power(pitch) {
+                Ok(p) => p - self.rated_power,
+                Err(e) => {
+                    failure.get_or_insert(e);
+                    f64::NAN
+                }
+            };
+            tried.push((pitch, e));
+            e
         };
-        let pitch = brent(&mut excess, 0.0, MAX_PITCH, PITCH_TOLERANCE);
+        let found = search
+            .last
+            .and_then(|(pitch, slope)| secant(&mut excess, pitch, slope))
+            .or_else(|| bracketed(&mut excess));
         if let Some(e) = failure {
             return Err(e);
         }
-        let pitch = pitch.ok_or_else(|| {
+        let pitch = found.ok_or_else(|| {
+            let fine = tried
+                .iter()
+                .find(|(pitch, _)| *pitch == 0.0)
+                .map_or(f64::NAN, |(_, e)| e + self.rated_power);
             Error::numerical(format!(
                 "operating.schedule = \"law\": at {wind} m/s no pitch between 0° and {}° brings \
                  the aerodynamic power down to operating.rated_power = {} W (at 0°: {fine:.6e} W)",
@@ -115,9 +132,83 @@ impl Law {
                 self.rated_power
             ))
         })?;
-        Ok(Setting { rotor_speed, pitch })
+        search.settle(pitch, &tried);
+        Ok(pitch)
     }
 }
+
+/// What one pass of the law's pitch search leaves the next: the pitch it found and the power's
+/// slope there. The passes of the static aeroelastic equilibrium (docs/model.md §12.6) each
+/// need the pitch of a blade deflected a little differently from the last, so a secant step or
+/// two from the last pitch along the last slope finds it where a bracketed search would take
+/// ten BEM solves.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct PitchSearch {
+    /// Pitch (rad) and `dP/dθ_p` (W/rad), negative above rated.
+    last: Option<(f64, f64)>,
+}
+
+impl PitchSearch {
+    /// Keep `pitch` and the slope through the two evaluations nearest it (the last slope when
+    /// there is only one: the fine pitch below rated).
+    fn settle(&mut self, pitch: f64, tried: &[(f64, f64)]) {
+        let mut near: Vec<&(f64, f64)> = tried.iter().filter(|(_, e)| e.is_finite()).collect();
+        near.sort_by(|a, b| (a.0 - pitch).abs().total_cmp(&(b.0 - pitch).abs()));
+        // Evaluations closer than this are as much the BEM's convergence noise as the slope.
+        let apart = |a: &(f64, f64), b: &(f64, f64)| (a.0 - b.0).abs() > SLOPE_BASE;
+        let slope = match near.as_slice() {
+            [a, rest @ ..] => rest
+                .iter()
+                .find(|b| apart(a, b))
+                .map(|b| (a.1 - b.1) / (a.0 - b.0)),
+            [] => None,
+        };
+        let slope = slope.unwrap_or_else(|| self.last.map_or(f64::NAN, |(_, s)| s));
+        self.last = Some((pitch, slope));
+    }
+}
+
+/// Secant steps from `pitch` along `slope` on the excess power `f` (W over rated), held at or
+/// above zero pitch, until the next step would be below [`PITCH_TOLERANCE`]: the last pitch
+/// evaluated. `None` where the slope is not a falling one or the steps do not settle (the
+/// caller then brackets the root).
+fn secant(f: &mut impl FnMut(f64) -> f64, pitch: f64, slope: f64) -> Option<f64> {
+    let (mut x, mut fx, mut slope) = (pitch, f(pitch), slope);
+    for _ in 0..SECANT_STEPS {
+        if !(fx.is_finite() && slope < 0.0) {
+            return None;
+        }
+        let next = (x - fx / slope).clamp(0.0, MAX_PITCH);
+        if (next - x).abs() <= PITCH_TOLERANCE {
+            return Some(x);
+        }
+        let f_next = f(next);
+        if next == 0.0 && f_next <= 0.0 {
+            return Some(0.0);
+        }
+        slope = (f_next - fx) / (next - x);
+        (x, fx) = (next, f_next);
+    }
+    None
+}
+
+/// Zero pitch where the fine pitch makes no more than rated, else Brent's method between 0° and
+/// [`MAX_PITCH`] (the power falls toward feather).
+fn bracketed(f: &mut impl FnMut(f64) -> f64) -> Option<f64> {
+    let fine = f(0.0);
+    if fine <= 0.0 {
+        return Some(0.0);
+    }
+    let feathered = f(MAX_PITCH);
+    brent_with_values(f, 0.0, fine, MAX_PITCH, feathered, PITCH_TOLERANCE)
+}
+
+/// Shortest pitch interval (rad) a slope is taken over: 1e-5 rad changes the power by about
+/// 1e-4 of rated, far above the BEM's convergence noise.
+const SLOPE_BASE: f64 = 1e-5;
+
+/// Secant steps a pass may take before its search falls back to the bracket.
+const SECANT_STEPS: usize = 8;
 
 #[cfg(test)]
 mod tests {
@@ -136,6 +227,10 @@ mod tests {
         assert!(t.at(3.9).is_err() && t.at(6.1).is_err());
     }
 
+    /// A made-up rotor whose power falls linearly with the pitch: below rated the law stays at
+    /// fine pitch, above it the bracket finds the pitch for rated power, and a search started
+    /// from that pitch and slope on a slightly different blade lands on its pitch in a secant
+    /// step or two.
     #[test]
     fn law_tracks_tsr_then_pitches_to_rated() {
         let law = Law {
@@ -145,18 +240,36 @@ mod tests {
             tip_speed_ratio: 5.0,
             tip_radius: 10.0,
         };
-        // A made-up rotor: power ∝ U³ cos²(pitch)·… , falling with pitch.
-        let wind = std::cell::Cell::new(0.0f64);
-        let power = |_: f64, pitch: f64| Ok(0.002 * wind.get().powi(3) * (1.0 - pitch));
-        wind.set(1.0);
-        let low = law.at(1.0, power).unwrap();
-        assert_eq!((low.rotor_speed, low.pitch), (0.5, 0.0));
-        wind.set(10.0);
-        let high = law.at(10.0, power).unwrap();
-        assert_eq!(high.rotor_speed, 1.0);
+        assert_eq!(law.rotor_speed(1.0), 0.5);
+        assert_eq!(law.rotor_speed(1.5), 0.75);
+        assert_eq!(law.rotor_speed(10.0), 1.0);
+        let rotor = |wind: f64, gain: f64| {
+            move |pitch: f64| Ok(gain * 0.002 * wind.powi(3) * (1.0 - pitch))
+        };
+        let mut search = PitchSearch::default();
+        assert_eq!(law.pitch(1.0, &mut search, rotor(1.0, 1.0)).unwrap(), 0.0);
+        let mut search = PitchSearch::default();
+        let high = law.pitch(10.0, &mut search, rotor(10.0, 1.0)).unwrap();
+        assert!((2.0 * (1.0 - high) - 1.0).abs() < 1e-6, "{high}");
+        let mut calls = 0;
+        let stiffer = law
+            .pitch(10.0, &mut search, |pitch| {
+                calls += 1;
+                rotor(10.0, 1.01)(pitch)
+            })
+            .unwrap();
+        assert!((2.02 * (1.0 - stiffer) - 1.0).abs() < 1e-6, "{stiffer}");
+        assert!(calls <= 3, "{calls} evaluations");
+        // Below rated again: back to fine pitch.
+        assert_eq!(law.pitch(1.0, &mut search, rotor(1.0, 1.0)).unwrap(), 0.0);
+        // No pitch up to 60° brings the power down: an error naming the wind and the rating.
+        let e = law
+            .pitch(10.0, &mut PitchSearch::default(), |_| Ok(5.0))
+            .unwrap_err()
+            .to_string();
         assert!(
-            (0.002 * 1000.0 * (1.0 - high.pitch) - 1.0).abs() < 1e-6,
-            "{high:?}"
+            e.contains("at 10 m/s") && e.contains("rated_power = 1 W"),
+            "{e}"
         );
     }
 }

@@ -1,16 +1,14 @@
-//! The steady operating point of a checked preset (docs/model.md §12.2–§12.3): the rotor from
-//! `operating.blades`, `blade.hub_radius` and the aerodynamic description, the stations at
-//! `aero.stations` Gauss points, rotor speed and pitch from `operating.schedule`, then the BEM.
-//! The blade is rigid here: the static aeroelastic equilibrium re-runs [`bem::solve`] with the
-//! elastic twist and flap as the blade's deflection.
+//! What the steady operating point of a checked preset is built from (docs/model.md
+//! §12.2–§12.3): the rotor from `operating.blades`, `blade.hub_radius` and the aerodynamic
+//! description, and the stations at `aero.stations` Gauss points. The operating point itself is
+//! the static aeroelastic equilibrium's ([`crate::physics::operating`]), which runs
+//! [`super::bem::solve`] on the deflected blade at the schedule's setting.
 
-use super::bem::{self, Conditions, OperatingState, Rotor, Station};
-use super::schedule::{Law, Setting};
+use super::bem::{OperatingState, Rotor, Station};
 use super::AeroBlade;
 use crate::error::{Error, Result};
-use crate::preset::{Schedule, ValidPreset};
+use crate::preset::ValidPreset;
 use serde::Serialize;
-use std::f64::consts::PI;
 use std::sync::Arc;
 
 /// One steady operating point with the setting it ran at.
@@ -59,66 +57,5 @@ pub fn aero_stations_of(p: &ValidPreset) -> Result<Arc<Vec<Station>>> {
         None => {
             aero_blade_of(p).and_then(|blade| Station::gauss(blade, p.aero.stations).map(Arc::new))
         }
-    }
-}
-
-/// The steady operating point at the preset's wind speed, rigid blade.
-pub fn for_preset(p: &ValidPreset) -> Result<SteadyPoint> {
-    let blade = aero_blade_of(p)?;
-    let rotor = rotor_of(p, blade);
-    let stations = aero_stations_of(p)?;
-    let wind = p.operating.wind_speed;
-    let air_density = p.operating.air_density;
-    let solve_at = |s: Setting| {
-        bem::solve(
-            &rotor,
-            &stations,
-            &[],
-            &Conditions {
-                wind_speed: wind,
-                rotor_speed: s.rotor_speed,
-                pitch: s.pitch,
-                air_density,
-            },
-        )
-    };
-    let setting = setting(p, &rotor, |s| solve_at(s).map(|st| st.power))
-        .map_err(|e| e.at(p.operating_point()))?;
-    let state = solve_at(setting).map_err(|e| e.at(p.operating_point()))?;
-    Ok(SteadyPoint {
-        wind_speed: wind,
-        rotor_speed_rpm: setting.rotor_speed * 30.0 / PI,
-        pitch_deg: setting.pitch.to_degrees(),
-        state,
-    })
-}
-
-/// Rotor speed and pitch at the preset's wind speed, as `operating.schedule` says; `power` is
-/// the rotor's aerodynamic power at a setting (the law's pitch search).
-pub fn setting(
-    p: &ValidPreset,
-    rotor: &Rotor,
-    mut power: impl FnMut(Setting) -> Result<f64>,
-) -> Result<Setting> {
-    let o = &p.operating;
-    match o.schedule {
-        Schedule::None => Ok(Setting {
-            rotor_speed: p.omega(),
-            pitch: p.pitch_rad(),
-        }),
-        Schedule::Table => p
-            .schedule_table()
-            .ok_or_else(|| Error::numerical("operating.schedule = \"table\" without its table"))?
-            .at(o.wind_speed),
-        Schedule::Law => Law {
-            rated_power: o.rated_power,
-            rotor_speed_min: o.rotor_speed_min * PI / 30.0,
-            rotor_speed_max: o.rotor_speed_max * PI / 30.0,
-            tip_speed_ratio: o.tip_speed_ratio,
-            tip_radius: rotor.tip_radius,
-        }
-        .at(o.wind_speed, |rotor_speed, pitch| {
-            power(Setting { rotor_speed, pitch })
-        }),
     }
 }
