@@ -4,7 +4,7 @@
 
 use super::{pane, sig, Theme};
 use crate::explorer::state::{offered_rows, AppState, ParamKind, PARAMS};
-use crate::preset::{AeroModel, SectionSource, ValidPreset};
+use crate::preset::{AeroModel, ValidPreset};
 use ratatui::layout::Rect;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::Paragraph;
