@@ -658,6 +658,8 @@ mod from_results {
             max_re: 0.4,
             failed: Vec::new(),
             unstable_at_start: false,
+            grid: Vec::new(),
+            results: Vec::new(),
         };
         let fig = from_results::flutter("test", &tracked, &search);
         let damp = &fig.panels[0];
@@ -691,6 +693,8 @@ mod from_results {
             max_re: -0.1,
             failed: Vec::new(),
             unstable_at_start: false,
+            grid: Vec::new(),
+            results: Vec::new(),
         };
         let fig = from_results::flutter("test", &tracked, &none);
         assert!(fig.panels[0].markers.is_empty());
