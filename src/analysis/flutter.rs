@@ -297,7 +297,7 @@ pub fn search(p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<S
     };
     let root = match (&name, crossing.content()) {
         (Ok(name), Some(content)) => {
-            format!("{name} ({content}; its branch followed from {key} = {start}{unit})")
+            format!("{name} ({content}; tracked from {start}{unit})")
         }
         (Ok(name), None) => name.clone(),
         (Err((a, b)), content) => format!(

@@ -371,7 +371,7 @@ fn the_flutter_mode_is_named_by_its_branch_from_the_start_of_the_search() {
     match json["mode"].as_str() {
         Some(name) => assert!(
             message.contains(&format!("{name} (flap 91 %"))
-                && message.contains("its branch followed from operating.rotor_speed = 5 rpm"),
+                && message.contains("tracked from 5 rpm"),
             "{message}"
         ),
         None => assert!(message.contains("the tracking cannot tell"), "{message}"),
