@@ -3,9 +3,9 @@
 //! Run: `cargo bench --bench stability`.
 
 use flutterscope::analysis::eigen::analyse;
-use flutterscope::analysis::flutter::flutter_boundary;
+use flutterscope::analysis::flutter::{flutter_boundary, flutter_search};
 use flutterscope::analysis::simulate::simulate;
-use flutterscope::analysis::sweep::{grid_sweep, Grid};
+use flutterscope::analysis::sweep::{grid_sweep, named_modes, Grid};
 use flutterscope::preset::{Preset, ValidPreset};
 
 fn main() {
@@ -149,4 +149,16 @@ fn part_decompose_theodorsen_n5_16_stations(b: divan::Bencher) {
     let p = preset("demo-blade", &["structure.modes=5", "aero.stations=16"]);
     let ls = flutterscope::analysis::eigen::linear_system(&p).unwrap();
     b.bench(|| flutterscope::numeric::decompose(divan::black_box(&ls.a), true).unwrap());
+}
+
+/// `flutter --plot` on the IEA 15MW along rotor speed 0–30 rpm, 41 points: the search (its
+/// crossing named along the search path) and the figure's modes from the search's own grid.
+#[divan::bench(sample_count = 3, sample_size = 1)]
+fn flutter_search_and_figure_iea15mw(b: divan::Bencher) {
+    let p = preset("iea15mw", &[]);
+    b.bench(|| {
+        let s = flutter_search(&p, "operating.rotor_speed", 0.0, 30.0, 41).unwrap();
+        let tracked = named_modes(&s.boundary.parameter, &s.grid, &s.results);
+        flutterscope::plot::from_results::flutter("iea15mw", &tracked, &s)
+    });
 }

@@ -92,6 +92,15 @@ impl Mode {
     /// The name with the shares of its motion, as every command and pane reports a mode:
     /// `torsion 1 (flap 38 %, twist 60 %)`; families below 0.5 % are left out.
     pub fn described(&self) -> String {
+        match self.content() {
+            Some(content) => format!("{} ({content})", self.label),
+            None => self.label.clone(),
+        }
+    }
+
+    /// The shares of its motion, `flap 38 %, twist 60 %` (families below 0.5 % left out); none
+    /// for an aerodynamic root.
+    pub fn content(&self) -> Option<String> {
         let parts: Vec<String> = [
             ("flap", self.shares.flap),
             ("edge", self.shares.edge),
@@ -101,11 +110,7 @@ impl Mode {
         .filter(|(_, s)| *s >= 0.005)
         .map(|(name, s)| format!("{name} {:.0} %", 100.0 * s))
         .collect();
-        if parts.is_empty() || self.family.is_none() {
-            self.label.clone()
-        } else {
-            format!("{} ({})", self.label, parts.join(", "))
-        }
+        (!parts.is_empty() && self.family.is_some()).then(|| parts.join(", "))
     }
 
     /// Whether the mode is an overdamped pair of real roots.

@@ -6,9 +6,15 @@
 //! and the crossing is placed by linear interpolation of `σ_max` inside the final bracket.
 //! Bisection rather than Brent: `σ_max` is the upper envelope of several roots, so it has kinks
 //! where the critical mode changes, and a guaranteed halving per step is worth the few extra
-//! solves (≈ 10 for a 40-point grid). The kind (flutter or divergence) and frequency come from
-//! the critical root just past the crossing, and so does its name: the one the identification
-//! ([`crate::analysis::identify`]) gives it there, as `eigen` would, with the shares of its motion.
+//! solves (≈ 10 for a 40-point grid). The kind (flutter or divergence), frequency and content
+//! (the shares of its motion) come from the critical root just past the crossing. Its name is
+//! the one its branch has at the start value: the root is followed back along the search path
+//! (the solved grid points from the start, the bisection's stable ends, the crossing) with the
+//! tracking a Campbell diagram uses ([`follow_decided`]). The name the identification
+//! ([`crate::analysis::identify`]) gives the root at the crossing goes by its content alone, and
+//! a root that aerodynamic coupling has reshaped (the IEA 15MW's flap 3 branch with bend–twist
+//! coupling, 91 % flap at 3.09 Hz) takes whichever name is left there, flap 1 that time. Where
+//! the tracking cannot decide, the result says so and names no mode.
 //!
 //! A grid point that cannot be solved (a numerical failure, e.g. no static equilibrium) is
 //! skipped, counted and named in the result's message: one unconvergent point says nothing
@@ -19,6 +25,7 @@
 use crate::analysis::cancel::Cancel;
 use crate::analysis::eigen::{analyse, Mode, Stability, NEUTRAL_TOLERANCE};
 use crate::analysis::sweep::{failed_points, point_result, FailedPoint, PointResult};
+use crate::analysis::tracking::{follow_decided, Point, REFINEMENT_DEPTH};
 use crate::error::{Error, Result};
 use crate::physics::structure::Shares;
 use crate::preset::{key_spec, ValidPreset};
@@ -43,8 +50,9 @@ pub struct Boundary {
     pub critical: Option<f64>,
     pub frequency_hz: Option<f64>,
     pub kind: Option<BoundaryKind>,
-    /// Name of the crossing mode ([`crate::analysis::identify`], read at the unstable end of the
-    /// final bracket: the name `eigen` gives the root there).
+    /// Name of the crossing mode: the name its branch has at the start of the search, followed
+    /// along the search path (the aerodynamic root's own name for an aero lag); none when the
+    /// tracking cannot decide.
     pub mode: Option<String>,
     /// Kinetic-energy shares of flap, edge and twist in the crossing mode's motion (none for an
     /// aerodynamic root).
@@ -67,6 +75,11 @@ pub struct Search {
     /// caller quoting a margin says it in its own words).
     #[serde(skip)]
     pub unstable_at_start: bool,
+    /// The bracketing grid and each point's result, for a figure of the search.
+    #[serde(skip)]
+    pub grid: Vec<f64>,
+    #[serde(skip)]
+    pub results: Vec<PointResult>,
 }
 
 /// Relative accuracy of the critical value (docs/model.md §6).
@@ -205,6 +218,8 @@ pub fn search(p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<S
         max_re,
         failed: failed.clone(),
         unstable_at_start: false,
+        grid: grid.clone(),
+        results: results.clone(),
     };
     if unstable(first_solved) {
         let m = first_solved.critical().map(describe).unwrap_or_default();
@@ -224,7 +239,12 @@ pub fn search(p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<S
         )));
     };
     let (mut lo, mut hi) = (solved[first - 1].0, solved[first].0);
-    let (mut s_lo, mut s_hi) = (solved[first - 1].1.clone(), solved[first].1.clone());
+    let mut s_hi = solved[first].1.clone();
+    // The stable points from the start to the bracket's stable end, in search order.
+    let mut path: Vec<(f64, Stability)> = solved[..first]
+        .iter()
+        .map(|&(v, s)| (v, s.clone()))
+        .collect();
     let scale = (to - from).abs();
     for _ in 0..MAX_BISECTIONS {
         if (hi - lo).abs() <= RELATIVE_TOLERANCE * lo.abs().max(hi.abs()).max(1e-3 * scale) {
@@ -243,9 +263,10 @@ pub fn search(p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<S
             s_hi = s;
         } else {
             lo = mid;
-            s_lo = s;
+            path.push((mid, s));
         }
     }
+    let s_lo = &path[path.len() - 1].1;
     let (g_lo, g_hi) = (s_lo.max_re(), s_hi.max_re());
     // Inside the final bracket σ_max is close to linear; place its zero there.
     let critical = if g_hi > g_lo && g_lo <= 0.0 {
@@ -262,17 +283,37 @@ pub fn search(p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<S
     } else {
         BoundaryKind::Divergence
     };
+    let structural = s_hi
+        .eigenvalues
+        .iter()
+        .position(|m| m.re == crossing.re && m.im == crossing.im && m.label == crossing.label);
+    let name = match structural {
+        Some(index) => {
+            path.push((hi, s_hi.clone()));
+            let named = branch_name(p, key, &path, index, cancel);
+            cancel.check()?;
+            named
+        }
+        None => Ok(crossing.label.clone()),
+    };
+    let root = match (&name, crossing.content()) {
+        (Ok(name), Some(content)) => {
+            format!("{name} ({content}; tracked from {start}{unit})")
+        }
+        (Ok(name), None) => name.clone(),
+        (Err((a, b)), content) => format!(
+            "a root ({}) whose mode the tracking cannot tell: following it back toward \
+             {key} = {start}{unit}, its match stays ambiguous between {key} = {a} and {b}{unit}",
+            content.unwrap_or_default()
+        ),
+    };
     let what = match kind {
         BoundaryKind::Flutter => format!(
-            "flutter at {key} = {critical:.6}{unit}: {} at {:.4} Hz",
-            crossing.described(),
+            "flutter at {key} = {critical:.6}{unit}: {root} at {:.4} Hz",
             crossing.frequency_hz
         ),
         BoundaryKind::Divergence => {
-            format!(
-                "static divergence at {key} = {critical:.6}{unit}: {}",
-                crossing.described()
-            )
+            format!("static divergence at {key} = {critical:.6}{unit}: {root}")
         }
     };
     Ok(Search {
@@ -282,13 +323,46 @@ pub fn search(p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<S
             frequency_hz: Some(crossing.frequency_hz),
             kind: Some(kind),
             shares: crossing.family.map(|_| crossing.shares),
-            mode: Some(crossing.label),
+            mode: name.ok(),
         },
         message: what + &skipped,
         max_re,
         failed,
         unstable_at_start: false,
+        grid,
+        results,
     })
+}
+
+/// The name root `index` of the path's last point has at its first: the root followed back step
+/// by step, re-solving midpoints where a match is ambiguous, as a Campbell diagram's tracks are
+/// checked. Where the tracking cannot decide, the step (its two values) where it could not.
+fn branch_name(
+    p: &ValidPreset,
+    key: &str,
+    path: &[(f64, Stability)],
+    index: usize,
+    cancel: &Cancel,
+) -> std::result::Result<String, (f64, f64)> {
+    let solve = |v: f64| {
+        cancel.check().ok()?;
+        stability_at(p, key, v).ok().map(|s| s.eigenvalues)
+    };
+    let mut index = index;
+    for w in path.windows(2).rev() {
+        let (a, b) = (&w[1], &w[0]);
+        let here = Point {
+            value: a.0,
+            modes: &a.1.eigenvalues,
+        };
+        let before = Point {
+            value: b.0,
+            modes: &b.1.eigenvalues,
+        };
+        index =
+            follow_decided(&here, index, &before, REFINEMENT_DEPTH, &solve).ok_or((b.0, a.0))?;
+    }
+    Ok(path[0].1.eigenvalues[index].label.clone())
 }
 
 fn describe(m: &Mode) -> String {

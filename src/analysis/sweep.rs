@@ -108,6 +108,17 @@ pub fn point_result(r: Result<Stability>) -> Result<PointResult> {
 /// structural modes, or none if it cannot be solved.
 pub type Resolve<'a> = dyn Fn(f64) -> Option<Vec<Mode>> + Sync + 'a;
 
+/// The modes of solved `points` by name, as [`tracked_with_gaps`] gives them but without the
+/// branch checks (no switches, nothing re-solved): for a figure, which draws the names.
+pub fn named_modes(key: &str, grid: &[f64], points: &[PointResult]) -> TrackedSweep {
+    let mut s = tracked_with_gaps(key, grid, points.to_vec(), &|_| None);
+    // Unrefined, a switch would be a guess; the names need none.
+    for m in &mut s.modes {
+        m.switches.clear();
+    }
+    s
+}
+
 /// A solved point as tracking keeps it: its value along the line and its structural modes.
 struct Held {
     value: f64,

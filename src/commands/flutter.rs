@@ -2,7 +2,7 @@
 
 use crate::analysis::flutter::flutter_search;
 use crate::analysis::flutter::Search;
-use crate::analysis::sweep::track;
+use crate::analysis::sweep::named_modes;
 use crate::error::Result;
 use crate::preset::ValidPreset;
 use serde::Serialize;
@@ -62,11 +62,9 @@ pub fn run(
         super::print_text(&out)?;
     }
     if let Some(path) = plot {
-        // The tracked modes on the search grid: damping ratio and frequency along the key.
-        let grid: Vec<f64> = (0..points)
-            .map(|i| from + (to - from) * i as f64 / (points - 1) as f64)
-            .collect();
-        let tracked = track(p, key, &grid)?;
+        // The modes on the search's own grid, named as at each point (the figure draws names,
+        // not branch switches, so nothing is re-solved for it).
+        let tracked = named_modes(key, &search.grid, &search.results);
         let fig = crate::plot::from_results::flutter(p.display_name(), &tracked, &search);
         crate::plot::write(&fig, path)?;
         eprintln!("plot written to {}", path.display());

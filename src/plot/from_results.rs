@@ -262,10 +262,52 @@ pub fn flutter(preset: &str, tracked: &TrackedSweep, search: &Search) -> Figure 
             freq.markers.push(Marker::new(x, f, ""));
         }
     }
-    damp.notes.push(search.message.clone());
+    // The result on two lines, where it is said and what was found, to fit beside the legend.
+    match search.message.split_once(": ") {
+        Some((at, what)) => damp.notes.extend([format!("{at}:"), what.to_string()]),
+        None => damp.notes.push(search.message.clone()),
+    }
+    clip_damping(&mut damp);
     Figure::new(format!("Flutter search along {key} — {preset}"))
         .with_panel(damp)
         .with_panel(freq)
+}
+
+/// The damping ratios a flutter figure's axis spans at most: the region around ζ = 0 where a
+/// boundary is read. An overdamped root (ζ up to 3 on the IEA 15MW's flap 1) would squash it.
+const ZETA_AXIS: (f64, f64) = (-0.25, 0.5);
+
+/// Clip the damping panel's axis to [`ZETA_AXIS`] where its roots reach beyond, and mark each
+/// root beyond at the edge it passes (one grey series, named in the legend and the axis label).
+fn clip_damping(damp: &mut Panel) {
+    let (bottom, top) = ZETA_AXIS;
+    let zetas = damp
+        .series
+        .iter()
+        .flat_map(|s| s.points.iter().map(|p| p.1))
+        .filter(|z| z.is_finite());
+    let Some((lo, hi)) = finite_extent(&zetas.collect::<Vec<f64>>()) else {
+        return;
+    };
+    if lo >= bottom && hi <= top {
+        return;
+    }
+    let edges: Vec<(f64, f64)> = damp
+        .series
+        .iter()
+        .flat_map(|s| s.points.iter())
+        .filter(|p| p.1.is_finite() && !(bottom..=top).contains(&p.1))
+        .map(|&(x, z)| (x, z.clamp(bottom, top)))
+        .collect();
+    let (lo, hi) = (lo.max(bottom), hi.min(top));
+    let pad = 0.05 * (hi - lo);
+    damp.y_range = Some((lo - pad, hi + pad));
+    damp.y_label = "damping ratio ζ (–), clipped".into();
+    let name = format!("ζ beyond {bottom} … {top}, at edge");
+    damp.series.insert(
+        0,
+        Series::points(name, edges).with_color(super::figure::GUIDE_GREY),
+    );
 }
 
 fn with_unit(v: f64, unit: &str) -> String {

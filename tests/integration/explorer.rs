@@ -193,6 +193,8 @@ impl Engine for TestEngine {
             max_re: 0.0,
             failed: Vec::new(),
             unstable_at_start: false,
+            grid: Vec::new(),
+            results: Vec::new(),
         })
     }
 

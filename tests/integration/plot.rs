@@ -658,6 +658,8 @@ mod from_results {
             max_re: 0.4,
             failed: Vec::new(),
             unstable_at_start: false,
+            grid: Vec::new(),
+            results: Vec::new(),
         };
         let fig = from_results::flutter("test", &tracked, &search);
         let damp = &fig.panels[0];
@@ -691,6 +693,8 @@ mod from_results {
             max_re: -0.1,
             failed: Vec::new(),
             unstable_at_start: false,
+            grid: Vec::new(),
+            results: Vec::new(),
         };
         let fig = from_results::flutter("test", &tracked, &none);
         assert!(fig.panels[0].markers.is_empty());
@@ -728,4 +732,51 @@ mod from_results {
             .iter()
             .all(|p| p.notes.is_empty() && p.guides.is_empty()));
     }
+}
+
+/// `flutter --plot`: an overdamped root (the IEA 15MW's flap 1 reaches ζ ≈ 3 near 12 rpm) does
+/// not set the damping axis; the axis is clipped around ζ = 0, says so, and the roots beyond it
+/// are marked at its edge and named in the legend.
+#[test]
+fn the_flutter_damping_axis_is_clipped_around_zero_with_the_roots_beyond_marked() {
+    let dir = out_dir("flutter-clip");
+    let path = dir.join("flutter.svg");
+    let out = assert_cmd::Command::cargo_bin("flutterscope")
+        .unwrap()
+        .args([
+            "flutter",
+            "--preset",
+            "iea15mw",
+            "--vary",
+            "operating.rotor_speed",
+            "--from",
+            "0",
+            "--to",
+            "30",
+            "--points",
+            "11",
+            "--plot",
+            path.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    keep(&path);
+    let svg = std::fs::read_to_string(&path).unwrap();
+    let texts: Vec<String> = texts_at(&svg).into_iter().map(|t| t.1).collect();
+    assert!(
+        texts.iter().any(|t| t == "damping ratio ζ (–), clipped"),
+        "{texts:?}"
+    );
+    assert!(
+        texts.iter().any(|t| t == "ζ beyond -0.25 … 0.5, at edge"),
+        "{texts:?}"
+    );
+    // The legend's swatch and at least one root drawn at the edge.
+    let grey = svg.matches("fill=\"#5A5A5A\" stroke=\"none\"").count();
+    assert!(grey > 1, "{grey}");
 }
