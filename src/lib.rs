@@ -16,4 +16,5 @@ pub mod formats;
 pub mod numeric;
 pub mod physics;
 pub mod plot;
+pub mod precision;
 pub mod preset;

@@ -16,6 +16,10 @@
 //! coupling, 91 % flap at 3.09 Hz) takes whichever name is left there, flap 1 that time. Where
 //! the tracking cannot decide, the result says so and names no mode.
 //!
+//! A search may start where the blade is already unstable only if it says so
+//! ([`SearchRange::regain`], the explorer's margin): it then finds where stability returns, the
+//! end of the unstable stretch the start lies in. `flutterscope flutter` asks for a stable start.
+//!
 //! A grid point that cannot be solved (a numerical failure, e.g. no static equilibrium) is
 //! skipped, counted and named in the result's message: one unconvergent point says nothing
 //! about the stability of its neighbours, and aborting would hide a boundary the rest of the
@@ -28,6 +32,7 @@ use crate::analysis::sweep::{failed_points, point_result, FailedPoint, PointResu
 use crate::analysis::tracking::{follow_decided, Point, REFINEMENT_DEPTH};
 use crate::error::{Error, Result};
 use crate::physics::structure::Shares;
+use crate::precision;
 use crate::preset::{key_spec, ValidPreset};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -71,8 +76,9 @@ pub struct Search {
     pub max_re: f64,
     /// Grid points that could not be solved (numerical failures), skipped by the search.
     pub failed: Vec<FailedPoint>,
-    /// No crossing because the first solved point is already unstable (the message says so; a
-    /// caller quoting a margin says it in its own words).
+    /// The first solved point is already unstable. Without [`SearchRange::regain`] the search
+    /// stops there, with no crossing (the message says so; a caller quoting a margin says it in
+    /// its own words); with it, the crossing is where the blade is stable again.
     #[serde(skip)]
     pub unstable_at_start: bool,
     /// The bracketing grid and each point's result, for a figure of the search.
@@ -103,6 +109,8 @@ pub struct SearchRange {
     pub from: f64,
     pub to: f64,
     pub points: usize,
+    /// From an unstable start, look for where the blade is stable again instead of stopping.
+    pub regain: bool,
 }
 
 /// Whether a stability result counts as unstable: its critical root has σ above the neutral
@@ -135,6 +143,7 @@ pub fn flutter_search(
         from,
         to,
         points,
+        regain: false,
     };
     search(p, &range, &Cancel::never())
 }
@@ -161,9 +170,7 @@ pub fn search(p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<S
         spec.check("flutter --from/--to", v)
             .map_err(|e| Error::usage(e.to_string()))?;
     }
-    let grid: Vec<f64> = (0..points)
-        .map(|i| from + (to - from) * i as f64 / (points - 1) as f64)
-        .collect();
+    let grid = precision::grid(from, to, points);
     let results: Vec<PointResult> = grid
         .par_iter()
         .map(|&v| {
@@ -221,7 +228,8 @@ pub fn search(p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<S
         grid: grid.clone(),
         results: results.clone(),
     };
-    if unstable(first_solved) {
+    let start_unstable = unstable(first_solved);
+    if start_unstable && !range.regain {
         let m = first_solved.critical().map(describe).unwrap_or_default();
         return Ok(Search {
             unstable_at_start: true,
@@ -232,12 +240,27 @@ pub fn search(p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<S
             ))
         });
     }
-    let Some(first) = solved.iter().position(|(_, s)| unstable(s)) else {
+    // The first grid point whose stability differs from the start's: past a stable start the
+    // first unstable one, past an unstable start (regain) the first stable one.
+    let Some(first) = solved
+        .iter()
+        .position(|(_, s)| unstable(s) != start_unstable)
+    else {
+        if start_unstable {
+            return Ok(Search {
+                unstable_at_start: true,
+                ..none(format!(
+                    "unstable throughout {key} in {from} … {to}{unit} (largest σ = {max_re:.4} \
+                     1/s)"
+                ))
+            });
+        }
         return Ok(none(format!(
             "no stability boundary for {key} in {from} … {to}{unit}: stable throughout \
              (largest σ = {max_re:.4} 1/s)"
         )));
     };
+    // `lo` keeps the start's stability and `hi` the other, whichever way the range runs.
     let (mut lo, mut hi) = (solved[first - 1].0, solved[first].0);
     let mut s_hi = solved[first].1.clone();
     // The stable points from the start to the bracket's stable end, in search order.
@@ -250,7 +273,10 @@ pub fn search(p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<S
         if (hi - lo).abs() <= RELATIVE_TOLERANCE * lo.abs().max(hi.abs()).max(1e-3 * scale) {
             break;
         }
-        let mid = 0.5 * (lo + hi);
+        let mid = precision::carried(0.5 * (lo + hi));
+        if mid == lo || mid == hi {
+            break;
+        }
         cancel.check()?;
         let s = stability_at(p, key, mid).map_err(|e| {
             e.at(format!(
@@ -258,7 +284,7 @@ pub fn search(p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<S
                  {mid}{unit} could not be solved"
             ))
         })?;
-        if unstable(&s) {
+        if unstable(&s) != start_unstable {
             hi = mid;
             s_hi = s;
         } else {
@@ -266,30 +292,39 @@ pub fn search(p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<S
             path.push((mid, s));
         }
     }
-    let s_lo = &path[path.len() - 1].1;
-    let (g_lo, g_hi) = (s_lo.max_re(), s_hi.max_re());
-    // Inside the final bracket σ_max is close to linear; place its zero there.
-    let critical = if g_hi > g_lo && g_lo <= 0.0 {
-        lo + (hi - lo) * (-g_lo) / (g_hi - g_lo)
+    // The path ends at the bracket's end that keeps the start's stability.
+    let s_lo = path[path.len() - 1].1.clone();
+    let ((x_s, s_s), (x_u, s_u)) = if start_unstable {
+        ((hi, &s_hi), (lo, &s_lo))
     } else {
-        hi
+        ((lo, &s_lo), (hi, &s_hi))
     };
-    let crossing = s_hi
+    let (g_s, g_u) = (s_s.max_re(), s_u.max_re());
+    // Inside the final bracket σ_max is close to linear; place its zero there.
+    let critical = if g_u > g_s && g_s <= 0.0 {
+        x_s + (x_u - x_s) * (-g_s) / (g_u - g_s)
+    } else {
+        x_u
+    };
+    let crossing = s_u
         .critical()
         .cloned()
-        .ok_or_else(|| Error::numerical(format!("flutter: no roots at {key} = {hi}{unit}")))?;
+        .ok_or_else(|| Error::numerical(format!("flutter: no roots at {key} = {x_u}{unit}")))?;
     let kind = if crossing.im > 0.0 {
         BoundaryKind::Flutter
     } else {
         BoundaryKind::Divergence
     };
-    let structural = s_hi
+    let structural = s_u
         .eigenvalues
         .iter()
         .position(|m| m.re == crossing.re && m.im == crossing.im && m.label == crossing.label);
     let name = match structural {
         Some(index) => {
-            path.push((hi, s_hi.clone()));
+            // Past a stable start the unstable root lies one step beyond the path.
+            if !start_unstable {
+                path.push((hi, s_hi.clone()));
+            }
             let named = branch_name(p, key, &path, index, cancel);
             cancel.check()?;
             named
@@ -308,6 +343,13 @@ pub fn search(p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<S
         ),
     };
     let what = match kind {
+        _ if start_unstable => format!(
+            "stable again at {key} = {critical:.6}{unit}: the {} of {root} ends there",
+            match kind {
+                BoundaryKind::Flutter => "flutter",
+                BoundaryKind::Divergence => "divergence",
+            }
+        ),
         BoundaryKind::Flutter => format!(
             "flutter at {key} = {critical:.6}{unit}: {root} at {:.4} Hz",
             crossing.frequency_hz
@@ -328,7 +370,7 @@ pub fn search(p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<S
         message: what + &skipped,
         max_re,
         failed,
-        unstable_at_start: false,
+        unstable_at_start: start_unstable,
         grid,
         results,
     })

@@ -20,8 +20,7 @@ pub const CAMPBELL_POINTS: usize = 41;
 /// Wind speeds in the Campbell diagram along the schedule: 1 m/s steps from cut-in 3 to
 /// cut-out 25 m/s on the real-blade presets, as HAWCStab2's operating-point files have them.
 pub const CAMPBELL_WIND_POINTS: usize = 23;
-/// The key a margin on both sides of the current value runs along (flutter may begin at either
-/// sign of the coupling).
+/// The bend–twist coupling α: a number without unit, shown as `α -0.11`.
 pub const COUPLING_KEY: &str = "blade.bend_twist_coupling";
 /// A solve running longer than this (s) is reported in the status line with its time: keys keep
 /// working meanwhile and the newest position replaces it.
@@ -36,7 +35,8 @@ pub const KICK_FLAP_SPAN_FRACTION: f64 = 0.01;
 /// How a parameter row is changed.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum ParamKind {
-    /// A numeric preset key with fine and coarse steps and display decimals.
+    /// A numeric preset key with fine and coarse steps and display decimals (as [`steps`] and
+    /// [`shown_decimals`] apply them).
     Number {
         key: &'static str,
         step: f64,
@@ -158,6 +158,56 @@ pub fn param_bounds(p: &ValidPreset, key: &str) -> (f64, f64) {
     (lo, hi)
 }
 
+/// Rotor speeds below this (rpm) are shown to 0.01 rpm: a turbine rotor turns at 5–15 rpm,
+/// where a whole rpm is 7–20 % of its rated speed.
+pub const FINE_ROTOR_SPEED_BELOW: f64 = 30.0;
+
+/// The fine and coarse steps of `param` on `p`: the row's own, except the rotor speed of a preset
+/// with a rated rotor speed, which steps by 1 % and 10 % of it (so a step is a fixed share of
+/// rated, as the overspeed margin is quoted). The paper's blades give none and step by the
+/// row's 1 and 10 rpm.
+pub fn steps(p: &ValidPreset, param: &Param) -> Option<(f64, f64)> {
+    let ParamKind::Number {
+        key, step, coarse, ..
+    } = param.kind
+    else {
+        return None;
+    };
+    let rated = p.operating.rated_rotor_speed;
+    Some(if key == ROTOR_SPEED_KEY && rated > 0.0 {
+        (0.01 * rated, 0.1 * rated)
+    } else {
+        (step, coarse)
+    })
+}
+
+/// The decimals a value of `key` is shown with: its row's, except rotor speeds below
+/// [`FINE_ROTOR_SPEED_BELOW`], shown to 0.01 rpm.
+pub fn shown_decimals(key: &str, v: f64) -> usize {
+    if key == ROTOR_SPEED_KEY && v.abs() < FINE_ROTOR_SPEED_BELOW {
+        return 2;
+    }
+    PARAMS
+        .iter()
+        .find_map(|p| match p.kind {
+            ParamKind::Number {
+                key: k, decimals, ..
+            } if k == key => Some(decimals),
+            _ => None,
+        })
+        .unwrap_or(2)
+}
+
+/// `v` as the parameters pane shows a value of `key`: its decimals and unit (`7.56 rpm`).
+pub fn value_text(key: &str, v: f64) -> String {
+    let (u, d) = (unit(key), shown_decimals(key, v));
+    if u.is_empty() {
+        format!("{v:.d$}")
+    } else {
+        format!("{v:.d$} {u}")
+    }
+}
+
 /// The unit of a numeric key.
 pub fn unit(key: &str) -> &'static str {
     key_spec(key).map(|s| s.unit).unwrap_or("")
@@ -204,17 +254,13 @@ impl CampbellAxis {
     }
 }
 
-/// Where a boundary search looks for the margin along its key.
+/// Which way from the current value one search of a margin runs.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum MarginKind {
-    /// From the current value toward the end of the slider where the blade is stable (below
-    /// it when the current point is unstable): the first crossing.
-    Onward,
-    /// Wind speed along a schedule: cut-in to cut-out, the lowest wind at which a mode is
-    /// unstable.
-    Schedule,
-    /// Both ways from the current value (the coupling): the nearest crossing on either side.
-    BothWays,
+pub enum Side {
+    /// Down to the slider's low end.
+    Below,
+    /// Up to the slider's high end.
+    Above,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -235,22 +281,24 @@ pub struct Response {
     pub error: Option<String>,
 }
 
-/// The background boundary search along one key.
+/// The background boundary search along one key: from the current value both ways to the
+/// slider's ends. From a stable point each side's search finds the nearest boundary on that side;
+/// from an unstable one, where the blade is stable again, so the two bound the unstable stretch
+/// the current value lies in.
 #[derive(Debug, Clone)]
 pub struct BoundaryJob {
     pub gen: u64,
     pub key: &'static str,
-    /// Search range and the value it started from.
+    /// The slider's range and the value the searches start from.
     pub from: f64,
     pub to: f64,
     pub current: f64,
-    /// Whether the operating point was unstable (the search then looks below it).
+    /// Whether the operating point was unstable.
     pub unstable: bool,
-    pub kind: MarginKind,
-    /// The current value is at the end of the slider in the search direction: no search ran.
-    pub empty_range: bool,
-    /// One search per range searched (two for [`MarginKind::BothWays`], nearest side first
-    /// below); `None` while running (or when the range is empty).
+    /// The sides searched, in the order of the results (a side with nothing between the current
+    /// value and the slider's end is not searched).
+    pub sides: Vec<Side>,
+    /// One search per side; `None` while running (or when no side has a range).
     pub result: Option<Result<Vec<Search>, String>>,
 }
 
@@ -448,19 +496,11 @@ impl AppState {
     pub fn param_text(&self, param: &Param) -> String {
         match param.kind {
             ParamKind::Aero => self.preset.aero.model.name().to_string(),
-            ParamKind::Number { key, decimals, .. } => {
-                let v = self.preset.get(key).unwrap_or(f64::NAN);
-                let u = unit(key);
-                if let Some(v) = self.scheduled_value(key) {
-                    // ↻: the schedule sets it at this wind speed.
-                    return format!("↻ {v:.decimals$} {u}");
-                }
-                if u.is_empty() {
-                    format!("{v:.decimals$}")
-                } else {
-                    format!("{v:.decimals$} {u}")
-                }
-            }
+            ParamKind::Number { key, .. } => match self.scheduled_value(key) {
+                // ↻: the schedule sets it at this wind speed.
+                Some(v) => format!("↻ {}", value_text(key, v)),
+                None => value_text(key, self.preset.get(key).unwrap_or(f64::NAN)),
+            },
         }
     }
 
@@ -550,48 +590,44 @@ impl AppState {
             return None;
         }
         let key = self.boundary_key;
-        let current = self.preset.get(key).ok()?;
         let (lo, hi) = param_bounds(&self.preset, key);
+        // The value the parameters pane shows: a scheduled rotor speed or pitch is the
+        // schedule's, not the preset's own.
+        let current = self
+            .scheduled_value(key)
+            .or_else(|| self.preset.get(key).ok())?
+            .clamp(lo, hi);
         let unstable = !solved.stability.stable;
-        let kind = margin_kind(&self.preset, key, unstable);
-        let (from, to) = match kind {
-            MarginKind::Schedule | MarginKind::BothWays => (lo, hi),
-            MarginKind::Onward if unstable => (lo, current),
-            MarginKind::Onward => (current, hi),
-        };
-        let range = |from: f64, to: f64, points: usize| SearchRange {
-            key: key.to_string(),
-            from,
-            to,
-            points,
-        };
-        let ranges: Vec<SearchRange> = match kind {
-            MarginKind::Onward | MarginKind::Schedule => vec![range(from, to, BOUNDARY_POINTS)],
-            // Each side on half the points: the same spacing as one search over the slider.
-            MarginKind::BothWays => [(current, lo), (current, hi)]
-                .into_iter()
-                .filter(|(a, b)| a != b)
-                .map(|(a, b)| range(a, b, BOUNDARY_POINTS / 2 + 1))
-                .collect(),
-        };
-        let mut job = BoundaryJob {
+        // Each side on its share of the points: the spacing of one search over the slider.
+        let span = hi - lo;
+        let (sides, ranges): (Vec<Side>, Vec<SearchRange>) = [(Side::Below, lo), (Side::Above, hi)]
+            .into_iter()
+            .filter(|&(_, end)| end != current)
+            .map(|(side, end)| {
+                let share = ((current - end).abs() / span * (BOUNDARY_POINTS - 1) as f64).ceil();
+                let range = SearchRange {
+                    key: key.to_string(),
+                    from: current,
+                    to: end,
+                    points: (share as usize + 1).max(2),
+                    regain: true,
+                };
+                (side, range)
+            })
+            .unzip();
+        self.boundary = Some(BoundaryJob {
             gen: self.gen,
             key,
-            from,
-            to,
+            from: lo,
+            to: hi,
             current,
             unstable,
-            kind,
-            empty_range: false,
+            sides,
             result: None,
-        };
-        if to <= from || ranges.is_empty() {
-            // At the end of the slider: nothing to search.
-            job.empty_range = true;
-            self.boundary = Some(job);
+        });
+        if ranges.is_empty() {
             return None;
         }
-        self.boundary = Some(job);
         Some(Effect::Boundary {
             gen: self.gen,
             key,
@@ -650,10 +686,7 @@ impl AppState {
             return None;
         }
         let (from, to, points) = self.campbell_range();
-        let n = points.max(2);
-        let grid: Vec<f64> = (0..n)
-            .map(|i| from + (to - from) * i as f64 / (n - 1) as f64)
-            .collect();
+        let grid = crate::precision::grid(from, to, points);
         self.campbell = Some(CampbellJob {
             gen: self.gen,
             axis: self.campbell_axis,
@@ -717,13 +750,11 @@ impl AppState {
     fn adjust(&mut self, up: bool, coarse: bool) -> Vec<Effect> {
         match self.focused().kind {
             ParamKind::Aero => self.cycle_aero(up),
-            ParamKind::Number {
-                key,
-                step,
-                coarse: coarse_step,
-                ..
-            } => {
-                let step = if coarse { coarse_step } else { step };
+            ParamKind::Number { key, .. } => {
+                let Some((fine, coarse_step)) = steps(&self.preset, self.focused()) else {
+                    return Vec::new();
+                };
+                let step = if coarse { coarse_step } else { fine };
                 // A scheduled value steps from where the schedule has it.
                 let Some(v) = self
                     .scheduled_value(key)
@@ -732,12 +763,14 @@ impl AppState {
                     return Vec::new();
                 };
                 let (lo, hi) = param_bounds(&self.preset, key);
-                // Snap to the step grid, then clamp; round away float drift.
+                // Snap to the step grid, then clamp; round away float drift. A value within a
+                // thousandth of a step of a grid point counts as on it (a schedule's 7.559987 rpm,
+                // shown as 7.56, steps to 7.56 + a step, not to 7.56).
                 let k = v / step;
                 let next = if up {
-                    ((k + 1e-9).floor() + 1.0) * step
+                    ((k + 1e-3).floor() + 1.0) * step
                 } else {
-                    ((k - 1e-9).ceil() - 1.0) * step
+                    ((k - 1e-3).ceil() - 1.0) * step
                 };
                 let next = (next.clamp(lo, hi) * 1e9).round() / 1e9;
                 if next == v {
@@ -944,18 +977,6 @@ impl AppState {
                 Vec::new()
             }
         }
-    }
-}
-
-/// How the margin along `key` is searched: cut-in to cut-out for the wind along a schedule, both
-/// ways for the coupling (from a stable point), else onward from the current value.
-fn margin_kind(p: &ValidPreset, key: &str, unstable: bool) -> MarginKind {
-    if key == WIND_SPEED_KEY && schedule_wind_range(p).is_some() {
-        MarginKind::Schedule
-    } else if key == COUPLING_KEY && !unstable {
-        MarginKind::BothWays
-    } else {
-        MarginKind::Onward
     }
 }
 

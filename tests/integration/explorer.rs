@@ -175,7 +175,7 @@ impl Engine for TestEngine {
         let (key, from, to) = (range.key.as_str(), range.from, range.to);
         // Flutter where the flap σ of `test_stability` crosses zero along the wind speed.
         let critical = if key == "operating.wind_speed" {
-            Some(15.0).filter(|c| (from..=to).contains(c))
+            Some(15.0).filter(|c| (from.min(to)..=from.max(to)).contains(c))
         } else {
             None
         };
@@ -487,19 +487,24 @@ fn boundary_follows_the_selected_parameter() {
     let Some(Effect::Boundary { ranges, .. }) = e.first() else {
         panic!("{e:?}")
     };
-    let range = &ranges[0];
-    let (key, from, to) = (range.key.as_str(), &range.from, &range.to);
-    // The test engine's flap mode is unstable at 20 m/s, so the search runs below the current
-    // value (stable operating points search above it, up to view.wind_speed_max).
-    assert_eq!(key, "operating.wind_speed");
-    assert_eq!(*from, 0.0);
-    assert_eq!(*to, s.preset.operating.wind_speed);
+    // Both ways from the current 20 m/s, to the slider's ends (0 and view.wind_speed_max), each
+    // on its share of the points; from the unstable point each looks for stability regained.
+    let ends: Vec<(&str, f64, f64, usize, bool)> = ranges
+        .iter()
+        .map(|r| (r.key.as_str(), r.from, r.to, r.points, r.regain))
+        .collect();
+    assert_eq!(
+        ends,
+        [
+            ("operating.wind_speed", 20.0, 0.0, 21, true),
+            ("operating.wind_speed", 20.0, 40.0, 21, true)
+        ]
+    );
     settle(&mut s, &engine, e);
     let text = flutterscope::explorer::ui::status::margin_text(&s).unwrap();
-    // The test engine's flap mode is unstable at the preset's 20 m/s, so the search looks below
-    // and finds the onset at 15 m/s; the verdict names the unstable mode, the margin does not
-    // repeat the (range-start) label of the search.
-    assert_eq!(text, "wind speed: flutter from 15.0 m/s, -25 %");
+    // The test engine's flap mode is unstable at the preset's 20 m/s: the stretch it lies in
+    // begins at 15 m/s (and the search above finds no end before 40 m/s).
+    assert_eq!(text, "wind speed: unstable from 15.0 m/s, -25 %");
     // The aero-model row keeps the last numeric key.
     let n = engine.boundaries.load(Ordering::SeqCst);
     headless::press(
@@ -516,12 +521,12 @@ fn boundary_follows_the_selected_parameter() {
     assert_eq!(s.boundary_key, "operating.pitch");
     headless::press(&mut s, &engine, &[Action::FocusNext]);
     assert_eq!(s.boundary_key, "operating.pitch");
-    // Rotor speed and pitch are searched on the way; tunnel speed is not, because the test
-    // engine is unstable at its current 0 m/s and there is nothing below it to search.
-    assert_eq!(engine.boundaries.load(Ordering::SeqCst), n + 2);
+    // Tunnel speed, rotor speed and pitch are searched on the way: both sides of rotor speed
+    // and pitch, only above the tunnel speed's 0 m/s (nothing below it to search).
+    assert_eq!(engine.boundaries.load(Ordering::SeqCst), n + 5);
     // f recomputes.
     headless::press(&mut s, &engine, &[Action::Boundary]);
-    assert_eq!(engine.boundaries.load(Ordering::SeqCst), n + 3);
+    assert_eq!(engine.boundaries.load(Ordering::SeqCst), n + 7);
 }
 
 #[test]
@@ -536,7 +541,10 @@ fn margin_reads_like_a_sentence() {
     settle(&mut s, &engine, e);
     assert_eq!(s.preset.operating.wind_speed, 9.5);
     let text = flutterscope::explorer::ui::status::margin_text(&s).unwrap();
-    assert_eq!(text, "wind speed: flutter at 15.0 m/s, +58 % (flap 1)");
+    assert_eq!(
+        text,
+        "wind speed: flutter at 15.0 m/s (+58 %, flap 1), none below"
+    );
 }
 
 #[test]
@@ -827,6 +835,7 @@ fn worker_jobs_run_the_latest_request() {
                 from: 0.0,
                 to: 40.0,
                 points: 41,
+                regain: false,
             }],
         });
     }
@@ -1354,16 +1363,17 @@ fn rotor_speed_and_pitch_follow_the_schedule_until_overridden() {
         s.param_text(&PARAMS[i])
     };
     // 10.7 m/s on the IEA 15MW table: 7.56 rpm.
-    assert_eq!(row(&s, "rotor speed"), "↻ 8 rpm");
+    assert_eq!(row(&s, "rotor speed"), "↻ 7.56 rpm");
     assert!(row(&s, "pitch").starts_with("↻ "), "{}", row(&s, "pitch"));
     assert_eq!(PARAMS[s.focus].label, "rotor speed");
+    // A coarse step is 10 % of the rated 7.56 rpm.
     headless::press(&mut s, &Physics, &[Action::IncreaseCoarse]);
-    assert_eq!(row(&s, "rotor speed"), "10 rpm");
+    assert_eq!(row(&s, "rotor speed"), "8.32 rpm");
     assert!(row(&s, "pitch").starts_with("↻ "), "{}", row(&s, "pitch"));
     let solved = s.solved.as_ref().unwrap();
-    assert_eq!(solved.setting.map(|(rpm, _)| rpm), Some(10.0));
+    assert_eq!(solved.setting.map(|(rpm, _)| rpm), Some(8.316));
     headless::press(&mut s, &Physics, &[Action::FollowSchedule]);
-    assert_eq!(row(&s, "rotor speed"), "↻ 8 rpm");
+    assert_eq!(row(&s, "rotor speed"), "↻ 7.56 rpm");
     // Nothing reads as changed by hand any more (no `*`).
     let start = &s.presets[s.preset_index].preset;
     assert_eq!(s.preset.operating.rotor_speed, start.operating.rotor_speed);
@@ -1468,11 +1478,13 @@ fn the_campbell_axis_toggles_between_rotor_speed_and_wind_speed_along_the_schedu
     assert!(render_text(&s, 120, 40).contains("no operating schedule"));
 }
 
-/// The explorer's wind-speed margin is `flutterscope flutter --vary operating.wind_speed` from
-/// cut-in to cut-out on the same preset (IEA 15MW, coupling −0.12: flap 1 flutters in part of
-/// the operating range); with the file's blade it is stable to cut-out.
+/// The explorer's wind-speed margin along the schedule is `flutterscope flutter --vary
+/// operating.wind_speed` run to the current wind from either end of cut-in to cut-out (IEA 15MW,
+/// coupling −0.12: flap 1 flutters in a stretch of winds around the rated 10.7 m/s): the
+/// unstable stretch the current wind lies in begins where the search up from cut-in finds the
+/// onset and ends where the search down from cut-out does.
 #[test]
-fn the_wind_speed_margin_is_the_flutter_command_along_the_schedule() {
+fn the_wind_speed_margin_is_the_unstable_stretch_along_the_schedule() {
     let coupled = ["blade.bend_twist_coupling=-0.12"];
     let mut s = state_on("iea15mw", &coupled, &Physics);
     s.focus = PARAMS
@@ -1483,29 +1495,26 @@ fn the_wind_speed_margin_is_the_flutter_command_along_the_schedule() {
     assert_eq!(s.boundary_key, "operating.wind_speed");
     let job = s.boundary.as_ref().unwrap();
     assert_eq!((job.from, job.to), (3.0, 25.0));
+    assert!(job.unstable);
     let text = flutterscope::explorer::ui::status::margin_text(&s).unwrap();
-    let out = assert_cmd::Command::cargo_bin("flutterscope")
-        .unwrap()
-        .args(["flutter", "--preset", "iea15mw", "--set", coupled[0]])
-        .args([
-            "--vary",
-            "operating.wind_speed",
-            "--from",
-            "3",
-            "--to",
-            "25",
-        ])
-        .arg("--json")
-        .output()
-        .unwrap();
-    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-    let critical = json["critical"]
-        .as_f64()
-        .expect("a crossing between 3 and 25 m/s");
-    let mode = json["mode"].as_str().unwrap();
+    let onset = |from: &str, to: &str| {
+        let out = assert_cmd::Command::cargo_bin("flutterscope")
+            .unwrap()
+            .args(["flutter", "--preset", "iea15mw", "--set", coupled[0]])
+            .args(["--vary", "operating.wind_speed", "--from", from, "--to", to])
+            .arg("--json")
+            .output()
+            .unwrap();
+        let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        json["critical"]
+            .as_f64()
+            .expect("a crossing between 3 and 25 m/s")
+    };
+    let (begin, end) = (onset("3", "25"), onset("25", "3"));
+    let below = 100.0 * (begin - 10.7) / 10.7;
     assert_eq!(
         text,
-        format!("wind speed: flutter at {critical:.1} m/s along the schedule ({mode})")
+        format!("wind speed: unstable from {begin:.1} m/s, {below:+.0} %, to {end:.1} m/s")
     );
 }
 
@@ -1546,7 +1555,10 @@ fn the_coupling_margin_is_the_nearest_crossing_either_way() {
     .unwrap();
     assert!(up.boundary.critical.is_none(), "{}", up.message);
     let mode = down.boundary.mode.unwrap();
-    assert_eq!(text, format!("bend–twist α: flutter at α {c:.2} ({mode})"));
+    assert_eq!(
+        text,
+        format!("bend–twist α: flutter at α {c:.2} ({mode}), none above")
+    );
 }
 
 /// Every real-blade preset's main view and its Campbell view along the schedule, at the smallest
@@ -1582,4 +1594,145 @@ fn snapshot_the_real_blades_main_and_wind_campbell_views() {
             insta::assert_snapshot!(format!("campbell_wind_{name}_{cols}x{rows}"), text);
         }
     }
+}
+
+/// The frame `flutterscope snapshot` prints for a preset with `--set` overrides.
+fn snapshot_command(preset: &str, sets: &[&str], size: &str) -> String {
+    let mut cmd = assert_cmd::Command::cargo_bin("flutterscope").unwrap();
+    cmd.args(["snapshot", "--preset", preset, "--size", size]);
+    for s in sets {
+        cmd.args(["--set", s]);
+    }
+    let out = cmd.output().unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout).unwrap()
+}
+
+/// The rotor speed at which `flutterscope flutter` finds the first boundary from `from` toward
+/// `to` on the IEA 15MW.
+fn iea15mw_rotor_speed_boundary(from: &str, to: &str) -> f64 {
+    let out = assert_cmd::Command::cargo_bin("flutterscope")
+        .unwrap()
+        .args(["flutter", "--preset", "iea15mw", "--json"])
+        .args([
+            "--vary",
+            "operating.rotor_speed",
+            "--from",
+            from,
+            "--to",
+            to,
+        ])
+        .output()
+        .unwrap();
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    json["critical"].as_f64().expect("a boundary in the range")
+}
+
+/// The IEA 15MW is stable at its rated 7.56 rpm between a stall instability at 2–3.5 rpm and the
+/// torsion flutter at 11.27 rpm. Stable, the margin names the nearest boundary on each side; at
+/// 11.6 rpm, unstable, it names the unstable stretch the rotor speed lies in and where it begins
+/// (it used to say `flutter from 2 rpm, -85 %`: the stall region's onset). Both as
+/// `flutterscope flutter` finds them from the rated speed.
+#[test]
+fn the_rotor_speed_margin_names_the_stretch_the_current_speed_lies_in() {
+    let rated = 7.56;
+    let (down, up) = (
+        iea15mw_rotor_speed_boundary("7.56", "0"),
+        iea15mw_rotor_speed_boundary("7.56", "15"),
+    );
+    let status = |frame: &str| frame.lines().rev().nth(1).unwrap().to_string();
+    let stable = status(&snapshot_command("iea15mw", &[], "160x48"));
+    let expected = format!(
+        "margin along rotor speed: flutter at {down:.2} rpm ({:.2}× rated, flap 1) and \
+         {up:.2} rpm ({:.2}× rated, torsion 1)",
+        down / rated,
+        up / rated
+    );
+    assert!(stable.contains(&expected), "{stable}\nexpected {expected}");
+    let unstable = status(&snapshot_command(
+        "iea15mw",
+        &["operating.rotor_speed=11.6"],
+        "160x48",
+    ));
+    let expected = format!(
+        "margin along rotor speed: unstable from {up:.2} rpm, {:.2}× rated",
+        up / rated
+    );
+    assert!(
+        unstable.contains("FLUTTER") && unstable.ends_with(&expected),
+        "{unstable}\nexpected {expected}"
+    );
+    // At 80 columns the margin keeps its values.
+    let small = status(&snapshot_command("iea15mw", &[], "80x24"));
+    assert!(
+        small.contains(&format!("flutter at {down:.2} rpm and {up:.2} rpm")),
+        "{small}"
+    );
+}
+
+/// A turbine's rotor speed shows to 0.01 rpm (the IEA 15MW's rated 7.56 rpm used to read
+/// `↻ 8 rpm`); the paper's blades at 60 rpm keep their whole rpm.
+#[test]
+fn rotor_speeds_below_30_rpm_show_to_a_hundredth() {
+    let frame = snapshot_command("iea15mw", &[], "80x24");
+    assert!(frame.contains("rotor speed         ↻ 7.56 rpm"), "{frame}");
+    let frame = snapshot_command("nrel5mw", &["operating.wind_speed=6"], "80x24");
+    let row = frame.lines().find(|l| l.contains("rotor speed")).unwrap();
+    assert!(row.contains("↻ ") && row.contains('.'), "{row}");
+    let frame = snapshot_command("liu2017", &[], "80x24");
+    let row = frame.lines().find(|l| l.contains("rotor speed")).unwrap();
+    assert!(row.contains(" 60 rpm│"), "{row}");
+}
+
+/// An error line wraps over as many rows as it needs (a third of the window at most) instead of
+/// being cut at the window's edge: the whole account of liu2017-stall's failed equilibrium at
+/// 0 rpm is on screen at 80×24.
+#[test]
+fn an_error_line_wraps_instead_of_being_cut() {
+    let wide = snapshot_command("liu2017-stall", &["operating.rotor_speed=0"], "1000x24");
+    let error = wide
+        .lines()
+        .find(|l| l.starts_with("error: "))
+        .expect("an error line")
+        .to_string();
+    assert!(error.chars().count() > 3 * 80, "{error}");
+    let frame = snapshot_command("liu2017-stall", &["operating.rotor_speed=0"], "80x24");
+    let lines: Vec<&str> = frame.lines().collect();
+    let first = lines.iter().position(|l| l.starts_with("error: ")).unwrap();
+    let shown = lines[first..].join(" ");
+    assert_eq!(shown, error, "{frame}");
+    assert_eq!(lines.len(), 24);
+    assert!(lines.iter().all(|l| l.chars().count() <= 80));
+}
+
+/// Numbers in the explorer carry the precision of what they stand for: on iea15mw-btc at a
+/// coupling of −0.1 the margin's search upward used to end at α = 0.30000000000000004, out of
+/// the key's range, and the status line said so (`error: boundary search: … = 0.30000000000000004
+/// is out of range`); the search now ends at 0.3 and finds its margin.
+#[test]
+fn a_margin_search_ends_at_the_slider_end_and_prints_no_float_noise() {
+    let frame = snapshot_command(
+        "iea15mw-btc",
+        &[
+            "view.select=\"bend-twist-coupling\"",
+            "blade.bend_twist_coupling=-0.1",
+        ],
+        "200x48",
+    );
+    assert!(!frame.contains("error"), "{frame}");
+    assert!(
+        frame.contains("margin along bend–twist α: flutter at α -0.22"),
+        "{frame}"
+    );
+    let noisy = frame
+        .split(|c: char| !(c.is_ascii_digit() || c == '.'))
+        .any(|w| {
+            w.split_once('.')
+                .is_some_and(|(_, decimals)| decimals.len() >= 10)
+        });
+    assert!(!noisy, "{frame}");
 }

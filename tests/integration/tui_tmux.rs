@@ -485,3 +485,21 @@ fn a_dumb_terminal_gets_the_headless_commands_instead_of_the_explorer() {
         "{screen}"
     );
 }
+
+/// A turbine's rotor speed in a real terminal: shown to 0.01 rpm, the fine step (→) 1 % of the
+/// rated 7.56 rpm and the coarse step (Shift-→) 10 %, on the grid of those steps.
+#[test]
+fn a_turbine_rotor_speed_steps_by_shares_of_its_rated_speed() {
+    if !tmux_available() {
+        return;
+    }
+    let s = Session::explorer(80, 24, "tui --preset iea15mw");
+    s.wait_for("↻ 7.56 rpm");
+    s.keys(&["Right"]);
+    s.wait_for(" 7.64 rpm");
+    s.keys(&["S-Right"]);
+    s.wait_for(" 8.32 rpm");
+    s.keys(&["Left"]);
+    s.wait_for(" 8.24 rpm");
+    s.quit_cleanly();
+}

@@ -39,8 +39,11 @@ pub fn render(state: &AppState, frame: &mut Frame) {
         frame.render_widget(Paragraph::new(text).wrap(Wrap { trim: true }), area);
         return;
     }
-    let [body, status_area] =
-        Layout::vertical([Constraint::Min(0), Constraint::Length(2)]).areas(area);
+    let [body, status_area] = Layout::vertical([
+        Constraint::Min(0),
+        Constraint::Length(status::height(state, area.width, area.height)),
+    ])
+    .areas(area);
     let left_w = (area.width * 3 / 10).clamp(34, 44);
     let [left, right] =
         Layout::horizontal([Constraint::Length(left_w), Constraint::Min(0)]).areas(body);

@@ -3,10 +3,12 @@
 //! row any error from the worker (or a notice, or the main keys).
 
 use super::{sig, Theme};
+use crate::analysis::campbell::ROTOR_SPEED_KEY;
 use crate::analysis::eigen::{Mode, Stability, Verdict};
 use crate::analysis::flutter::{Boundary, BoundaryKind, Search};
 use crate::explorer::state::{
-    unit, AppState, BoundaryJob, MarginKind, ParamKind, ViewMode, PARAMS, SOLVE_BUDGET_S,
+    shown_decimals, unit, value_text, AppState, BoundaryJob, ParamKind, Side, ViewMode,
+    COUPLING_KEY, PARAMS, SOLVE_BUDGET_S,
 };
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::{Modifier, Style};
@@ -25,51 +27,52 @@ fn param_label(key: &str) -> &'static str {
         .unwrap_or("parameter")
 }
 
-fn decimals(key: &str) -> usize {
-    PARAMS
-        .iter()
-        .find_map(|p| match p.kind {
-            ParamKind::Number {
-                key: k, decimals, ..
-            } if k == key => Some(decimals),
-            _ => None,
-        })
-        .unwrap_or(2)
+/// How much a margin says, longest first: the status line shows the longest that fits.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Detail {
+    /// Each boundary with how far it is and the mode that crosses there.
+    Full,
+    /// Without the modes.
+    Distances,
+    /// The values alone.
+    Bare,
 }
 
-/// "flutter at 87 rpm, +45 %" and the like; `None` before the first solve.
+/// The margin with its parameter, in full: "rotor speed: flutter at 11.27 rpm (1.49× rated,
+/// torsion 1), none below"; `None` before the first solve.
 pub fn margin_text(state: &AppState) -> Option<String> {
-    let job = state.boundary.as_ref()?;
-    let label = param_label(job.key);
-    let body = match &job.result {
-        None if job.empty_range => format!(
-            "at the end of its range ({})",
-            with_unit(job.key, job.current)
-        ),
-        None => "searching…".to_string(),
-        Some(Err(_)) => "search failed (below)".to_string(),
-        Some(Ok(searches)) => match job.kind {
-            MarginKind::Onward => {
-                let search = searches.first()?;
-                match onward(state, job, &search.boundary) {
-                    Onward::Whole(text) => return Some(text),
-                    Onward::Body(text) => text,
-                }
-            }
-            MarginKind::Schedule => along_schedule(job, searches),
-            MarginKind::BothWays => both_ways(job, searches),
-        },
-    };
-    Some(format!("{label}: {body}"))
+    margin_forms(state).into_iter().next()
 }
 
-/// `v` in `key`'s unit with the parameters pane's decimals.
-fn with_unit(key: &str, v: f64) -> String {
-    let (u, d) = (unit(key), decimals(key));
-    if u.is_empty() {
-        format!("{v:.d$}")
+/// The margin in the forms the status line tries, longest first: in full, without the modes,
+/// then the values alone.
+pub fn margin_forms(state: &AppState) -> Vec<String> {
+    let Some(job) = state.boundary.as_ref() else {
+        return Vec::new();
+    };
+    let label = param_label(job.key);
+    let mut forms: Vec<String> = match &job.result {
+        None if job.sides.is_empty() => vec![format!(
+            "nothing to search (the slider's range is {})",
+            value(job.key, job.current)
+        )],
+        None => vec!["searching…".to_string()],
+        Some(Err(_)) => vec!["search failed (below)".to_string()],
+        Some(Ok(searches)) => [Detail::Full, Detail::Distances, Detail::Bare]
+            .map(|d| margin_body(state, job, searches, d))
+            .to_vec(),
+    };
+    forms.dedup();
+    forms.into_iter().map(|b| format!("{label}: {b}")).collect()
+}
+
+/// A value of `key` as the margin names it: the parameters pane's text, the coupling (a number
+/// without unit) as `α -0.11`.
+fn value(key: &str, v: f64) -> String {
+    if key == COUPLING_KEY {
+        format!("α {}", value_text(key, v))
     } else {
-        format!("{v:.d$} {u}")
+        value_text(key, v)
     }
 }
 
@@ -81,119 +84,111 @@ fn kind_word(b: &Boundary) -> &'static str {
     }
 }
 
-/// " (flap 1)" after a crossing, if the mode is named.
-fn mode_note(b: &Boundary) -> String {
-    b.mode
-        .as_ref()
-        .map(|m| format!(" ({m})"))
-        .unwrap_or_default()
-}
-
-enum Onward {
-    /// The whole margin, label included.
-    Whole(String),
-    /// The part after the label.
-    Body(String),
-}
-
-/// The margin from the current value toward the stable end (or from below, when unstable).
-fn onward(state: &AppState, job: &BoundaryJob, b: &Boundary) -> Onward {
-    let label = param_label(job.key);
-    let Some(c) = b.critical else {
-        return Onward::Body(if job.unstable {
-            format!(
-                "unstable over {} … {}",
-                with_unit(job.key, job.from),
-                with_unit(job.key, job.to)
-            )
-        } else {
-            format!("no flutter up to {}", with_unit(job.key, job.to))
-        });
-    };
-    let kind = kind_word(b);
-    let pct = distance(job.key, job.current, c);
-    // Overspeed: a real blade's margin is a multiple of its rated rotor speed.
+/// How far the boundary `c` is from the current value: for the rotor speed of a preset with a
+/// rated speed, the multiple of it (`1.49× rated`: an overspeed margin); else [`distance`].
+fn how_far(state: &AppState, job: &BoundaryJob, c: f64) -> String {
     let rated = state.preset.operating.rated_rotor_speed;
-    if job.key == "operating.rotor_speed" && rated > 0.0 && !job.unstable {
-        let mode = b
-            .mode
-            .as_ref()
-            .map(|m| format!(", {m}"))
-            .unwrap_or_default();
-        return Onward::Whole(format!(
-            "{label}: {kind} at {:.2}× rated, {}{mode}",
-            c / rated,
-            with_unit(job.key, c)
-        ));
-    }
-    Onward::Body(if job.unstable {
-        // The search ran up from the slider's low end, so its mode label is the mode's
-        // identity there; the verdict beside this already names the mode that is unstable
-        // here, and two names for one root only confuse.
-        format!("{kind} from {}{pct}", with_unit(job.key, c))
+    if job.key == ROTOR_SPEED_KEY && rated > 0.0 {
+        format!("{:.2}× rated", c / rated)
     } else {
-        format!("{kind} at {}{pct}{}", with_unit(job.key, c), mode_note(b))
-    })
-}
-
-/// How far the boundary `c` lies from the current value: relative for a speed (", +45 %"), whose
-/// zero is physical; in the key's own unit for an angle (", +18.1 deg"), whose zero is only a
-/// convention (a pitch of 0.5° would read +7000 %).
-fn distance(key: &str, current: f64, c: f64) -> String {
-    if unit(key) == "deg" {
-        let d = decimals(key);
-        format!(", {:+.d$} deg", c - current)
-    } else if current.abs() > 1e-12 {
-        format!(", {:+.0} %", 100.0 * (c - current) / current.abs())
-    } else {
-        String::new()
+        distance(job.key, job.current, c)
     }
 }
 
-/// The wind-speed margin along the schedule: the lowest wind between cut-in and cut-out at
-/// which a mode is unstable.
-fn along_schedule(job: &BoundaryJob, searches: &[Search]) -> String {
-    let Some(search) = searches.first() else {
-        return "no search".to_string();
+/// The margin after the parameter's label. From a stable point, the nearest boundary found on
+/// each side of it (`none below` when the search down to the slider's end found none); from an
+/// unstable one, the unstable stretch it lies in: where it begins, and where it ends if that
+/// is before the slider's end.
+fn margin_body(state: &AppState, job: &BoundaryJob, searches: &[Search], detail: Detail) -> String {
+    let search = |side: Side| {
+        job.sides
+            .iter()
+            .zip(searches)
+            .find_map(|(s, x)| (*s == side).then_some(x))
     };
-    let b = &search.boundary;
-    match b.critical {
-        Some(c) => format!(
-            "{} at {} along the schedule{}",
-            kind_word(b),
-            with_unit(job.key, c),
-            mode_note(b)
-        ),
-        None if search.unstable_at_start => {
-            format!("unstable at cut-in {}", with_unit(job.key, job.from))
+    let (below, above) = (search(Side::Below), search(Side::Above));
+    let (down, up) = (crossing(below), crossing(above));
+    let key = job.key;
+    if job.unstable {
+        let Some((begin, _)) = down else {
+            let end = up.map_or(job.to, |(c, _)| c);
+            return format!(
+                "unstable over {} … {}",
+                value(key, job.from),
+                value(key, end)
+            );
+        };
+        let mut text = format!("unstable from {}", value(key, begin));
+        let far = how_far(state, job, begin);
+        if detail != Detail::Bare && !far.is_empty() {
+            text += &format!(", {far}");
         }
-        None => format!("stable to cut-out {}", with_unit(job.key, job.to)),
+        if let Some((end, _)) = up {
+            text += &format!(", to {}", value(key, end));
+        }
+        return text;
+    }
+    // One boundary: its value, then how far and which mode as the detail allows.
+    let at = |(c, b): (f64, &Boundary)| {
+        let mut notes = Vec::new();
+        if detail != Detail::Bare {
+            notes.push(how_far(state, job, c));
+        }
+        if detail == Detail::Full {
+            notes.extend(b.mode.clone());
+        }
+        notes.retain(|n| !n.is_empty());
+        if notes.is_empty() {
+            value(key, c)
+        } else {
+            format!("{} ({})", value(key, c), notes.join(", "))
+        }
+    };
+    match (down, up) {
+        (Some(d), Some(u)) if kind_word(d.1) == kind_word(u.1) => {
+            format!("{} at {} and {}", kind_word(d.1), at(d), at(u))
+        }
+        (Some(d), Some(u)) => format!(
+            "{} at {} and {} at {}",
+            kind_word(d.1),
+            at(d),
+            kind_word(u.1),
+            at(u)
+        ),
+        (Some(d), None) => {
+            let none = if above.is_some() { ", none above" } else { "" };
+            format!("{} at {}{none}", kind_word(d.1), at(d))
+        }
+        (None, Some(u)) => {
+            let none = if below.is_some() { ", none below" } else { "" };
+            format!("{} at {}{none}", kind_word(u.1), at(u))
+        }
+        (None, None) => format!(
+            "stable over {} … {}",
+            value(key, job.from),
+            value(key, job.to)
+        ),
     }
 }
 
-/// The coupling margin: the nearest value on either side at which flutter begins, or the
-/// slider range it is stable over.
-fn both_ways(job: &BoundaryJob, searches: &[Search]) -> String {
-    let nearest = searches
-        .iter()
-        .filter_map(|s| s.boundary.critical.map(|c| (c, &s.boundary)))
-        .min_by(|a, b| {
-            (a.0 - job.current)
-                .abs()
-                .total_cmp(&(b.0 - job.current).abs())
-        });
-    match nearest {
-        Some((c, b)) => format!(
-            "{} at α {}{}",
-            kind_word(b),
-            with_unit(job.key, c),
-            mode_note(b)
-        ),
-        None => format!(
-            "stable over α {}…{}",
-            with_unit(job.key, job.from),
-            with_unit(job.key, job.to)
-        ),
+/// The crossing a side's search found, if any.
+fn crossing(s: Option<&Search>) -> Option<(f64, &Boundary)> {
+    s.and_then(|s| s.boundary.critical.map(|c| (c, &s.boundary)))
+}
+
+/// How far the boundary `c` lies from the current value: relative for a speed (`+45 %`), whose
+/// zero is physical; a difference in the key's own unit for an angle (`+18.1 deg`), whose zero is
+/// only a convention (a pitch of 0.5° would read +7000 %), and for the coupling α (`-0.22`).
+fn distance(key: &str, current: f64, c: f64) -> String {
+    if current == 0.0 {
+        // From zero the value itself says how far.
+        String::new()
+    } else if unit(key) == "deg" || key == COUPLING_KEY {
+        let d = shown_decimals(key, c);
+        let u = if unit(key).is_empty() { "" } else { " deg" };
+        format!("{:+.d$}{u}", c - current)
+    } else {
+        format!("{:+.0} %", 100.0 * (c - current) / current.abs())
     }
 }
 
@@ -230,8 +225,7 @@ pub fn least_damped(s: &Stability) -> Option<&Mode> {
 }
 
 pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
-    let [top, bottom] =
-        Layout::vertical([Constraint::Length(1), Constraint::Length(1)]).areas(area);
+    let [top, bottom] = Layout::vertical([Constraint::Length(1), Constraint::Min(1)]).areas(area);
     let width = area.width as usize;
     let (badge, style): (&str, Style) = match (&state.solved, &state.solve_error) {
         (_, Some(_)) => (" ERROR ", theme.error()),
@@ -281,12 +275,20 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
             .unwrap_or_default(),
         _ => Vec::new(),
     };
-    let margin = margin_text(state).map(|m| format!("margin along {m}"));
     let solving = (state.solving() && state.solved.is_some()).then(|| solving_text(state));
-    // The badge and the margin always; the least-damped mode in the room that is left.
-    let used = badge.chars().count()
-        + margin.as_ref().map_or(0, |m| m.chars().count() + 5)
-        + solving.as_ref().map_or(0, |t| t.chars().count());
+    let fixed = badge.chars().count() + solving.as_ref().map_or(0, |t| t.chars().count());
+    // The badge and the margin always, the margin in the longest form that fits (its
+    // "margin along" dropped before its details); the least-damped mode in the room left.
+    let forms: Vec<String> = margin_forms(state)
+        .into_iter()
+        .flat_map(|m| [format!("margin along {m}"), m])
+        .collect();
+    let margin = forms
+        .iter()
+        .find(|m| fixed + 5 + m.chars().count() <= width)
+        .or(forms.last())
+        .cloned();
+    let used = fixed + margin.as_ref().map_or(0, |m| m.chars().count() + 5);
     let mut spans = vec![Span::styled(badge, style.add_modifier(Modifier::REVERSED))];
     if let Some(text) = least
         .into_iter()
@@ -303,10 +305,12 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
     }
     frame.render_widget(Paragraph::new(Line::from(spans)), top);
 
-    let line = if let Some(e) = error_text(state) {
-        Line::styled(format!("error: {e}"), theme.error())
-    } else if let Some(n) = &state.notice {
-        Line::styled(n.clone(), theme.accent())
+    let lines: Vec<Line> = if let Some((text, error)) = message(state) {
+        let style = if error { theme.error() } else { theme.accent() };
+        wrapped(&text, width, bottom.height as usize)
+            .into_iter()
+            .map(|l| Line::styled(l, style))
+            .collect()
     } else {
         let hints = HINTS
             .iter()
@@ -318,9 +322,72 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
             spans.push(Span::raw("  "));
         }
         spans.push(Span::styled(*hints, theme.dim()));
-        Line::from(spans)
+        vec![Line::from(spans)]
     };
-    frame.render_widget(Paragraph::new(line), bottom);
+    frame.render_widget(Paragraph::new(lines), bottom);
+}
+
+/// Rows a message below the verdict may take in a window `rows` high: an error wraps rather
+/// than being cut at the window's edge (a numerical failure's account runs to 500 characters,
+/// seven rows at 80 columns), but the panes keep two thirds of the screen.
+fn message_rows(rows: u16) -> usize {
+    usize::from(rows / 3).max(1)
+}
+
+/// The error (true) or notice (false) to show below the verdict, if any.
+fn message(state: &AppState) -> Option<(String, bool)> {
+    error_text(state)
+        .map(|e| (format!("error: {e}"), true))
+        .or_else(|| state.notice.clone().map(|n| (n, false)))
+}
+
+/// Rows the status line takes in a window `width × rows`: the verdict's, and the message's as
+/// wrapped (one for the key hints).
+pub fn height(state: &AppState, width: u16, rows: u16) -> u16 {
+    let below = message(state).map_or(1, |(text, _)| {
+        wrapped(&text, width as usize, message_rows(rows)).len()
+    });
+    1 + below as u16
+}
+
+/// `text` broken at spaces into lines of at most `width` characters (a longer word is cut), at
+/// most `rows` of them, the last ending in `…` when the text does not fit.
+fn wrapped(text: &str, width: usize, rows: usize) -> Vec<String> {
+    let width = width.max(1);
+    let mut lines: Vec<String> = Vec::new();
+    let mut line = String::new();
+    for word in text.split(' ') {
+        let mut word: Vec<char> = word.chars().collect();
+        loop {
+            let used = line.chars().count();
+            let gap = usize::from(used > 0);
+            if used + gap + word.len() <= width {
+                if gap == 1 {
+                    line.push(' ');
+                }
+                line.extend(word.iter());
+                break;
+            }
+            if used > 0 {
+                lines.push(std::mem::take(&mut line));
+                continue;
+            }
+            // A word wider than the window: cut it.
+            let rest = word.split_off(width);
+            lines.push(word.iter().collect());
+            word = rest;
+        }
+    }
+    if !line.is_empty() || lines.is_empty() {
+        lines.push(line);
+    }
+    if lines.len() > rows {
+        lines.truncate(rows);
+        let last = &mut lines[rows - 1];
+        let keep: String = last.chars().take(width - 1).collect();
+        *last = keep + "…";
+    }
+    lines
 }
 
 /// The solving mark: with its running time once the solve is over its budget (the last result
@@ -342,15 +409,26 @@ const HINTS: [&str; 3] = [
 
 #[cfg(test)]
 mod tests {
-    use super::distance;
+    use super::{distance, wrapped};
+
+    #[test]
+    fn a_message_wraps_at_spaces_and_says_when_it_is_cut() {
+        assert_eq!(wrapped("error: a bb ccc", 8, 4), ["error: a", "bb ccc"]);
+        assert_eq!(wrapped("abcdefghij", 4, 4), ["abcd", "efgh", "ij"]);
+        assert_eq!(wrapped("a b c d e f", 3, 2), ["a b", "c …"]);
+        assert_eq!(wrapped("", 10, 4), [""]);
+    }
 
     #[test]
     fn a_margin_in_angle_is_a_difference_and_in_speed_a_ratio() {
         // A pitch of 0.5° with flutter at 35.5°: 35 degrees away, not "+7000 %".
-        assert_eq!(distance("operating.pitch", 0.5, 35.5), ", +35.0 deg");
-        assert_eq!(distance("section.ply_angle", 45.0, 30.0), ", -15.0 deg");
-        assert_eq!(distance("operating.wind_speed", 10.0, 15.0), ", +50 %");
-        // No ratio to a zero speed.
+        assert_eq!(distance("operating.pitch", 0.5, 35.5), "+35.0 deg");
+        assert_eq!(distance("section.ply_angle", 45.0, 30.0), "-15.0 deg");
+        assert_eq!(distance("operating.wind_speed", 10.0, 15.0), "+50 %");
+        // The coupling's zero is the uncoupled blade: no ratio to it either.
+        assert_eq!(distance("blade.bend_twist_coupling", -0.1, -0.22), "-0.12");
+        // No ratio to a zero speed, and no difference from a zero angle (the value says it).
         assert_eq!(distance("operating.tunnel_speed", 0.0, 137.0), "");
+        assert_eq!(distance("operating.pitch", 0.0, 35.5), "");
     }
 }
