@@ -247,6 +247,72 @@ fn a_key_that_cannot_act_for_the_blade_is_refused_naming_what_acts() {
             ],
             &["blade.bend_twist_coupling", "section.c23"],
         ),
+        (
+            &["eigen", "--preset", "iea15mw", "--set", "section.chord=2"],
+            &["section.chord", "blade.file"],
+        ),
+        (
+            &[
+                "sweep",
+                "--preset",
+                "nrel5mw",
+                "--vary",
+                "aero.lift_slope=5:6:1",
+            ],
+            &["aero.lift_slope", "polar"],
+        ),
+        (
+            &[
+                "eigen",
+                "--preset",
+                "liu2017",
+                "--set",
+                "operating.precone=2",
+            ],
+            &["operating.precone", "BEM", "operating.induction"],
+        ),
+        (
+            &[
+                "eigen",
+                "--preset",
+                "demo-blade",
+                "--set",
+                "structure.damping_flap=0.01",
+            ],
+            &["structure.damping_flap", "structure.loss_factor"],
+        ),
+        (
+            &[
+                "sweep",
+                "--preset",
+                "iea15mw",
+                "--vary",
+                "operating.rated_power=1e6:2e6:1e6",
+            ],
+            &[
+                "operating.rated_power",
+                "operating.schedule = \"table\"",
+                "law",
+            ],
+        ),
+        (
+            &["eigen", "--preset", "nrel5mw", "--set", "blade.st_set=2"],
+            &["blade.st_set", "HAWC2 st file"],
+        ),
+        (
+            &["eigen", "--preset", "liu2017", "--set", "section.c22=1"],
+            &["section.c22", "section.source = \"table\"", "Table 1"],
+        ),
+        (
+            &[
+                "eigen",
+                "--preset",
+                "demo-blade",
+                "--set",
+                "section.mass_per_length=10",
+            ],
+            &["section.mass_per_length", "laminate"],
+        ),
     ];
     for (args, needles) in cases {
         let out = run(args);
