@@ -1,8 +1,8 @@
 //! `flutterscope sweep`: tracked modes over a grid of one or more keys (CSV or JSON), on all
 //! cores, optionally one shard of the grid.
 
-use crate::analysis::sweep::{grid_sweep, Grid, Shard, SweepRow, SweepSummary};
 use super::stdout_error;
+use crate::analysis::sweep::{grid_sweep, Grid, Shard, SweepRow, SweepSummary};
 use crate::error::{Error, Result};
 use crate::preset::ValidPreset;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
