@@ -102,7 +102,7 @@ fn oscillating(m: &TrackedMode) -> impl Iterator<Item = f64> + '_ {
 }
 
 /// A mode's typical frequency: the median of its oscillating points (`None` if it never does).
-fn typical(m: &TrackedMode) -> Option<f64> {
+pub fn typical(m: &TrackedMode) -> Option<f64> {
     let mut f: Vec<f64> = oscillating(m).collect();
     if f.is_empty() {
         return None;

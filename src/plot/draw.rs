@@ -273,13 +273,15 @@ where
         GuideKind::Horizontal(_) => (HPos::Right, VPos::Bottom, (-6, -4)),
         GuideKind::Segment { .. } => {
             // Leaving through the right edge: label above-left of the end; through the top
-            // (or bottom): label beside the end, inside the plot.
+            // (or bottom): label beside the end, inside the plot; ending inside: right of the
+            // end, centred on the line's height (a label above it sits nearer the next line up
+            // when harmonics run close, as 1P, 3P and 6P of a slow rotor do).
             let at_right = (end.0 - xr.0) / (xr.1 - xr.0) > 0.98;
             let at_top = (end.1 - yr.0) / (yr.1 - yr.0) > 0.98;
             match (at_right, at_top) {
                 (true, _) => (HPos::Right, VPos::Bottom, (-6, -4)),
                 (false, true) => (HPos::Right, VPos::Top, (-8, 4)),
-                (false, false) => (HPos::Left, VPos::Bottom, (6, -4)),
+                (false, false) => (HPos::Left, VPos::Center, (6, 0)),
             }
         }
     };

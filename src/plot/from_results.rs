@@ -3,7 +3,7 @@
 //! n-per-revolution lines `f = nΩ/60` on a Campbell diagram, is a unit conversion).
 
 use super::{Figure, Guide, Mark, Marker, Panel, Series, PALETTE};
-use crate::analysis::campbell::ROTOR_SPEED_KEY;
+use crate::analysis::campbell::{typical, ROTOR_SPEED_KEY};
 use crate::analysis::flutter::{BoundaryKind, Search};
 use crate::analysis::simulate::{Response, RunStatus};
 use crate::analysis::sweep::{FailedPoint, SweepRow, TrackedMode, TrackedSweep};
@@ -39,33 +39,53 @@ fn mode_panels(s: &TrackedSweep, x_label: &str) -> (Panel, Panel) {
     };
     let on_scale = s.campbell_modes();
     // Lowest mode first, in the legend and in the palette: the modes on the frequency scale (lowest
-    // typical frequency first), then the others. A legend the panel's height cuts short then
-    // leaves out high modes, not flap 1, and the modes drawn on the frequency scale never share
-    // a colour.
-    let order: Vec<usize> = on_scale
-        .shown
-        .iter()
-        .copied()
-        .chain((0..s.modes.len()).filter(|i| !on_scale.shown.contains(i)))
+    // typical frequency first), then the others, also lowest first. A legend the panel's height
+    // cuts short then leaves out high modes, not flap 1, and the modes drawn on the frequency
+    // scale never share a colour.
+    let mut off_scale: Vec<usize> = (0..s.modes.len())
+        .filter(|i| !on_scale.shown.contains(i))
         .collect();
+    off_scale.sort_by(|&a, &b| {
+        let f = |i: usize| typical(&s.modes[i]).unwrap_or(f64::INFINITY);
+        f(a).total_cmp(&f(b))
+    });
+    let order: Vec<usize> = on_scale.shown.iter().copied().chain(off_scale).collect();
     for (rank, &i) in order.iter().enumerate() {
         let m = &s.modes[i];
         let color = PALETTE[rank % PALETTE.len()];
-        if rank < on_scale.shown.len() {
+        let name = if rank < on_scale.shown.len() {
             freq.series.push(
                 Series::from_xy(&m.label, &s.values, &m.frequency_hz, mark).with_color(color),
             );
-        }
+            m.label.clone()
+        } else {
+            off_scale_name(m)
+        };
         damp.series
-            .push(Series::from_xy(&m.label, &s.values, &m.damping_ratio, mark).with_color(color));
+            .push(Series::from_xy(name, &s.values, &m.damping_ratio, mark).with_color(color));
     }
     if on_scale.left_off > 0 {
         freq.notes.push(format!(
-            "{} more mode(s) off scale (see --json / CSV)",
+            "{} more mode(s) off scale, named in the legend",
             on_scale.left_off
         ));
     }
     (freq, damp)
+}
+
+/// A legend name for a mode the frequency panel does not draw, saying where it is: "torsion 1
+/// (off scale, 9.83 Hz)" at its typical frequency, or "(not oscillating)" for real roots only.
+fn off_scale_name(m: &TrackedMode) -> String {
+    match typical(m) {
+        Some(f) => format!("{} (off scale, {} Hz)", m.label, three_digits(f)),
+        None => format!("{} (not oscillating)", m.label),
+    }
+}
+
+/// A positive number to three significant digits, without an exponent (9.83, 0.512, 21.4).
+fn three_digits(v: f64) -> String {
+    let decimals = (2 - v.abs().log10().floor() as i32).clamp(0, 6) as usize;
+    format!("{v:.decimals$}")
 }
 
 /// Frequency above, damping ratio below, one line per tracked mode; along rotor speed (rpm) a

@@ -514,7 +514,10 @@ mod from_results {
         let fig = from_results::sweep("test", &sweep);
         let (freq, damp) = (&fig.panels[0], &fig.panels[1]);
         let names: Vec<&str> = damp.series.iter().map(|s| s.name.as_str()).collect();
-        assert_eq!(names, ["flap 1", "flap 2", "torsion 1"]);
+        assert_eq!(
+            names,
+            ["flap 1", "flap 2", "torsion 1 (off scale, 96.0 Hz)"]
+        );
         let drawn: Vec<&str> = freq.series.iter().map(|s| s.name.as_str()).collect();
         assert_eq!(drawn, ["flap 1", "flap 2"]);
         // One colour per mode, the same in both panels, the palette's first for the lowest.
@@ -545,7 +548,11 @@ mod from_results {
             p.series.iter().map(|s| s.name.clone()).collect()
         };
         assert_eq!(names(freq), ["flap 1", "flap 2"]);
-        assert_eq!(names(damp), ["flap 1", "flap 2", "torsion 1"]);
+        // Named in the legend as off scale, with the frequency it sits at.
+        assert_eq!(
+            names(damp),
+            ["flap 1", "flap 2", "torsion 1 (off scale, 96.0 Hz)"]
+        );
         assert!(
             freq.notes[0].starts_with("1 more mode(s) off scale"),
             "{:?}",
@@ -588,7 +595,21 @@ mod from_results {
         let lowest: Vec<String> = (1..=8).map(|k| format!("flap {k}")).collect();
         assert_eq!(names, lowest);
         assert_eq!(damp.series.len(), 11);
-        assert_eq!(freq.notes, ["3 more mode(s) off scale (see --json / CSV)"]);
+        // The modes left off, lowest first, each named as such: beyond the eight lowest at
+        // their frequency, the split pair as not oscillating.
+        let left_off: Vec<&str> = damp.series[8..].iter().map(|s| s.name.as_str()).collect();
+        assert_eq!(
+            left_off,
+            [
+                "flap 9 (off scale, 1.80 Hz)",
+                "flap 10 (off scale, 1.90 Hz)",
+                "split (not oscillating)"
+            ]
+        );
+        assert_eq!(
+            freq.notes,
+            ["3 more mode(s) off scale, named in the legend"]
+        );
     }
 
     #[test]
@@ -779,4 +800,121 @@ fn the_flutter_damping_axis_is_clipped_around_zero_with_the_roots_beyond_marked(
     // The legend's swatch and at least one root drawn at the edge.
     let grey = svg.matches("fill=\"#5A5A5A\" stroke=\"none\"").count();
     assert!(grey > 1, "{grey}");
+}
+
+/// The box drawn behind a guide's label (a translucent white rectangle): x, y, height in pixels.
+type LabelBox = (f64, f64, f64);
+
+/// `<text>` elements with their y position and the box drawn just before them, if any.
+fn labels_with_boxes(svg: &str) -> Vec<(String, f64, Option<LabelBox>)> {
+    let doc = roxmltree::Document::parse(svg).unwrap();
+    let num = |n: roxmltree::Node, a: &str| -> f64 {
+        n.attribute(a)
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(f64::NAN)
+    };
+    doc.descendants()
+        .filter(|n| n.has_tag_name("text"))
+        .map(|n| {
+            let rect = n
+                .prev_sibling_element()
+                .filter(|r| r.has_tag_name("rect"))
+                .map(|r| (num(r, "x"), num(r, "y"), num(r, "height")));
+            (
+                n.text().unwrap_or_default().trim().to_string(),
+                num(n, "y"),
+                rect,
+            )
+        })
+        .collect()
+}
+
+/// A Campbell diagram along rotor speed (the NREL 5MW, 0 … 20 rpm): the 1P and 3P labels sit on
+/// their lines, right of the line's end and centred on its height; torsion 1, above the
+/// frequency scale, is named in the legend as off scale with its typical frequency.
+#[test]
+fn campbell_labels_sit_on_their_lines_and_off_scale_modes_are_named_in_the_legend() {
+    let dir = out_dir("campbell-labels");
+    let path = dir.join("campbell.svg");
+    let out = assert_cmd::Command::cargo_bin("flutterscope")
+        .unwrap()
+        .args([
+            "sweep",
+            "--preset",
+            "nrel5mw",
+            "--vary",
+            "operating.rotor_speed=0:20:5",
+            "--plot",
+            path.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    keep(&path);
+    let svg = std::fs::read_to_string(&path).unwrap();
+    let texts = labels_with_boxes(&svg);
+    // The frequency panel's y ticks come first: their pixel heights map hertz to pixels.
+    let tick = |label: &str| -> f64 {
+        texts
+            .iter()
+            .find(|t| t.0 == label && t.2.is_none())
+            .unwrap_or_else(|| panic!("no tick {label}: {texts:?}"))
+            .1
+    };
+    let (y0, y1) = (tick("0"), tick("1"));
+    let y_at = |hz: f64| y0 + (y1 - y0) * hz;
+    // Where the lines end, at 20 rpm: the frequency panel's last x tick.
+    let x_end = texts_at(&svg)
+        .into_iter()
+        .find(|t| t.1 == "20")
+        .map(|t| t.0)
+        .unwrap();
+    for n in [1.0, 3.0] {
+        let name = format!("{n}P");
+        let (_, _, rect) = texts
+            .iter()
+            .find(|t| t.0 == name)
+            .unwrap_or_else(|| panic!("no {name} label: {texts:?}"));
+        let (x, y, h) = rect.expect("a guide label on its box");
+        // The line ends at 20 rpm, n × 20/60 Hz.
+        let line_y = y_at(n * 20.0 / 60.0);
+        assert!(
+            (y + 0.5 * h - line_y).abs() <= 3.0,
+            "{name}: box {y} … {} px, its line at {line_y} px",
+            y + h
+        );
+        assert!(
+            (0.0..=12.0).contains(&(x - x_end)),
+            "{name}: box from x = {x}, the line ends at {x_end}"
+        );
+    }
+    // Torsion 1's typical frequency, the median of its rows, as the legend names it.
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let mut torsion: Vec<f64> = stdout
+        .lines()
+        .filter_map(|l| {
+            let cols: Vec<&str> = l.split(',').collect();
+            (cols.get(1) == Some(&"torsion 1")).then(|| cols[2].parse::<f64>().unwrap())
+        })
+        .collect();
+    torsion.sort_by(f64::total_cmp);
+    let median = torsion[torsion.len() / 2];
+    let entry = texts
+        .iter()
+        .find_map(|t| t.0.strip_prefix("torsion 1 (off scale, "))
+        .unwrap_or_else(|| panic!("torsion 1 not named off scale: {texts:?}"));
+    let hz: f64 = entry.strip_suffix(" Hz)").unwrap().parse().unwrap();
+    assert!((hz - median).abs() <= 0.005, "{entry} against {median}");
+    // Off scale indeed: above the frequency panel's top tick.
+    assert!(y_at(hz) < tick("4"), "{hz} Hz on the scale");
+    assert!(
+        texts
+            .iter()
+            .any(|t| t.0.ends_with("more mode(s) off scale, named in the legend")),
+        "{texts:?}"
+    );
 }
