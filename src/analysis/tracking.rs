@@ -126,20 +126,7 @@ pub fn follow(
     depth: usize,
     solve: &dyn Fn(f64) -> Option<Vec<Mode>>,
 ) -> Option<usize> {
-    let m = match_modes(a.modes, b.modes);
-    if depth == 0 || !m.ambiguous[index] {
-        return m.partner[index];
-    }
-    let value = 0.5 * (a.value + b.value);
-    let Some(modes) = solve(value) else {
-        return m.partner[index];
-    };
-    let mid = Point {
-        value,
-        modes: &modes,
-    };
-    let at_mid = follow(a, index, &mid, depth - 1, solve)?;
-    follow(&mid, at_mid, b, depth - 1, solve)
+    branch(a, index, b, depth, solve, Undecided::Guess)
 }
 
 /// [`follow`], or none where the tracking cannot decide: on the finest step the match is still
@@ -153,22 +140,44 @@ pub fn follow_decided(
     depth: usize,
     solve: &dyn Fn(f64) -> Option<Vec<Mode>>,
 ) -> Option<usize> {
+    branch(a, index, b, depth, solve, Undecided::Refuse)
+}
+
+/// What [`branch`] answers where refinement cannot settle a match: the optimal match (a
+/// Campbell track must go on), or none (a name must not be guessed).
+#[derive(Clone, Copy, PartialEq)]
+enum Undecided {
+    Guess,
+    Refuse,
+}
+
+fn branch(
+    a: &Point,
+    index: usize,
+    b: &Point,
+    depth: usize,
+    solve: &dyn Fn(f64) -> Option<Vec<Mode>>,
+    undecided: Undecided,
+) -> Option<usize> {
     let m = match_modes(a.modes, b.modes);
     if !m.ambiguous[index] {
         return m.partner[index];
     }
+    let guess = undecided == Undecided::Guess;
     if depth == 0 {
         let j = m.partner[index]?;
-        return clear(a.modes, index, b.modes, j).then_some(j);
+        return (guess || clear(a.modes, index, b.modes, j)).then_some(j);
     }
     let value = 0.5 * (a.value + b.value);
-    let modes = solve(value)?;
+    let Some(modes) = solve(value) else {
+        return m.partner[index].filter(|_| guess);
+    };
     let mid = Point {
         value,
         modes: &modes,
     };
-    let at_mid = follow_decided(a, index, &mid, depth - 1, solve)?;
-    follow_decided(&mid, at_mid, b, depth - 1, solve)
+    let at_mid = branch(a, index, &mid, depth - 1, solve, undecided)?;
+    branch(&mid, at_mid, b, depth - 1, solve, undecided)
 }
 
 /// Whether root `i` of `previous` matching root `j` of `next` is clear on a step too fine to
