@@ -24,7 +24,7 @@ use std::path::Path;
 #[derive(Debug, Serialize)]
 struct ModeRow {
     /// Label, family, number in the family, frequency, shares and the twist share again under
-    /// `torsion_share` (the name scripts used before issue 16).
+    /// `torsion_share` (the name older scripts read).
     #[serde(flatten)]
     mode: NaturalMode,
     /// Modal damping ratio ζ; `null` for a mode at zero frequency, which has none.
