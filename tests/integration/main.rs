@@ -27,3 +27,18 @@ mod sweep;
 mod tabulated;
 mod tui_tmux;
 mod validation;
+
+/// The real binary run with `args`, as a user would; a failure fails the test with its stderr.
+fn flutterscope_ok(args: &[&str]) -> std::process::Output {
+    let out = assert_cmd::Command::cargo_bin("flutterscope")
+        .unwrap()
+        .args(args)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out
+}

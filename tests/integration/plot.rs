@@ -762,30 +762,21 @@ mod from_results {
 fn the_flutter_damping_axis_is_clipped_around_zero_with_the_roots_beyond_marked() {
     let dir = out_dir("flutter-clip");
     let path = dir.join("flutter.svg");
-    let out = assert_cmd::Command::cargo_bin("flutterscope")
-        .unwrap()
-        .args([
-            "flutter",
-            "--preset",
-            "iea15mw",
-            "--vary",
-            "operating.rotor_speed",
-            "--from",
-            "0",
-            "--to",
-            "30",
-            "--points",
-            "11",
-            "--plot",
-            path.to_str().unwrap(),
-        ])
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    crate::flutterscope_ok(&[
+        "flutter",
+        "--preset",
+        "iea15mw",
+        "--vary",
+        "operating.rotor_speed",
+        "--from",
+        "0",
+        "--to",
+        "30",
+        "--points",
+        "11",
+        "--plot",
+        path.to_str().unwrap(),
+    ]);
     keep(&path);
     let svg = std::fs::read_to_string(&path).unwrap();
     let texts: Vec<String> = texts_at(&svg).into_iter().map(|t| t.1).collect();
@@ -836,24 +827,15 @@ fn labels_with_boxes(svg: &str) -> Vec<(String, f64, Option<LabelBox>)> {
 fn campbell_labels_sit_on_their_lines_and_off_scale_modes_are_named_in_the_legend() {
     let dir = out_dir("campbell-labels");
     let path = dir.join("campbell.svg");
-    let out = assert_cmd::Command::cargo_bin("flutterscope")
-        .unwrap()
-        .args([
-            "sweep",
-            "--preset",
-            "nrel5mw",
-            "--vary",
-            "operating.rotor_speed=0:20:5",
-            "--plot",
-            path.to_str().unwrap(),
-        ])
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let out = crate::flutterscope_ok(&[
+        "sweep",
+        "--preset",
+        "nrel5mw",
+        "--vary",
+        "operating.rotor_speed=0:20:5",
+        "--plot",
+        path.to_str().unwrap(),
+    ]);
     keep(&path);
     let svg = std::fs::read_to_string(&path).unwrap();
     let texts = labels_with_boxes(&svg);

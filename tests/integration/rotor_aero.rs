@@ -206,27 +206,18 @@ fn flap_is_heavily_damped_edge_lightly_and_stall_takes_the_edge_damping_away() {
 /// pitch, the IEA 15MW blade's boundary, also as a multiple of its rated rotor speed.
 #[test]
 fn overspeed_flutter_is_quoted_against_the_rated_rotor_speed() {
-    let out = assert_cmd::Command::cargo_bin("flutterscope")
-        .unwrap()
-        .args([
-            "flutter",
-            "--preset",
-            "iea15mw",
-            "--vary",
-            "operating.rotor_speed",
-            "--from",
-            "7.56",
-            "--to",
-            "20",
-            "--json",
-        ])
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let out = crate::flutterscope_ok(&[
+        "flutter",
+        "--preset",
+        "iea15mw",
+        "--vary",
+        "operating.rotor_speed",
+        "--from",
+        "7.56",
+        "--to",
+        "20",
+        "--json",
+    ]);
     let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let critical = json["critical"].as_f64().unwrap();
     assert_eq!(json["rated_rotor_speed_rpm"].as_f64(), Some(7.56));
@@ -335,29 +326,20 @@ fn nrel5mw_overspeed_equilibrium() {
 /// crossing. Its content is printed with it; where the tracking cannot decide, the result says so.
 #[test]
 fn the_flutter_mode_is_named_by_its_branch_from_the_start_of_the_search() {
-    let out = assert_cmd::Command::cargo_bin("flutterscope")
-        .unwrap()
-        .args([
-            "flutter",
-            "--preset",
-            "iea15mw",
-            "--set",
-            "blade.bend_twist_coupling=0.1",
-            "--vary",
-            "operating.rotor_speed",
-            "--from",
-            "5",
-            "--to",
-            "15",
-            "--json",
-        ])
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let out = crate::flutterscope_ok(&[
+        "flutter",
+        "--preset",
+        "iea15mw",
+        "--set",
+        "blade.bend_twist_coupling=0.1",
+        "--vary",
+        "operating.rotor_speed",
+        "--from",
+        "5",
+        "--to",
+        "15",
+        "--json",
+    ]);
     let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let message = json["message"].as_str().unwrap();
     let f = json["frequency_hz"].as_f64().unwrap();
