@@ -7,6 +7,11 @@
 //! already have (OpenFAST, HAWC2) into plain tables in the files' own units, for physics to map.
 //! The physics reference is `docs/model.md`; each module cites the section it implements.
 
+/// Every program built on the library (the binary, its tests and benchmarks) allocates through
+/// mimalloc: an analysis makes many small vectors per operating point (see Cargo.toml).
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 pub mod analysis;
 pub mod cli;
 pub mod commands;

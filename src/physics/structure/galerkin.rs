@@ -10,6 +10,7 @@ use crate::error::{Error, Result};
 use crate::numeric::cholesky::cholesky_reduce;
 use crate::numeric::faer_evd::real_evd;
 use crate::physics::basis::{torsion_wavenumber, Basis, BendingMode};
+use crate::physics::blade::source::Kept;
 use crate::physics::section::{section_properties, SectionProps};
 use crate::preset::{Form, ValidPreset};
 
@@ -36,12 +37,34 @@ pub struct StructuralModel {
     pub omega1: f64,
     /// r_hub (m).
     pub hub_radius: f64,
+    /// The natural modes, found on first use: every analysis of the structure names its roots
+    /// after them, and a sweep that keeps the structure asks for them at every point.
+    natural: OnceLock<Vec<NaturalMode>>,
 }
 
 /// Assemble the structure of a preset: section from its source, N from `structure.modes`, form
 /// from `structure.form`, rotor speed from `operating.rotor_speed`, damping from
 /// `structure.loss_factor` (docs/model.md §3–§4).
 pub fn assemble(p: &ValidPreset) -> Result<StructuralModel> {
+    let (section, spec) = inputs(p)?;
+    assemble_section(section, &spec)
+}
+
+/// [`assemble`], shared: presets whose section and blade are the same (the points of a sweep
+/// over the wind speed or the pitch) get the same structure.
+pub fn kept(p: &ValidPreset) -> Result<Arc<StructuralModel>> {
+    static KEPT: Kept<(SectionProps, BladeSpec), StructuralModel> = Kept::new();
+    let (section, spec) = inputs(p)?;
+    KEPT.get_or_build((section, spec), KEPT_STRUCTURES, || {
+        assemble_section(section, &spec)
+    })
+}
+
+/// Structures kept by [`kept`]: one per sweep worker and a few more.
+const KEPT_STRUCTURES: usize = 8;
+
+/// What fixes the structure of a preset: its section and the blade around it.
+fn inputs(p: &ValidPreset) -> Result<(SectionProps, BladeSpec)> {
     let section = section_properties(p)?;
     let spec = BladeSpec {
         n: p.structure.modes,
@@ -52,11 +75,11 @@ pub fn assemble(p: &ValidPreset) -> Result<StructuralModel> {
         loss_factor: p.structure.loss_factor,
     };
     spec.check()?;
-    assemble_section(section, &spec)
+    Ok((section, spec))
 }
 
 /// Everything besides the section that fixes the structural matrices.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 struct BladeSpec {
     n: usize,
     length: f64,
@@ -348,6 +371,7 @@ fn assemble_section(section: SectionProps, spec: &BladeSpec) -> Result<Structura
         damping,
         omega1,
         hub_radius: spec.hub_radius,
+        natural: OnceLock::new(),
     })
 }
 
@@ -447,6 +471,14 @@ impl StructuralModel {
     /// Undamped natural modes of (M, K_e + K_c), sorted by frequency, labelled by their kinetic
     /// energy share (docs/model.md §4, §6).
     pub fn natural_modes(&self) -> Result<Vec<NaturalMode>> {
+        if let Some(known) = self.natural.get() {
+            return Ok(known.clone());
+        }
+        let modes = self.find_natural_modes()?;
+        Ok(self.natural.get_or_init(|| modes).clone())
+    }
+
+    fn find_natural_modes(&self) -> Result<Vec<NaturalMode>> {
         let k = self.stiffness();
         let pairs = match is_symmetric(&k) {
             true => self.symmetric_pairs(&k)?,

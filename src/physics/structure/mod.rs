@@ -29,7 +29,7 @@ use tabulated::TabulatedStructure;
 /// passes of an operating point and the re-solves of a sweep ask for it again and again.
 pub fn for_preset(p: &ValidPreset) -> Result<Arc<dyn Structure>> {
     match blade_structure(p)? {
-        None => Ok(Arc::new(assemble(p)?)),
+        None => Ok(galerkin::kept(p)?),
         Some(built) => {
             static KEPT: Kept<(Same, u64), TabulatedStructure> = Kept::new();
             let omega = p.omega();
