@@ -7,9 +7,9 @@
 //!
 //! Run: `cargo bench --bench bem`.
 
+use flutterscope::model::aero::rotor_of;
 use flutterscope::physics::rotor::bem::{solve, Conditions, Rotor, Station};
 use flutterscope::physics::rotor::induction::HighThrust;
-use flutterscope::physics::rotor::steady::rotor_of;
 use flutterscope::preset::Preset;
 
 fn main() {

@@ -6,10 +6,10 @@
 //!
 //! Run: `cargo bench --bench blade`.
 
+use flutterscope::model::for_preset;
 use flutterscope::physics::blade::fem::{assemble, BladeMatrices, Mesh};
 use flutterscope::physics::blade::modal::ModalBlade;
 use flutterscope::physics::blade::BladeTable;
-use flutterscope::physics::structure::for_preset;
 use flutterscope::preset::{Preset, ValidPreset};
 use std::sync::atomic::{AtomicUsize, Ordering};
 

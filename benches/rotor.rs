@@ -9,8 +9,8 @@
 
 use flutterscope::analysis::eigen::{analyse, analyse_system, linear_system};
 use flutterscope::analysis::sweep::track;
+use flutterscope::model::operating::steady;
 use flutterscope::physics::aero::blade_element::Unsteadiness;
-use flutterscope::physics::operating::steady;
 use flutterscope::preset::{Preset, ValidPreset};
 
 fn main() {
@@ -42,7 +42,7 @@ fn operating_point_at_the_law_pitch(bencher: divan::Bencher) {
     let law = Preset::load("nrel5mw", &["operating.wind_speed=13".into()]).unwrap();
     let pitch = steady(&law, Unsteadiness::QuasiSteady)
         .unwrap()
-        .preset
+        .0
         .operating
         .pitch;
     let p = law.with("operating.pitch", pitch).unwrap();

@@ -1,6 +1,7 @@
 //! One layup section evaluation (docs/model.md §2.1): CLT, contour moments, stiffness and mass.
 //! Target (issue 5): under 100 µs, so dragging the ply angle re-solves within one frame.
 
+use flutterscope::model::section::layup_input;
 use flutterscope::physics::laminate::layup_section_props;
 use flutterscope::preset::{ContourShape, Preset, ValidPreset};
 
@@ -18,13 +19,13 @@ fn preset(shape: ContourShape) -> ValidPreset {
 /// The paper's Table 1 box (exact with four corners): the default layup section.
 #[divan::bench]
 fn layup_box(b: divan::Bencher) {
-    let p = preset(ContourShape::Box);
-    b.bench(|| layup_section_props(divan::black_box(&p)).unwrap());
+    let layup = layup_input(&preset(ContourShape::Box));
+    b.bench(|| layup_section_props(divan::black_box(&layup)).unwrap());
 }
 
 /// Smooth contours: two polylines (512 and 1024 segments) Richardson-combined.
 #[divan::bench(args = [ContourShape::Ellipse, ContourShape::Paper])]
 fn layup_smooth(b: divan::Bencher, shape: ContourShape) {
-    let p = preset(shape);
-    b.bench(|| layup_section_props(divan::black_box(&p)).unwrap());
+    let layup = layup_input(&preset(shape));
+    b.bench(|| layup_section_props(divan::black_box(&layup)).unwrap());
 }

@@ -91,7 +91,7 @@ fn simulate_20s_quasi_steady(b: divan::Bencher) {
 #[divan::bench]
 fn part_assemble_n5(b: divan::Bencher) {
     let p = preset("liu2017", &["structure.modes=5"]);
-    b.bench(|| flutterscope::physics::structure::assemble(divan::black_box(&p)).unwrap());
+    b.bench(|| flutterscope::model::assemble(divan::black_box(&p)).unwrap());
 }
 
 /// Breakdown: system set-up, equilibrium and state matrix (quasi-steady, N = 5).
@@ -137,7 +137,7 @@ fn part_eigen_theodorsen_n5_16_stations(b: divan::Bencher) {
 #[divan::bench]
 fn part_natural_modes_n5(b: divan::Bencher) {
     let p = preset("liu2017", &["structure.modes=5"]);
-    let s = flutterscope::physics::structure::assemble(&p).unwrap();
+    let s = flutterscope::model::assemble(&p).unwrap();
     b.bench(|| divan::black_box(&s).natural_modes().unwrap());
 }
 

@@ -3,7 +3,7 @@
 //!
 //! Run: `cargo bench --bench structure`.
 
-use flutterscope::physics::structure::assemble;
+use flutterscope::model::assemble;
 use flutterscope::preset::{Preset, ValidPreset};
 
 fn main() {

@@ -18,6 +18,7 @@ pub mod commands;
 pub mod error;
 pub mod explorer;
 pub mod formats;
+pub mod model;
 pub mod numeric;
 pub mod physics;
 pub mod plot;

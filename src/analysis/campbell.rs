@@ -47,7 +47,7 @@ pub fn schedule_wind_range(p: &ValidPreset) -> Option<(f64, f64)> {
 fn scheduled_rotor_speeds(p: &ValidPreset, winds: &[f64]) -> Result<Vec<f64>> {
     winds
         .iter()
-        .map(|&u| crate::physics::operating::scheduled_rotor_speed(&p.with(WIND_SPEED_KEY, u)?))
+        .map(|&u| crate::model::operating::scheduled_rotor_speed(&p.with(WIND_SPEED_KEY, u)?))
         .collect()
 }
 

@@ -15,7 +15,7 @@ use crate::analysis::identify::{identify, Identified};
 use crate::error::Result;
 use crate::numeric::decompose;
 use crate::physics::structure::{Family, Shares};
-use crate::physics::system::{LinearSystem, System};
+use crate::physics::system::LinearSystem;
 use crate::preset::ValidPreset;
 use nalgebra::Complex;
 use serde::Serialize;
@@ -156,7 +156,7 @@ pub fn analyse(p: &ValidPreset) -> Result<Stability> {
 
 /// The linearised system of a preset (assemble, equilibrium, state matrix).
 pub fn linear_system(p: &ValidPreset) -> Result<LinearSystem> {
-    let (system, equilibrium) = System::with_equilibrium(p)?;
+    let (system, equilibrium) = crate::model::system_with_equilibrium(p)?;
     system.linearise_at(equilibrium)
 }
 

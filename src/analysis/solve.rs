@@ -24,7 +24,7 @@ pub struct Solution {
 
 /// Build the preset's system once and linearise it about its static equilibrium.
 pub fn solve(p: &ValidPreset) -> Result<Solution> {
-    let (system, equilibrium) = System::with_equilibrium(p)?;
+    let (system, equilibrium) = crate::model::system_with_equilibrium(p)?;
     let linear = system.linearise_at(equilibrium);
     let system = Arc::new(system);
     Ok(Solution { system, linear })

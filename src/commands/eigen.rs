@@ -6,7 +6,7 @@ use crate::preset::ValidPreset;
 
 pub fn run(p: &ValidPreset, json: bool) -> Result<()> {
     // The header names the rotor speed and pitch the turbine runs at: its schedule's.
-    let scheduled = crate::physics::operating::on_schedule(p)?;
+    let scheduled = crate::model::operating::on_schedule(p)?;
     let p = &scheduled;
     let s = analyse(p).map_err(|e| e.at(p.operating_point()))?;
     if json {

@@ -11,9 +11,8 @@
 //! reads in rad per m of peak flap displacement, a torsion mode's `u` and `v` in m per rad.
 
 use crate::error::Result;
-use crate::physics::structure::{
-    damping_ratio, for_preset, Family, MotionRows, NaturalMode, Structure,
-};
+use crate::model::for_preset;
+use crate::physics::structure::{damping_ratio, Family, MotionRows, NaturalMode, Structure};
 use crate::plot::{Figure, Panel, Series, PALETTE};
 use crate::preset::{Form, ValidPreset};
 use nalgebra::DVector;
@@ -63,7 +62,7 @@ pub fn run(p: &ValidPreset, json: bool, shapes: bool, plot: Option<&Path>) -> Re
     }
     // The structure alone depends on the rotor speed and pitch only, of the operating point:
     // the schedule's at the preset's wind speed when it has one, as every other command runs.
-    let scheduled = crate::physics::operating::on_schedule(p)?;
+    let scheduled = crate::model::operating::on_schedule(p)?;
     let p = &scheduled;
     let at = || {
         format!(
@@ -146,7 +145,7 @@ fn heading(p: &ValidPreset, structure: &dyn Structure) -> String {
                  from r = {} m, {} elements",
                 if count == 1 { "" } else { "s" },
                 p.operating.pitch,
-                blade.source.title(),
+                blade.format.title(),
                 blade.files.join(" + "),
                 structure.length(),
                 structure.hub_radius(),

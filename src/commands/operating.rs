@@ -5,7 +5,7 @@
 
 use crate::commands::{parse_vary, print_json, print_text};
 use crate::error::{Error, Result};
-use crate::physics::operating::deflected_point;
+use crate::model::operating::deflected_point;
 use crate::physics::rotor::steady::SteadyPoint;
 use crate::preset::ValidPreset;
 use rayon::prelude::*;

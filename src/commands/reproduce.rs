@@ -8,10 +8,9 @@
 
 use crate::cli::Reproduction;
 use crate::error::{Error, Result};
-use crate::physics::section::{
-    section_properties, SectionProps, TABLE1_ANGLES, TABLE1_PRINTED, TABLE1_UNIT_FACTORS,
-};
-use crate::physics::structure::{ac_frequency_hz, assemble};
+use crate::model::{assemble, section_properties};
+use crate::physics::section::{SectionProps, TABLE1_ANGLES, TABLE1_PRINTED, TABLE1_UNIT_FACTORS};
+use crate::physics::structure::ac_frequency_hz;
 use crate::preset::{Preset, ValidPreset};
 use serde::Serialize;
 use std::path::Path;

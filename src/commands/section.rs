@@ -4,6 +4,7 @@
 
 use crate::commands::{parse_vary, print_json, print_text};
 use crate::error::{Error, Result};
+use crate::model::section::layup_input;
 use crate::physics::laminate::{layup_section, LayupSection, Stiffness3, WallLaminate};
 use crate::physics::section::SectionProps;
 use crate::preset::{key_spec, ContourShape, SectionSource, ValidPreset};
@@ -58,7 +59,7 @@ pub fn run(p: &ValidPreset, vary: Option<&str>, json: bool, plot: Option<&Path>)
     }
     match vary {
         None => {
-            let s = layup_section(p)?;
+            let s = layup_section(&layup_input(p))?;
             if json {
                 print_json(&SectionReport {
                     preset: p.display_name(),
@@ -108,7 +109,7 @@ pub fn vary_sections(p: &ValidPreset, key: &str, values: &[f64]) -> Result<Vec<L
         .iter()
         .map(|&v| {
             spec.check(&p.origin, v)?;
-            layup_section(&p.edited(|q| (spec.set)(q, v))?)
+            layup_section(&layup_input(&p.edited(|q| (spec.set)(q, v))?))
         })
         .collect()
 }

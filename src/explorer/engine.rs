@@ -78,7 +78,7 @@ impl Stream for Simulator {
 impl Engine for Physics {
     fn solve(&self, p: &ValidPreset, cancel: &Cancel) -> Solve {
         // The schedule once, here: the solve and the simulation run at its setting.
-        let scheduled = match crate::physics::operating::on_schedule(p) {
+        let scheduled = match crate::model::operating::on_schedule(p) {
             Ok(q) => q,
             Err(e) => {
                 return Solve {

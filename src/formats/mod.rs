@@ -21,6 +21,7 @@ pub mod beamdyn;
 pub mod elastodyn;
 pub mod hawc2_aero;
 pub mod hawc2_st;
+pub mod text_file;
 
 use crate::error::{Error, Result};
 use std::io::Read;

@@ -10,7 +10,16 @@
 //! grows, and never evaluating at the root or tip where the Galerkin functions vanish or peak).
 
 use crate::physics::basis::gauss_legendre;
-use crate::preset::{Inflow, ValidPreset};
+
+/// Where each strip's relative speed and inflow angle are evaluated (docs/model.md §1).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Inflow {
+    /// V0 and ψ evaluated at the tip for every station (the paper).
+    Tip,
+    /// Each station at its own radius.
+    Local,
+}
 
 /// The rigid (structure-independent) flow seen by one strip.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -52,20 +61,6 @@ pub struct OperatingPoint {
 }
 
 impl OperatingPoint {
-    pub fn from_preset(p: &ValidPreset) -> OperatingPoint {
-        let o = &p.operating;
-        OperatingPoint {
-            wind: o.wind_speed,
-            induction: o.induction,
-            omega: p.omega(),
-            tunnel: o.tunnel_speed,
-            pitch: p.pitch_rad(),
-            twist_root: o.twist_root.to_radians(),
-            twist_tip: o.twist_tip.to_radians(),
-            inflow: o.inflow,
-        }
-    }
-
     /// Relative speed V0 and inflow angle ψ at radius `r` (docs/model.md §1).
     pub fn velocity_triangle(&self, r: f64) -> (f64, f64) {
         let axial = self.wind * (1.0 - self.induction);
@@ -106,16 +101,6 @@ pub fn stations(length: f64, hub_radius: f64, op: &OperatingPoint, count: usize)
             }
         })
         .collect()
-}
-
-/// The stations of a preset (`aero.stations` of them).
-pub fn preset_stations(p: &ValidPreset) -> Vec<Station> {
-    stations(
-        p.blade.length,
-        p.blade.hub_radius,
-        &OperatingPoint::from_preset(p),
-        p.aero.stations,
-    )
 }
 
 #[cfg(test)]

@@ -27,8 +27,7 @@
 
 use crate::error::{Error, Result};
 use crate::physics::section::{SectionProps, TABLE1_ANGLES};
-use crate::preset::{Contour, ContourShape, Layup, Preset, ValidPreset};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
 /// Polyline segments for the smooth contours (ellipse, paper Eq. 1) at the coarse level; the fine
@@ -41,6 +40,91 @@ pub const SMOOTH_SEGMENTS: usize = 512;
 
 /// Relative tolerance the contour integrals are converged to (tested in `tests/integration/laminate.rs`).
 pub const CONTOUR_TOLERANCE: f64 = 1e-6;
+
+/// The shape of a closed contour's mid-line (docs/model.md §2.1 "Contours").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ContourShape {
+    /// Rectangle of mid-line `width × height`.
+    Box,
+    /// Ellipse of mid-line semi-axes `a` (chordwise) and `b` (thickness).
+    Ellipse,
+    /// The paper's "integration line" Eq. (1), scaled by e = chord/4.
+    Paper,
+}
+
+/// A closed contour's mid-line: its shape and the dimensions that shape reads (m).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Contour {
+    pub shape: ContourShape,
+    /// Box mid-line width and height.
+    pub width: f64,
+    pub height: f64,
+    /// Ellipse chordwise and thickness semi-axes.
+    pub a: f64,
+    pub b: f64,
+    /// The section's chord: it scales the paper's contour (e = chord/4).
+    pub chord: f64,
+}
+
+/// A CAS layup section (docs/model.md §2, §2.1): the laminate of each wall, the contour it is
+/// laid on, the non-structural mass, and where the section sits relative to the aerodynamic
+/// centre.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LayupInput {
+    pub material: PlyMaterial,
+    /// Ply density ρ (kg/m³).
+    pub density: f64,
+    /// Ply thickness (m).
+    pub ply_thickness: f64,
+    /// Plies per wall.
+    pub plies: usize,
+    /// Ply angle θ (deg): `[θ]ₙ` on the upper wall, `[−θ]ₙ` on the lower.
+    pub ply_angle: f64,
+    /// Non-structural mass per length (kg/m) and its chordwise position from the elastic axis
+    /// (m, positive aft).
+    pub nonstructural_mass: f64,
+    pub nonstructural_position: f64,
+    pub contour: Contour,
+    /// e_a = x_EA − x_AC (m).
+    pub ea_offset: f64,
+    /// The structural mass's centre from the elastic axis (m).
+    pub cg_offset: f64,
+    /// What the section belongs to, for messages.
+    pub origin: String,
+}
+
+impl LayupInput {
+    /// The paper's laminate (six plies of glass–epoxy, docs/model.md §2) at `ply_angle` on the
+    /// flat box of mid-line 18.33 × 2.470 mm whose layup reproduces Table 1.
+    pub fn paper(ply_angle: f64) -> LayupInput {
+        LayupInput {
+            material: PlyMaterial {
+                e11: 25.8e9,
+                e22: 8.7e9,
+                nu12: 0.34,
+                g12: 3.5e9,
+            },
+            density: 1672.0,
+            ply_thickness: 0.127e-3,
+            plies: 6,
+            ply_angle,
+            nonstructural_mass: 0.0,
+            nonstructural_position: 0.0,
+            contour: Contour {
+                shape: ContourShape::Box,
+                width: 0.01833,
+                height: 0.00247,
+                a: 0.01833 / 2.0,
+                b: 0.00247 / 2.0,
+                chord: 0.01833,
+            },
+            ea_offset: -0.01833 / 4.0,
+            cg_offset: 0.0,
+            origin: "paper Table 1 layup".into(),
+        }
+    }
+}
 
 /// Ply material in the wall's principal axes (docs/model.md §2.1).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -295,11 +379,9 @@ pub fn cas_stiffness(
 // Contours (docs/model.md §2.1 "Contours")
 // ---------------------------------------------------------------------------------------------
 
-/// The preset's contour as a closed polyline, counterclockwise, `segments` points for the smooth
-/// shapes (the box is exact with its four corners and ignores `segments`).
-/// `chord` scales the paper's contour (e = chord/4).
-pub fn contour_polyline(p: &ValidPreset, segments: usize) -> Vec<[f64; 2]> {
-    let c = &p.section.contour;
+/// The contour as a closed polyline, counterclockwise, `segments` points for the smooth shapes
+/// (the box is exact with its four corners and ignores `segments`).
+pub fn contour_polyline(c: &Contour, segments: usize) -> Vec<[f64; 2]> {
     let mut pts: Vec<[f64; 2]> = match c.shape {
         ContourShape::Box => {
             let (w, h) = (c.width / 2.0, c.height / 2.0);
@@ -312,7 +394,7 @@ pub fn contour_polyline(p: &ValidPreset, segments: usize) -> Vec<[f64; 2]> {
             })
             .collect(),
         ContourShape::Paper => {
-            let e = p.section.chord / 4.0;
+            let e = c.chord / 4.0;
             (0..segments)
                 .map(|k| paper_midline(e, 2.0 * PI * k as f64 / segments as f64))
                 .collect()
@@ -420,12 +502,12 @@ fn richardson(coarse: f64, fine: f64) -> f64 {
 /// samples, `segments` chords. The polyline's error expands in even powers of the parameter step,
 /// so the two are Richardson-combined (error O(h⁴), plus an O(h³) remainder from where a chord is
 /// cut at z = 0, below 1e-7 relative at 512 segments).
-pub fn contour_moments_with(p: &ValidPreset, segments: usize) -> ContourMoments {
-    let shape = p.section.contour.shape;
+pub fn contour_moments_with(c: &Contour, segments: usize) -> ContourMoments {
+    let shape = c.shape;
     if shape == ContourShape::Box {
-        return polyline_moments(shape, &contour_polyline(p, 4));
+        return polyline_moments(shape, &contour_polyline(c, 4));
     }
-    let fine_pts = contour_polyline(p, 2 * segments);
+    let fine_pts = contour_polyline(c, 2 * segments);
     let coarse_pts: Vec<[f64; 2]> = fine_pts.iter().step_by(2).copied().collect();
     let coarse = polyline_moments(shape, &coarse_pts);
     let fine = polyline_moments(shape, &fine_pts);
@@ -440,43 +522,30 @@ pub fn contour_moments_with(p: &ValidPreset, segments: usize) -> ContourMoments 
 }
 
 /// [`contour_moments_with`] at the production resolution [`SMOOTH_SEGMENTS`].
-pub fn contour_moments(p: &ValidPreset) -> ContourMoments {
-    contour_moments_with(p, SMOOTH_SEGMENTS)
-}
-
-/// The preset's ply material.
-pub fn ply_material(p: &ValidPreset) -> PlyMaterial {
-    let l = &p.section.layup;
-    PlyMaterial {
-        e11: l.e11,
-        e22: l.e22,
-        nu12: l.nu12,
-        g12: l.g12,
-    }
+pub fn contour_moments(c: &Contour) -> ContourMoments {
+    contour_moments_with(c, SMOOTH_SEGMENTS)
 }
 
 // ---------------------------------------------------------------------------------------------
 // The section
 // ---------------------------------------------------------------------------------------------
 
-/// Everything about the preset's layup section (docs/model.md §2, §2.1), whatever `section.source`
-/// says: laminate, walls, contour, stiffnesses, mass properties.
+/// Everything about a layup section (docs/model.md §2, §2.1): laminate, walls, contour,
+/// stiffnesses, mass properties.
 ///
 /// Mass (thin walls, elastic axis at the centroid): `m = ρt∮ds + m_ns`,
 /// `I = ρt∮(y²+z²)ds + m_ns x_ns²`, `m K_m1² = ρt∮z²ds`, `m K_m2² = ρt∮y²ds + m_ns x_ns²`,
 /// `K_A² = ∮(y²+z²)ds / ∮ds` (wall area only, `A0 = t∮ds`). The non-structural mass `m_ns` is a
-/// line mass at chordwise `x_ns` from the elastic axis (`section.layup.nonstructural_*`).
-/// `cg_offset`: the preset's `section.cg_offset` is taken as the centre of the structural mass
-/// relative to the elastic axis; the non-structural mass moves it to the mass-weighted mean
-/// `d = d_p + m_ns (x_ns − d_p)/m`.
-pub fn layup_section(p: &ValidPreset) -> Result<LayupSection> {
-    let l = &p.section.layup;
-    let material = ply_material(p);
+/// line mass at chordwise `x_ns` from the elastic axis. `cg_offset` is the centre of the
+/// structural mass relative to the elastic axis; the non-structural mass moves it to the
+/// mass-weighted mean `d = d_p + m_ns (x_ns − d_p)/m`.
+pub fn layup_section(l: &LayupInput) -> Result<LayupSection> {
+    let material = l.material;
     let q = ply_stiffness(&material);
-    let angle = p.section.ply_angle;
+    let angle = l.ply_angle;
     let upper = wall_laminate(&q, angle, l.plies, l.ply_thickness);
     let lower = wall_laminate(&q, -angle, l.plies, l.ply_thickness);
-    let g = contour_moments(p);
+    let g = contour_moments(&l.contour);
     let stiff = closed_section_stiffness(&g, &upper.k, &lower.k);
 
     let t = l.plies as f64 * l.ply_thickness;
@@ -487,15 +556,15 @@ pub fn layup_section(p: &ValidPreset) -> Result<LayupSection> {
     let y2 = g.upper.y2 + g.lower.y2;
     let z2 = g.upper.z2 + g.lower.z2;
     let ns_inertia = m_ns * x_ns * x_ns;
-    let d_p = p.section.cg_offset;
+    let d_p = l.cg_offset;
     let props = SectionProps {
         m,
         i: l.density * t * (y2 + z2) + ns_inertia,
         ka2: (y2 + z2) / g.perimeter,
         km1_2: l.density * t * z2 / m,
         km2_2: (l.density * t * y2 + ns_inertia) / m,
-        chord: p.section.chord,
-        ea_offset: p.section.ea_offset,
+        chord: l.contour.chord,
+        ea_offset: l.ea_offset,
         cg_offset: d_p + m_ns * (x_ns - d_p) / m,
         c22: stiff.c22,
         c23: stiff.c23,
@@ -507,11 +576,11 @@ pub fn layup_section(p: &ValidPreset) -> Result<LayupSection> {
     {
         return Err(Error::numerical(format!(
             "{}: layup section gave non-finite properties {props:?}",
-            p.origin
+            l.origin
         )));
     }
     Ok(LayupSection {
-        ply_angle_deg: p.section.ply_angle,
+        ply_angle_deg: l.ply_angle,
         material,
         density: l.density,
         plies: l.plies,
@@ -527,28 +596,19 @@ pub fn layup_section(p: &ValidPreset) -> Result<LayupSection> {
     })
 }
 
-/// The section properties the structure model consumes, from the layup (`section.source =
-/// "layup"`): m, I, K_A², K_m1², K_m2² from the contour, C22/C23/C33 from CLT; chord and e_a
-/// from the preset; d as in [`layup_section`].
-pub fn layup_section_props(p: &ValidPreset) -> Result<SectionProps> {
-    Ok(layup_section(p)?.props)
+/// The section properties the structure model consumes, from the layup: m, I, K_A², K_m1²,
+/// K_m2² from the contour, C22/C23/C33 from CLT; chord and e_a as given; d as in
+/// [`layup_section`].
+pub fn layup_section_props(l: &LayupInput) -> Result<SectionProps> {
+    Ok(layup_section(l)?.props)
 }
 
-/// The paper's Table 1 recomputed from the layup: the paper's laminate ([`Layup::PAPER`]) on the
-/// flat box of mid-line 18.33 × 2.470 mm ([`Contour::PAPER_BOX`]), at each of [`TABLE1_ANGLES`].
-/// Named rather than taken from the defaults, so it stays the paper's.
+/// The paper's Table 1 recomputed from the layup: the paper's laminate on its flat box
+/// ([`LayupInput::paper`]) at each of [`TABLE1_ANGLES`]. Named rather than taken from the
+/// defaults, so it stays the paper's.
 pub fn paper_table1_from_layup() -> Result<Vec<(f64, SectionProps)>> {
     TABLE1_ANGLES
         .iter()
-        .map(|&deg| {
-            let mut p = Preset {
-                origin: "paper Table 1 layup".into(),
-                ..Preset::default()
-            };
-            p.section.layup = Layup::PAPER;
-            p.section.contour = Contour::PAPER_BOX;
-            p.section.ply_angle = deg;
-            Ok((deg, layup_section_props(&p.validate()?)?))
-        })
+        .map(|&deg| Ok((deg, layup_section_props(&LayupInput::paper(deg))?)))
         .collect()
 }

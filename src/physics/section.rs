@@ -1,7 +1,6 @@
 //! Cross-section properties from the three stiffness sources (docs/model.md §2).
 
 use crate::error::{Error, Result};
-use crate::preset::{SectionSource, ValidPreset};
 
 /// Per-length section properties in SI, whatever their source.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
@@ -30,43 +29,13 @@ pub struct SectionProps {
     pub c33: f64,
 }
 
-/// Section properties of a preset from its `section.source` (docs/model.md §2): `direct` takes
-/// `c22, c23, c33` from the preset, `table` interpolates the paper's Table 1 at
-/// `section.ply_angle`, `layup` computes everything from the laminate and contour (§2.1). Mass
-/// properties come from the preset for `direct` and `table`.
-pub fn section_properties(p: &ValidPreset) -> Result<SectionProps> {
-    let props = match p.section.source {
-        SectionSource::Direct => {
-            let s = &p.section;
-            with_preset_mass(p, [s.c22, s.c23, s.c33])
-        }
-        SectionSource::Table => with_preset_mass(p, table1_stiffness(p.section.ply_angle)),
-        SectionSource::Layup => crate::physics::laminate::layup_section_props(p)?,
-    };
-    check_finite(&props)?;
-    Ok(props)
+/// `s`, if every property is finite: a non-finite one would poison every matrix downstream, so
+/// stop here with its name.
+pub fn checked(s: SectionProps) -> Result<SectionProps> {
+    check_finite(&s)?;
+    Ok(s)
 }
 
-/// Stiffness `[C22, C23, C33]` with the mass, inertia and geometry given in the preset (the
-/// direct and table sources).
-fn with_preset_mass(p: &ValidPreset, [c22, c23, c33]: [f64; 3]) -> SectionProps {
-    let s = &p.section;
-    SectionProps {
-        m: s.mass_per_length,
-        i: s.polar_inertia,
-        ka2: s.ka2,
-        km1_2: s.km1_2,
-        km2_2: s.km2_2,
-        chord: s.chord,
-        ea_offset: s.ea_offset,
-        cg_offset: s.cg_offset,
-        c22,
-        c23,
-        c33,
-    }
-}
-
-/// A non-finite property would poison every matrix downstream; stop here with its name.
 fn check_finite(s: &SectionProps) -> Result<()> {
     let fields = [
         ("m", s.m),

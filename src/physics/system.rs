@@ -21,12 +21,10 @@
 
 use crate::error::{Error, Result};
 use crate::physics::aero::{
-    model_for, Kinematics, NonlinearSupport, SteadyStates, StripEval, StripModel, LOADS, RATES,
+    Kinematics, NonlinearSupport, SteadyStates, StripEval, StripModel, LOADS, RATES,
 };
-use crate::physics::inflow::{stations, OperatingPoint, Station};
-use crate::physics::operating;
-use crate::physics::structure::{for_preset, Structure};
-use crate::preset::ValidPreset;
+use crate::physics::inflow::Station;
+use crate::physics::structure::Structure;
 use nalgebra::{DMatrix, DVector};
 use std::sync::Arc;
 
@@ -97,38 +95,8 @@ pub struct LinearSystem {
 }
 
 impl System {
-    /// Assemble structure, stations (along the structure's span) and the preset's aerodynamic
+    /// Build from an assembled structure, stations (along the structure's span) and a strip
     /// model.
-    ///
-    /// A real blade with its aerodynamic description runs at its scheduled rotor speed and pitch,
-    /// its strips on the inflow of its steady aeroelastic operating point
-    /// ([`crate::physics::operating`], docs/model.md §12.6).
-    pub fn new(p: &ValidPreset) -> Result<System> {
-        Self::with_equilibrium(p).map(|(system, _)| system)
-    }
-
-    /// [`System::new`] with the static equilibrium when building the system already found it
-    /// (a real blade's steady operating point ends on it, §12.6): linearising about it
-    /// ([`System::linearise_at`]) then skips a second, identical Newton solve.
-    pub fn with_equilibrium(p: &ValidPreset) -> Result<(System, Option<DVector<f64>>)> {
-        if operating::in_the_wind(p) {
-            return operating::steady(p, operating::unsteadiness(p))
-                .map(|op| (op.system, Some(op.equilibrium)));
-        }
-        let scheduled = operating::on_schedule(p)?;
-        let p = &scheduled;
-        let structure = for_preset(p)?;
-        let model = model_for(p)?;
-        let stations = stations(
-            structure.length(),
-            structure.hub_radius(),
-            &OperatingPoint::from_preset(p),
-            p.aero.stations,
-        );
-        Ok((System::from_parts(structure, stations, model)?, None))
-    }
-
-    /// Build from an assembled structure, stations and a model (tests and alternative models).
     pub fn from_parts(
         structure: Arc<dyn Structure>,
         stations: Vec<Station>,

@@ -5,7 +5,9 @@
 //! runs from any directory; text given without a location against the working directory.
 
 use crate::error::{Error, Result};
-use std::path::{Path, PathBuf};
+use crate::formats::text_file::DiskFile;
+pub use crate::formats::text_file::TextFile;
+use std::path::PathBuf;
 
 /// The blade files the built-in presets use, embedded as their presets are, by their path under
 /// `presets/`.
@@ -156,20 +158,19 @@ fn normalise(name: &str) -> String {
     parts.join("/")
 }
 
-impl BladeFile {
-    /// The name errors give: the path on disk, or `presets/…` for a built-in file (where it is
-    /// in the source tree).
-    pub fn display(&self) -> String {
+impl TextFile for BladeFile {
+    /// The path on disk, or `presets/…` for a built-in file (where it is in the source tree).
+    fn display(&self) -> String {
         match self {
-            BladeFile::Disk(path) => path.display().to_string(),
+            BladeFile::Disk(path) => DiskFile(path.clone()).display(),
             BladeFile::Builtin { name, .. } => format!("presets/{name}"),
         }
     }
 
-    /// The file's text, through the size-capped reader for a file on disk.
-    pub fn read(&self) -> Result<String> {
+    /// Through the size-capped reader for a file on disk.
+    fn read(&self) -> Result<String> {
         match self {
-            BladeFile::Disk(path) => crate::formats::read_text(path),
+            BladeFile::Disk(path) => DiskFile(path.clone()).read(),
             BladeFile::Builtin {
                 text: Some(text), ..
             } => Ok(text.to_string()),
@@ -188,13 +189,9 @@ impl BladeFile {
         }
     }
 
-    /// The file `name` names from inside this one (BeamDyn's `BldFile`), resolved against this
-    /// file's directory as BeamDyn does.
-    pub fn sibling(&self, name: &str) -> BladeFile {
+    fn sibling(&self, name: &str) -> BladeFile {
         match self {
-            BladeFile::Disk(path) => {
-                BladeFile::Disk(path.parent().unwrap_or_else(|| Path::new("")).join(name))
-            }
+            BladeFile::Disk(path) => BladeFile::Disk(DiskFile(path.clone()).sibling(name).0),
             BladeFile::Builtin { name: own, .. } => {
                 let dir = own.rsplit_once('/').map_or("", |(d, _)| d);
                 let joined = normalise(&format!("{dir}/{name}"));

@@ -23,7 +23,10 @@ pub use rules::MAX_SAMPLES;
 pub use schema::*;
 
 use crate::error::{Error, Result};
-use crate::physics::blade::source::{read_blade, read_twist, TabulatedBlade};
+use crate::formats::text_file::TextFile;
+use crate::physics::blade::source::{
+    read_beamdyn, read_hawc2 as read_hawc2_st, read_twist, TabulatedBlade,
+};
 use crate::physics::rotor::bem::Station;
 use crate::physics::rotor::files::{read_aerodyn, read_hawc2, read_prebend};
 use crate::physics::rotor::schedule::Table as ScheduleTable;
@@ -234,13 +237,14 @@ impl Preset {
             ),
             _ => String::new(),
         };
-        let blade =
-            read_blade(b.source, &file, twist.as_ref(), b.st_set, b.st_subset).map_err(|e| {
-                Error::Invalid {
-                    origin: self.origin.clone(),
-                    message: format!("blade.file = \"{}\"{subset}: {e}", b.file),
-                }
-            })?;
+        let blade = match &twist {
+            Some(twist) => read_hawc2_st(&file, twist, b.st_set, b.st_subset),
+            None => read_beamdyn(&file),
+        }
+        .map_err(|e| Error::Invalid {
+            origin: self.origin.clone(),
+            message: format!("blade.file = \"{}\"{subset}: {e}", b.file),
+        })?;
         self.tabulated = Some(Tabulated {
             source: b.source,
             file: b.file.clone(),

@@ -222,16 +222,7 @@ pub struct Layup {
     pub nonstructural_position: f64,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum ContourShape {
-    /// Rectangle of mid-line `width × height`.
-    Box,
-    /// Ellipse of mid-line semi-axes `a` (chordwise) and `b` (thickness).
-    Ellipse,
-    /// The paper's "integration line" Eq. (1), scaled by e = chord/4.
-    Paper,
-}
+pub use crate::physics::laminate::ContourShape;
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -247,14 +238,7 @@ pub struct Contour {
     pub b: f64,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Inflow {
-    /// V0 and ψ evaluated at the tip for every station (the paper).
-    Tip,
-    /// Each station at its own radius.
-    Local,
-}
+pub use crate::physics::inflow::Inflow;
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -328,12 +312,7 @@ impl Schedule {
     }
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Form {
-    Weak,
-    Strong,
-}
+pub use crate::physics::structure::galerkin::Form;
 
 /// Default `structure.min_elements`: the first 12 modes of the NREL 5MW blade within 0.1 % of
 /// their converged values. The twist is linear in each element, so the torsion modes converge
@@ -473,12 +452,7 @@ impl RotorFiles {
     }
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum OneraForcing {
-    Coupled,
-    Rigid,
-}
+pub use crate::physics::aero::onera::OneraForcing;
 
 /// ONERA stall-model coefficients (docs/model.md §5.3).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

@@ -3,9 +3,9 @@
 //! blade's own coupling), the build cache tells α apart, the uniform blade refuses the key, and
 //! sweeps vary it.
 
+use flutterscope::model::blade::blade_structure;
 use flutterscope::physics::blade::coupling::coupling_ratio;
 use flutterscope::physics::blade::fem::assemble;
-use flutterscope::physics::blade::source::blade_structure;
 use flutterscope::preset::{Preset, ValidPreset};
 use std::sync::Arc;
 

@@ -3,10 +3,11 @@
 
 use crate::stability::within;
 use flutterscope::analysis::eigen::{analyse, analyse_system, linear_system, Stability};
+use flutterscope::model::aero::{model_for, preset_stations};
+use flutterscope::model::assemble;
 use flutterscope::numeric::{decompose, Solver};
-use flutterscope::physics::aero::{model_for, Kinematics, SteadyStates, StripEval, StripModel};
-use flutterscope::physics::inflow::{preset_stations, Station};
-use flutterscope::physics::structure::assemble;
+use flutterscope::physics::aero::{Kinematics, SteadyStates, StripEval, StripModel};
+use flutterscope::physics::inflow::Station;
 use flutterscope::physics::system::System;
 use flutterscope::preset::{Preset, ValidPreset};
 use std::collections::HashSet;

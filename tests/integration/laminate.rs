@@ -3,9 +3,10 @@
 //! `flutterscope section` command.
 
 use flutterscope::error::Error;
+use flutterscope::model::section::{contour, layup_input};
 use flutterscope::physics::laminate::{
     cas_stiffness, contour_moments, contour_moments_with, layup_section, layup_section_props,
-    paper_table1_from_layup, ply_material, ply_stiffness, CONTOUR_TOLERANCE, SMOOTH_SEGMENTS,
+    paper_table1_from_layup, ply_stiffness, CONTOUR_TOLERANCE, SMOOTH_SEGMENTS,
 };
 use flutterscope::preset::{ContourShape, Preset, ValidPreset};
 use std::f64::consts::PI;
@@ -43,7 +44,7 @@ fn box_preset(width: f64, height: f64, angle: f64) -> Preset {
 
 #[test]
 fn ply_stiffness_of_the_paper_material() {
-    let q = ply_stiffness(&ply_material(&valid(&layup_preset())));
+    let q = ply_stiffness(&layup_input(&valid(&layup_preset())).material);
     assert!(rel(q.q11, 2.68465e10) < 2e-6, "Q11 = {}", q.q11);
     assert!(rel(q.q22, 9.05289e9) < 2e-6, "Q22 = {}", q.q22);
     assert!(rel(q.q12, 3.07798e9) < 2e-6, "Q12 = {}", q.q12);
@@ -52,7 +53,7 @@ fn ply_stiffness_of_the_paper_material() {
 
 #[test]
 fn zero_degree_box_matches_hand_values() {
-    let s = layup_section_props(&valid(&box_preset(0.2, 0.05, 0.0))).unwrap();
+    let s = layup_section_props(&layup_input(&valid(&box_preset(0.2, 0.05, 0.0)))).unwrap();
     assert!(rel(s.c22, 2.1336e3) < 3e-3, "C22 = {}", s.c22);
     assert!(rel(s.c33, 5.3245e3) < 3e-3, "C33 = {}", s.c33);
     assert_eq!(s.c23, 0.0);
@@ -68,7 +69,7 @@ fn box_mass_properties_match_hand_integrals() {
     // ∮z² and ∮y² of the rectangle's mid-line: two flanges plus two webs.
     let z2 = 2.0 * w * (h / 2.0).powi(2) + 2.0 * h.powi(3) / 12.0;
     let y2 = 2.0 * w.powi(3) / 12.0 + 2.0 * h * (w / 2.0).powi(2);
-    let s = layup_section_props(&valid(&p)).unwrap();
+    let s = layup_section_props(&layup_input(&valid(&p))).unwrap();
     let m = rho * t * perimeter;
     assert!(rel(s.m, m) < 1e-12);
     assert!(rel(s.i, rho * t * (y2 + z2)) < 1e-12);
@@ -81,7 +82,7 @@ fn box_mass_properties_match_hand_integrals() {
     p.section.layup.nonstructural_mass = 0.01;
     p.section.layup.nonstructural_position = 0.002;
     p.section.cg_offset = -0.001;
-    let n = layup_section_props(&valid(&p)).unwrap();
+    let n = layup_section_props(&layup_input(&valid(&p))).unwrap();
     assert!(rel(n.m, m + 0.01) < 1e-12);
     assert!(rel(n.i, s.i + 0.01 * 0.002f64.powi(2)) < 1e-12);
     assert!(rel(n.km2_2, (s.km2_2 * m + 0.01 * 0.002f64.powi(2)) / n.m) < 1e-12);
@@ -109,7 +110,7 @@ fn isotropic_tube_matches_bredt_and_thin_tube_bending() {
     // Isotropic walls: the ply angle must not matter.
     for angle in [0.0, 30.0, 90.0] {
         p.section.ply_angle = angle;
-        let s = layup_section_props(&valid(&p)).unwrap();
+        let s = layup_section_props(&layup_input(&valid(&p))).unwrap();
         assert!(
             rel(s.c22, bredt) < CONTOUR_TOLERANCE,
             "C22 = {} vs Bredt {bredt}",
@@ -133,8 +134,8 @@ fn cas_coupling_is_odd_in_the_ply_angle_and_vanishes_at_0_and_90() {
     ] {
         let mut p = layup_preset();
         p.section.contour.shape = shape;
-        let g = contour_moments(&valid(&p));
-        let q = ply_stiffness(&ply_material(&valid(&p)));
+        let g = contour_moments(&contour(&valid(&p)));
+        let q = ply_stiffness(&layup_input(&valid(&p)).material);
         for deg in [10.0f64, 25.0, 45.0, 70.0, 80.0] {
             let plus = cas_stiffness(&q, deg.to_radians(), 6, 0.127e-3, &g);
             let minus = cas_stiffness(&q, -deg.to_radians(), 6, 0.127e-3, &g);
@@ -184,7 +185,7 @@ fn contour_integrals_converge_to_the_stated_tolerance() {
         p.section.contour.shape = ContourShape::Ellipse;
         p.section.contour.a = a;
         p.section.contour.b = b;
-        let g = contour_moments(&valid(&p));
+        let g = contour_moments(&contour(&valid(&p)));
         assert!(rel(g.perimeter, ellipse_perimeter(a, b)) < CONTOUR_TOLERANCE);
         assert!(rel(g.enclosed_area, PI * a * b) < CONTOUR_TOLERANCE);
         cases.push(p);
@@ -193,8 +194,8 @@ fn contour_integrals_converge_to_the_stated_tolerance() {
     paper.section.contour.shape = ContourShape::Paper;
     cases.push(paper);
     for p in cases {
-        let g = contour_moments(&valid(&p));
-        let reference = contour_moments_with(&valid(&p), 32 * SMOOTH_SEGMENTS);
+        let g = contour_moments(&contour(&valid(&p)));
+        let reference = contour_moments_with(&contour(&valid(&p)), 32 * SMOOTH_SEGMENTS);
         for (name, ours, exact) in [
             ("perimeter", g.perimeter, reference.perimeter),
             ("area", g.enclosed_area, reference.enclosed_area),
@@ -213,8 +214,8 @@ fn contour_integrals_converge_to_the_stated_tolerance() {
             );
         }
         // The stiffnesses inherit the convergence.
-        let s = layup_section_props(&valid(&p)).unwrap();
-        let q = ply_stiffness(&ply_material(&valid(&p)));
+        let s = layup_section_props(&layup_input(&valid(&p))).unwrap();
+        let q = ply_stiffness(&layup_input(&valid(&p)).material);
         let f = cas_stiffness(
             &q,
             p.section.ply_angle.to_radians(),
@@ -233,7 +234,7 @@ fn paper_contour_has_the_stated_perimeter_and_area() {
     let mut p = layup_preset();
     p.section.contour.shape = ContourShape::Paper;
     let e = p.section.chord / 4.0;
-    let g = contour_moments(&valid(&p));
+    let g = contour_moments(&contour(&valid(&p)));
     assert!(
         rel(g.perimeter / e, 5.3908) < 1e-4,
         "∮ds/e = {}",
@@ -329,7 +330,7 @@ fn bad_layups_are_rejected_with_the_key_and_rule() {
 
     // Through the preset loader (the path the CLI takes).
     let err = Preset::load("liu2017", &["section.layup.nu12=2.0".into()])
-        .and_then(|p| layup_section(&p).map(|_| p))
+        .and_then(|p| layup_section(&layup_input(&p)).map(|_| p))
         .expect_err("ν12 = 2 accepted");
     assert!(err.to_string().contains("section.layup.nu12"), "{err}");
 }

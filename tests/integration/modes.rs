@@ -4,7 +4,7 @@
 //! refusal of ElastoDyn blade files.
 
 use assert_cmd::cargo::cargo_bin_cmd;
-use flutterscope::physics::blade::source::blade_structure;
+use flutterscope::model::blade::blade_structure;
 use flutterscope::physics::structure::{numbers_within_families, Family};
 use flutterscope::preset::Preset;
 use serde_json::Value;

@@ -2,6 +2,7 @@
 //! both forms' state derivatives and loads, and every analytic partial derivative against central
 //! differences.
 
+use flutterscope::model::aero::onera_coefficients;
 use flutterscope::physics::aero::onera::{
     self, coupled, rigid, Coefficients, Motion, Regime, Strip,
 };
@@ -9,7 +10,7 @@ use flutterscope::preset::{Onera, OneraForcing};
 
 /// docs/model.md §5.3 defaults, through the preset so the conversion is covered too.
 fn defaults() -> Coefficients {
-    Coefficients::from(&Onera::default())
+    onera_coefficients(&Onera::default())
 }
 
 /// The paper's section at its operating point: tip V0 and ψ at U = 20 m/s, 60 rpm, L = 8.4455 m.

@@ -2,9 +2,9 @@
 //! the assembled matrices at any pitch, and its Ritz modes at pitches across 0…90° and rotor
 //! speeds from rest to the top of the range agree with a full rebuild at that pitch.
 
+use flutterscope::model::blade::blade_structure;
 use flutterscope::physics::blade::fem::assemble;
 use flutterscope::physics::blade::modal::ModalBlade;
-use flutterscope::physics::blade::source::blade_structure;
 use flutterscope::preset::Preset;
 
 /// Relative frequency error allowed between the pitch-range basis and a full rebuild. The Ritz

@@ -3,9 +3,10 @@
 //! keys (issue 16 item 5).
 
 use flutterscope::error::Error;
-use flutterscope::physics::blade::source::blade_structure;
-use flutterscope::physics::section::{section_properties, table1_si, TABLE1_ANGLES};
-use flutterscope::physics::structure::assemble;
+use flutterscope::model::assemble;
+use flutterscope::model::blade::blade_structure;
+use flutterscope::model::section_properties;
+use flutterscope::physics::section::{table1_si, TABLE1_ANGLES};
 use flutterscope::preset::{
     builtin_names, BladeSource, FileBase, Form, Inflow, Preset, SectionSource, KEYS,
 };
@@ -523,7 +524,7 @@ fn demo_blade_follows_the_ply_angle_through_its_layup() {
         (0.1..0.3).contains(&gyration),
         "radius of gyration {gyration} chords"
     );
-    let modes = flutterscope::physics::structure::assemble(&base)
+    let modes = flutterscope::model::assemble(&base)
         .unwrap()
         .natural_modes()
         .unwrap();

@@ -2,12 +2,12 @@
 //! in flap, edge and twist on a tabulated structure.
 
 use flutterscope::formats::airfoil::{read_airfoil, PolarColumns};
+use flutterscope::model::for_preset;
 use flutterscope::physics::aero::blade_element::{
     BladeElement, ElementSection, StallDynamics, Unsteadiness,
 };
 use flutterscope::physics::aero::polar::Polar;
 use flutterscope::physics::inflow::{stations, OperatingPoint};
-use flutterscope::physics::structure::for_preset;
 use flutterscope::physics::system::System;
 use flutterscope::preset::{Inflow, Preset};
 use nalgebra::DVector;
@@ -263,8 +263,8 @@ fn the_campbell_along_the_schedule_solves_every_wind_speed() {
 #[test]
 fn without_air_the_roots_are_the_structural_modes() {
     use flutterscope::analysis::eigen::analyse;
-    use flutterscope::physics::blade::source::blade_structure;
-    use flutterscope::physics::operating::on_schedule;
+    use flutterscope::model::blade::blade_structure;
+    use flutterscope::model::operating::on_schedule;
     for name in ["nrel5mw", "iea15mw"] {
         let p = Preset::load(name, &["aero.model=none".to_string()]).unwrap();
         let s = analyse(&p).unwrap();
@@ -299,10 +299,10 @@ fn without_air_the_roots_are_the_structural_modes() {
 /// static divergence).
 #[test]
 fn nrel5mw_overspeed_equilibrium() {
-    use flutterscope::physics::operating::{steady, unsteadiness};
+    use flutterscope::model::operating::{steady, unsteadiness};
     let at = |rpm: f64| Preset::load("nrel5mw", &[format!("operating.rotor_speed={rpm}")]).unwrap();
     let p = at(30.0);
-    let op = steady(&p, unsteadiness(&p)).unwrap();
+    let (_, op) = steady(&p, unsteadiness(&p)).unwrap();
     let [twist, flap, _] = op.tip();
     // Far past any linear beam's validity: at a tip speed ratio of 18 the outboard blade runs at
     // negative angles of attack and bends 15.4 m upwind, twisting 21° toward feather.

@@ -34,7 +34,7 @@ fn max_rel_diff(a: &DMatrix<f64>, b: &DMatrix<f64>) -> f64 {
 #[test]
 fn paper_stall_case_reaches_equilibrium_and_is_stable_in_the_coupled_form() {
     let p = stall(&[]);
-    let system = System::new(&p).unwrap();
+    let system = flutterscope::model::system(&p).unwrap();
     assert_static_equilibrium(&system);
     let lin = linear_system(&p).unwrap();
     let (twist, flap) = lin.tip(&lin.x_eq);
@@ -57,7 +57,7 @@ fn paper_stall_case_reaches_equilibrium_and_is_stable_in_the_coupled_form() {
 #[test]
 fn load_continuation_reaches_the_soft_stall_blades_equilibrium() {
     let p = stall(&["aero.onera.forcing=rigid"]);
-    let system = System::new(&p).unwrap();
+    let system = flutterscope::model::system(&p).unwrap();
     assert_static_equilibrium(&system);
 }
 
@@ -95,7 +95,7 @@ fn state_jacobian_matches_central_differences() {
             &format!("aero.onera.forcing={forcing}"),
             "operating.pitch=2",
         ]);
-        let system = System::new(&p).unwrap();
+        let system = flutterscope::model::system(&p).unwrap();
         let x_eq = system
             .equilibrium()
             .unwrap_or_else(|_| DVector::zeros(system.dim()));
@@ -316,7 +316,7 @@ fn stall_transient_from_rest_matches_a_fine_runge_kutta_reference() {
     // The load switched on at t = 0: the tip swings through stall at the torsion frequency
     // (~100 Hz) while sampled at 200 Hz.
     let p = stall(&["simulation.duration=0.1"]);
-    let system = System::new(&p).unwrap();
+    let system = flutterscope::model::system(&p).unwrap();
     let reference = rk4_tip(&system, &DVector::zeros(system.dim()), 1e-5, 500, 21);
     let run = |tolerance: Option<f64>| {
         let mut sim = Simulator::new(&p).unwrap();
@@ -377,7 +377,7 @@ fn rigid_forcing_leaves_the_aero_states_independent_of_the_structure() {
         run("simulation.kick_twist=0"),
         run("simulation.kick_twist=5"),
     );
-    let system = System::new(&stall(&base)).unwrap();
+    let system = flutterscope::model::system(&stall(&base)).unwrap();
     let nq = system.nq();
     let mut structural_differs = false;
     for (xa, xb) in a.iter().zip(&b) {
@@ -526,7 +526,7 @@ fn splitting_reproduces_the_right_hand_side_exactly() {
             &format!("aero.onera.forcing={forcing}"),
             "operating.pitch=2",
         ]);
-        let system = System::new(&p).unwrap();
+        let system = flutterscope::model::system(&p).unwrap();
         let x_ref = system
             .equilibrium()
             .unwrap_or_else(|_| DVector::zeros(system.dim()));
@@ -595,7 +595,7 @@ fn rigid_transient_matches_a_fine_runge_kutta_reference() {
         "operating.pitch=20.5",
         "simulation.duration=0.1",
     ]);
-    let system = System::new(&p).unwrap();
+    let system = flutterscope::model::system(&p).unwrap();
     let reference = rk4_tip(&system, &DVector::zeros(system.dim()), 1e-5, 500, 21);
     let mut sim = Simulator::new(&p).unwrap();
     let samples = sim.advance(21).unwrap();

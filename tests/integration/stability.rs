@@ -7,9 +7,8 @@ use flutterscope::analysis::flutter::{flutter_boundary, BoundaryKind};
 use flutterscope::analysis::simulate::{simulate, RunStatus, Simulator};
 use flutterscope::analysis::sweep::track;
 use flutterscope::error::Error;
+use flutterscope::model::assemble;
 use flutterscope::numeric::eigen_decomposition;
-use flutterscope::physics::structure::assemble;
-use flutterscope::physics::system::System;
 use flutterscope::preset::{Preset, ValidPreset};
 use nalgebra::{DMatrix, DVector};
 use std::f64::consts::PI;
@@ -172,7 +171,7 @@ fn system_jacobian_matches_central_differences() {
     // paper's and the demo blade.
     for (name, model) in [("liu2017", "quasi-steady"), ("demo-blade", "theodorsen")] {
         let p = preset(name, &[&format!("aero.model={model}")]);
-        let sys = System::new(&p).unwrap();
+        let sys = flutterscope::model::system(&p).unwrap();
         let x0 = sys.equilibrium().unwrap();
         // Move away from equilibrium so every term is exercised.
         let x = DVector::from_fn(sys.dim(), |i, _| x0[i] + 1e-3 * ((i as f64) * 0.7).sin());

@@ -1,7 +1,8 @@
 //! Galerkin basis and structural-matrix unit checks (docs/model.md §4).
 
+use flutterscope::model::assemble;
 use flutterscope::physics::basis::{bending_root, gauss_legendre, Basis};
-use flutterscope::physics::structure::{assemble, mode_labels};
+use flutterscope::physics::structure::mode_labels;
 use flutterscope::preset::{Preset, ValidPreset};
 use nalgebra::{Complex, DMatrix};
 

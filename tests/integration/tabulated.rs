@@ -3,13 +3,14 @@
 //! coordinates carry its modes, damping and names through the eigen-analysis.
 
 use flutterscope::analysis::eigen::analyse_system;
+use flutterscope::model::assemble;
 use flutterscope::physics::aero::NoAero;
 use flutterscope::physics::blade::fem::{assemble as assemble_blade, Mesh};
 use flutterscope::physics::blade::modal::ModalBlade;
 use flutterscope::physics::blade::{BladeTable, Section};
 use flutterscope::physics::inflow::{stations, OperatingPoint};
 use flutterscope::physics::structure::tabulated::TabulatedStructure;
-use flutterscope::physics::structure::{assemble, Family, Structure};
+use flutterscope::physics::structure::{Family, Structure};
 use flutterscope::physics::system::System;
 use flutterscope::preset::{Inflow, Preset, ValidPreset};
 use std::sync::Arc;

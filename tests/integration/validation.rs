@@ -2,9 +2,11 @@
 //! effective-stiffness cantilever, uncoupled torsion and the rotating uniform cantilever.
 
 use flutterscope::commands::reproduce::{TABLE2_AC, TABLE2_PRESENT};
+use flutterscope::model::assemble;
+use flutterscope::model::section_properties;
 use flutterscope::physics::basis::bending_root;
-use flutterscope::physics::section::{section_properties, TABLE1_ANGLES};
-use flutterscope::physics::structure::{ac_frequency_hz, assemble, NaturalMode};
+use flutterscope::physics::section::TABLE1_ANGLES;
+use flutterscope::physics::structure::{ac_frequency_hz, NaturalMode};
 use flutterscope::preset::{Preset, ValidPreset};
 use std::f64::consts::PI;
 

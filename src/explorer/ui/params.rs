@@ -71,7 +71,7 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
     if let Some(blade) = state.preset.tabulated_blade() {
         // A tabulated blade has no uniform section: show which blade it is instead.
         lines.push(Line::styled(
-            format!("blade ({})", blade.source.title()),
+            format!("blade ({})", blade.format.title()),
             theme.dim(),
         ));
         let row = |name: &str, value: String| {

@@ -25,9 +25,7 @@ pub mod polar;
 pub mod quasi_steady;
 pub mod theodorsen;
 
-use crate::error::Result;
 use crate::physics::inflow::Station;
-use crate::preset::{AeroModel, ValidPreset};
 
 /// Local kinematics of one strip, in the blade's sign conventions (docs/model.md §1).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -94,15 +92,6 @@ pub struct StripSection {
 }
 
 impl StripSection {
-    pub fn from_preset(p: &ValidPreset) -> StripSection {
-        StripSection {
-            chord: p.section.chord,
-            ea_offset: p.section.ea_offset,
-            air_density: p.operating.air_density,
-            lift_slope: p.aero.lift_slope,
-            drag_coefficient: p.aero.drag_coefficient,
-        }
-    }
     /// Semichord b = c/2 (m).
     pub fn semichord(&self) -> f64 {
         0.5 * self.chord
@@ -266,17 +255,6 @@ impl StripModel for NoAero {
         out.clear();
     }
     fn steady_states(&self, _: &Station, _: [f64; RATES], _: &mut SteadyStates) {}
-}
-
-/// The model a preset selects.
-pub fn model_for(p: &ValidPreset) -> Result<Box<dyn StripModel>> {
-    let section = StripSection::from_preset(p);
-    match p.aero.model {
-        AeroModel::None => Ok(Box::new(NoAero)),
-        AeroModel::QuasiSteady => Ok(Box::new(quasi_steady::QuasiSteady::new(section))),
-        AeroModel::Theodorsen => Ok(Box::new(theodorsen::Theodorsen::new(section))),
-        AeroModel::Onera => Ok(Box::new(onera::OneraModel::from_preset(p))),
-    }
 }
 
 #[cfg(test)]

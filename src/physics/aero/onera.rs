@@ -20,7 +20,16 @@
 
 use super::{Kinematics, NonlinearSupport, SteadyStates, StripEval, StripModel, StripSection};
 use crate::physics::inflow::Station;
-use crate::preset::{OneraForcing, ValidPreset};
+
+/// The two ONERA forms (docs/model.md §5.3): `coupled`, the attached flow of §5.2 with stall
+/// states driven by the blade's motion (stall flutter proper), or `rigid`, the paper's reduced
+/// model, every state driven by the rigid angle of attack alone.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum OneraForcing {
+    Coupled,
+    Rigid,
+}
 
 /// R.T. Jones' two-lag approximation `(A_i, ε_i)`, shared with the attached flow of §5.2.
 pub use super::theodorsen::JONES;
@@ -85,25 +94,6 @@ pub struct Coefficients {
     pub alpha1: f64,
     /// Full-stall angle `α2` (rad).
     pub alpha2: f64,
-}
-
-impl From<&crate::preset::Onera> for Coefficients {
-    /// The preset's coefficients; its stall angles are in degrees.
-    fn from(o: &crate::preset::Onera) -> Self {
-        Coefficients {
-            lambda_l: o.lambda_l,
-            a0l: o.a0l,
-            damping: [o.a_l, o.a_m, o.a_d],
-            stiffness: [o.r_l, o.r_m, o.r_d],
-            lift_slopes: (o.a_l1, o.a_l2),
-            moment_slopes: (o.a_m1, o.a_m2),
-            drag_polynomial: (o.a_d1, o.a_d2, o.a_d3),
-            cm0: o.cm0,
-            cd0: o.cd0,
-            alpha1: o.alpha1.to_radians(),
-            alpha2: o.alpha2.to_radians(),
-        }
-    }
 }
 
 /// Stall deviations `ΔC_X(α)` for `[L, M, D]` and their slopes `dΔC_X/dα`.
@@ -746,15 +736,6 @@ impl OneraModel {
             coefficients,
             forcing,
         }
-    }
-
-    /// The preset's section, air and `aero.onera.*` coefficients and form.
-    pub fn from_preset(p: &ValidPreset) -> Self {
-        OneraModel::new(
-            StripSection::from_preset(p),
-            Coefficients::from(&p.aero.onera),
-            p.aero.onera.forcing,
-        )
     }
 
     /// One station's flow and geometry in this module's terms.

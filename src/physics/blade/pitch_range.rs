@@ -236,15 +236,35 @@ fn compressed(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::preset::Preset;
+    use crate::formats::text_file::DiskFile;
+    use crate::physics::blade::source::{read_beamdyn, read_hawc2, read_twist};
+
+    /// The built-in presets' two blades, as their files describe them.
+    fn blades() -> [(&'static str, BladeTable); 2] {
+        let file = |name: &str| {
+            DiskFile(
+                std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+                    .join("presets/blades")
+                    .join(name),
+            )
+        };
+        let nrel5mw = read_beamdyn(&file("nrel5mw/NRELOffshrBsline5MW_BeamDyn.dat")).unwrap();
+        let twist = read_twist(&file("iea15mw/IEA-15-240-RWT_AeroDyn15_blade.dat")).unwrap();
+        let iea15mw = read_hawc2(
+            &file("iea15mw/IEA_15MW_RWT_Blade_st_noFPM.st"),
+            &twist,
+            1,
+            1,
+        )
+        .unwrap();
+        [("nrel5mw", nrel5mw.table), ("iea15mw", iea15mw.table)]
+    }
 
     /// The five Fourier terms rebuild every assembled matrix at pitches off the samples, to
     /// round-off: the elements are exactly quadratic in cos θ, sin θ (docs/model.md §11.8).
     #[test]
     fn five_fourier_terms_rebuild_the_matrices_at_any_pitch() {
-        for name in ["nrel5mw", "iea15mw"] {
-            let p = Preset::load(name, &[]).unwrap();
-            let table = p.tabulated_blade().unwrap().table.clone();
+        for (name, table) in blades() {
             let mesh = Mesh::following(&table, 30);
             let samples: Vec<BladeMatrices> = (0..SAMPLES)
                 .map(|k| assemble(&table, &mesh, sample_pitch(k)).unwrap())

@@ -17,19 +17,15 @@ use crate::formats::aerodyn::{self, AeroDynBlade};
 use crate::formats::airfoil::{self, AirfoilFile, PolarColumns};
 use crate::formats::elastodyn::{self, ElastoDynBlade};
 use crate::formats::hawc2_aero::{self, AeFile, PcFile, PcProfile, PcSet};
+use crate::formats::text_file::TextFile;
 use crate::physics::aero::polar::Polar;
 use crate::physics::blade::hawc2::ChordTwist;
-use crate::preset::BladeFile;
 use std::sync::Arc;
 
 /// The aerodynamic blade an AeroDyn 15 blade file describes, its airfoil ids (`BlAFID`, 1-based)
 /// naming `airfoils` in order, the aerodynamic centre placed by the ElastoDyn blade file
 /// `pitch_axis` (its `BlFract` scaled to the AeroDyn blade's span).
-pub fn read_aerodyn(
-    blade: &BladeFile,
-    airfoils: &[BladeFile],
-    pitch_axis: &BladeFile,
-) -> Result<AeroBlade> {
+pub fn read_aerodyn<F: TextFile>(blade: &F, airfoils: &[F], pitch_axis: &F) -> Result<AeroBlade> {
     let blade_name = blade.display();
     let nodes = aerodyn::parse_blade(&blade.read()?, &blade_name)?;
     let polars = airfoils
@@ -48,7 +44,7 @@ pub fn read_aerodyn(
 /// The prebend of a blade from an AeroDyn 15 blade file (docs/model.md §12.2): its `BlCrvAC`
 /// column, the out-of-plane offset of the blade's axis, downwind positive, at `BlSpn`. The
 /// reader checks the table (spans strictly increasing) and names the file and line.
-pub fn read_prebend(file: &BladeFile) -> Result<Vec<(f64, f64)>> {
+pub fn read_prebend(file: &impl TextFile) -> Result<Vec<(f64, f64)>> {
     let nodes = aerodyn::parse_blade(&file.read()?, &file.display())?.nodes;
     Ok(nodes.iter().map(|n| (n.bl_spn, n.bl_crv_ac)).collect())
 }
@@ -195,12 +191,7 @@ fn pitch_axis_at(axis: &ElastoDynBlade, f: f64) -> f64 {
 /// The aerodynamic blade of set `ae_set` (1-based) of a HAWC2 ae file with its pc file, twisted
 /// as the AeroDyn 15 blade file `twist` says (HAWC2 keeps the twist in the htc's `c2_def`, which
 /// the same twist turns for the structure, docs/model.md §11.6).
-pub fn read_hawc2(
-    ae: &BladeFile,
-    ae_set: usize,
-    pc: &BladeFile,
-    twist: &BladeFile,
-) -> Result<AeroBlade> {
+pub fn read_hawc2<F: TextFile>(ae: &F, ae_set: usize, pc: &F, twist: &F) -> Result<AeroBlade> {
     let ae_name = ae.display();
     let ae_file = hawc2_aero::parse_ae(&ae.read()?, &ae_name)?;
     let pc_name = pc.display();

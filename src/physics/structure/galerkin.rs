@@ -10,9 +10,7 @@ use crate::error::{Error, Result};
 use crate::numeric::cholesky::cholesky_reduce;
 use crate::numeric::faer_evd::real_evd;
 use crate::physics::basis::{torsion_wavenumber, Basis, BendingMode};
-use crate::physics::blade::source::Kept;
-use crate::physics::section::{section_properties, SectionProps};
-use crate::preset::{Form, ValidPreset};
+use crate::physics::section::SectionProps;
 
 use super::{MotionRows, NaturalMode, Shares, Structure};
 use nalgebra::{Complex, DMatrix, DVector};
@@ -42,56 +40,32 @@ pub struct StructuralModel {
     natural: OnceLock<Vec<NaturalMode>>,
 }
 
-/// Assemble the structure of a preset: section from its source, N from `structure.modes`, form
-/// from `structure.form`, rotor speed from `operating.rotor_speed`, damping from
-/// `structure.loss_factor` (docs/model.md §3–§4).
-pub fn assemble(p: &ValidPreset) -> Result<StructuralModel> {
-    let (section, spec) = inputs(p)?;
-    assemble_section(section, &spec)
-}
-
-/// [`assemble`], shared: presets whose section and blade are the same (the points of a sweep
-/// over the wind speed or the pitch) get the same structure.
-pub fn kept(p: &ValidPreset) -> Result<Arc<StructuralModel>> {
-    static KEPT: Kept<(SectionProps, BladeSpec), StructuralModel> = Kept::new();
-    let (section, spec) = inputs(p)?;
-    KEPT.get_or_build((section, spec), KEPT_STRUCTURES, || {
-        assemble_section(section, &spec)
-    })
-}
-
-/// Structures kept by [`kept`]: one per sweep worker and a few more.
-const KEPT_STRUCTURES: usize = 8;
-
-/// What fixes the structure of a preset: its section and the blade around it.
-fn inputs(p: &ValidPreset) -> Result<(SectionProps, BladeSpec)> {
-    let section = section_properties(p)?;
-    let spec = BladeSpec {
-        n: p.structure.modes,
-        length: p.blade.length,
-        hub_radius: p.blade.hub_radius,
-        omega: p.omega(),
-        form: p.structure.form,
-        loss_factor: p.structure.loss_factor,
-    };
-    spec.check()?;
-    Ok((section, spec))
+/// The form of the structural equations (docs/model.md §4): the weak (Galerkin, symmetric)
+/// form, or the paper's strong form with its tip term.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Form {
+    Weak,
+    Strong,
 }
 
 /// Everything besides the section that fixes the structural matrices.
 #[derive(Debug, Clone, Copy, PartialEq)]
-struct BladeSpec {
-    n: usize,
-    length: f64,
-    hub_radius: f64,
+pub struct BladeSpec {
+    /// N, Galerkin functions per field.
+    pub n: usize,
+    /// L and r_hub (m).
+    pub length: f64,
+    pub hub_radius: f64,
     /// Ω (rad/s).
-    omega: f64,
-    form: Form,
-    loss_factor: f64,
+    pub omega: f64,
+    pub form: Form,
+    /// η1, the first mode's loss factor.
+    pub loss_factor: f64,
 }
 
 impl BladeSpec {
-    fn check(&self) -> Result<()> {
+    pub fn check(&self) -> Result<()> {
         if self.n == 0 {
             return Err(Error::numerical("structure.modes must be at least 1"));
         }
@@ -297,7 +271,7 @@ fn strong_tip_term(basis: &Basis, c23: f64) -> DMatrix<f64> {
 }
 
 /// Mass, elastic and centrifugal matrices, ω1 and damping for a uniform section (docs/model.md §3–§4).
-fn assemble_section(section: SectionProps, spec: &BladeSpec) -> Result<StructuralModel> {
+pub fn assemble_section(section: SectionProps, spec: &BladeSpec) -> Result<StructuralModel> {
     let s = &section;
     definite_section(s)?;
     let basis = Basis::new(spec.n, spec.length);

@@ -11,49 +11,11 @@
 pub mod galerkin;
 pub mod tabulated;
 
-pub use galerkin::{ac_frequency_hz, assemble, StructuralModel};
+pub use galerkin::{ac_frequency_hz, StructuralModel};
 
 use crate::error::Result;
-use crate::physics::blade::source::{blade_structure, BladeStructure, Kept};
 use crate::physics::section::SectionProps;
-use crate::preset::ValidPreset;
 use nalgebra::{Complex, DMatrix, DVector};
-use std::sync::Arc;
-use tabulated::TabulatedStructure;
-
-/// The structure a preset describes, at its rotor speed and pitch: the paper's uniform blade
-/// (§3–§4), or the first K modes of the tabulated blade its files describe (§11), from a build
-/// kept across rotor-speed changes ([`blade_structure`]).
-///
-/// A tabulated blade's structure at one rotor speed is kept too ([`AT_SPEED`] of them): the
-/// passes of an operating point and the re-solves of a sweep ask for it again and again.
-pub fn for_preset(p: &ValidPreset) -> Result<Arc<dyn Structure>> {
-    match blade_structure(p)? {
-        None => Ok(galerkin::kept(p)?),
-        Some(built) => {
-            static KEPT: Kept<(Same, u64), TabulatedStructure> = Kept::new();
-            let omega = p.omega();
-            let key = (Same(built.clone()), omega.to_bits());
-            let structure = KEPT.get_or_build(key, AT_SPEED, || {
-                TabulatedStructure::new(built.modal.clone(), built.modes(omega)?)
-            })?;
-            Ok(structure)
-        }
-    }
-}
-
-/// Structures at one rotor speed kept: one per sweep worker and a few more.
-const AT_SPEED: usize = 8;
-
-/// A build compared by identity: two presets share a build exactly when the build cache gave
-/// them the same one.
-struct Same(Arc<BladeStructure>);
-
-impl PartialEq for Same {
-    fn eq(&self, other: &Same) -> bool {
-        Arc::ptr_eq(&self.0, &other.0)
-    }
-}
 
 /// A natural mode's modal damping ratio `qᵀCq / (2ω qᵀMq)` in `structure` (none at zero
 /// frequency).

@@ -1,0 +1,84 @@
+//! A preset's structure (docs/model.md §3–§4, §11): the paper's uniform blade from its section
+//! and blade keys, or the first K modes of a tabulated blade at the rotor speed and pitch, and
+//! the structures kept across calls.
+
+use super::blade::blade_structure;
+use super::kept::Kept;
+use super::section::section_properties;
+use crate::error::Result;
+use crate::physics::blade::source::BladeStructure;
+use crate::physics::section::SectionProps;
+use crate::physics::structure::galerkin::{assemble_section, BladeSpec, StructuralModel};
+use crate::physics::structure::tabulated::TabulatedStructure;
+use crate::physics::structure::Structure;
+use crate::preset::ValidPreset;
+use std::sync::Arc;
+
+/// The structure a preset describes, at its rotor speed and pitch: the paper's uniform blade
+/// (§3–§4), or the first K modes of the tabulated blade its files describe (§11), from a build
+/// kept across rotor-speed changes ([`blade_structure`]).
+///
+/// Both are kept for the next call: the uniform blade per section and blade ([`KEPT_UNIFORM`]:
+/// the points of a sweep over the wind speed or the pitch share one), a tabulated blade's
+/// structure per build and rotor speed ([`AT_SPEED`]: the passes of an operating point and the
+/// re-solves of a sweep ask for it again and again).
+pub fn for_preset(p: &ValidPreset) -> Result<Arc<dyn Structure>> {
+    match blade_structure(p)? {
+        None => {
+            static KEPT: Kept<(SectionProps, BladeSpec), StructuralModel> = Kept::new();
+            let (section, spec) = uniform_inputs(p)?;
+            let structure = KEPT.get_or_build((section, spec), KEPT_UNIFORM, || {
+                assemble_section(section, &spec)
+            })?;
+            Ok(structure)
+        }
+        Some(built) => {
+            static KEPT: Kept<(Same, u64), TabulatedStructure> = Kept::new();
+            let omega = p.omega();
+            let key = (Same(built.clone()), omega.to_bits());
+            let structure = KEPT.get_or_build(key, AT_SPEED, || {
+                TabulatedStructure::new(built.modal.clone(), built.modes(omega)?)
+            })?;
+            Ok(structure)
+        }
+    }
+}
+
+/// Uniform blades kept: one per sweep worker and a few more.
+const KEPT_UNIFORM: usize = 8;
+
+/// Structures at one rotor speed kept: one per sweep worker and a few more.
+const AT_SPEED: usize = 8;
+
+/// A build compared by identity: two presets share a build exactly when the build cache gave
+/// them the same one.
+struct Same(Arc<BladeStructure>);
+
+impl PartialEq for Same {
+    fn eq(&self, other: &Same) -> bool {
+        Arc::ptr_eq(&self.0, &other.0)
+    }
+}
+
+/// The paper's uniform blade of a preset: section from its source, N from `structure.modes`,
+/// form from `structure.form`, rotor speed from `operating.rotor_speed`, damping from
+/// `structure.loss_factor` (docs/model.md §3–§4).
+pub fn assemble(p: &ValidPreset) -> Result<StructuralModel> {
+    let (section, spec) = uniform_inputs(p)?;
+    assemble_section(section, &spec)
+}
+
+/// What fixes the uniform blade of a preset: its section and the blade around it.
+fn uniform_inputs(p: &ValidPreset) -> Result<(SectionProps, BladeSpec)> {
+    let section = section_properties(p)?;
+    let spec = BladeSpec {
+        n: p.structure.modes,
+        length: p.blade.length,
+        hub_radius: p.blade.hub_radius,
+        omega: p.omega(),
+        form: p.structure.form,
+        loss_factor: p.structure.loss_factor,
+    };
+    spec.check()?;
+    Ok((section, spec))
+}
