@@ -8,7 +8,7 @@
 //! Run: `cargo bench --bench bem`.
 
 use flutterscope::model::aero::rotor_of;
-use flutterscope::physics::rotor::bem::{solve, Conditions, Rotor, Station};
+use flutterscope::physics::rotor::bem::{solve, AeroStation, Conditions, Rotor};
 use flutterscope::physics::rotor::induction::HighThrust;
 use flutterscope::preset::Preset;
 
@@ -16,11 +16,11 @@ fn main() {
     divan::main();
 }
 
-fn iea15mw() -> (Rotor, Vec<Station>, Conditions) {
+fn iea15mw() -> (Rotor, Vec<AeroStation>, Conditions) {
     let p = Preset::load("iea15mw", &[]).unwrap();
     let blade = p.aero_blade().unwrap();
     let rotor = rotor_of(&p, blade);
-    let stations = Station::gauss(blade, 30).unwrap();
+    let stations = AeroStation::gauss(blade, 30).unwrap();
     let at = Conditions {
         wind_speed: 10.7,
         rotor_speed: 7.56 * std::f64::consts::PI / 30.0,
@@ -52,7 +52,7 @@ fn stations_and_solve_30(bencher: divan::Bencher) {
     let blade = p.aero_blade().unwrap().clone();
     let (rotor, _, at) = iea15mw();
     bencher.bench(|| {
-        let stations = Station::gauss(&blade, 30).unwrap();
+        let stations = AeroStation::gauss(&blade, 30).unwrap();
         solve(&rotor, &stations, &[], &at).unwrap()
     });
 }

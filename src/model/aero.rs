@@ -108,11 +108,11 @@ pub fn aero_blade_of(p: &ValidPreset) -> Result<&AeroBlade> {
 
 /// The preset's `aero.stations` Gauss stations on its aerodynamic description, built once per
 /// blade and count and shared by the presets edited from it ([`crate::physics::rotor::stations`]).
-pub fn aero_stations_of(p: &ValidPreset) -> Result<Arc<Vec<bem::Station>>> {
+pub fn aero_stations_of(p: &ValidPreset) -> Result<Arc<Vec<bem::AeroStation>>> {
     // The preset holds stations exactly when it holds a blade; without one, the blade's error.
     match p.aero_stations() {
         Some(stations) => stations,
         None => aero_blade_of(p)
-            .and_then(|blade| bem::Station::gauss(blade, p.aero.stations).map(Arc::new)),
+            .and_then(|blade| bem::AeroStation::gauss(blade, p.aero.stations).map(Arc::new)),
     }
 }

@@ -59,7 +59,7 @@ impl Operation {
 pub struct SteadyInputs<'a> {
     pub rotor: Rotor,
     /// The aerodynamic stations, root to tip.
-    pub strips: &'a [bem::Station],
+    pub strips: &'a [bem::AeroStation],
     /// The strip model on those stations.
     pub model: BladeElement,
     /// U (m/s), Ω (rad/s), ρ (kg/m³).
@@ -258,7 +258,7 @@ impl Anderson {
 
 /// The system's stations on the BEM's inflow: speed and inflow angle after induction, rigid
 /// angle of attack without the elastic twist (the system adds it).
-fn frozen_inflow(strips: &[bem::Station], flow: &OperatingState, pitch: f64) -> Vec<Station> {
+fn frozen_inflow(strips: &[bem::AeroStation], flow: &OperatingState, pitch: f64) -> Vec<Station> {
     strips
         .iter()
         .zip(&flow.stations)

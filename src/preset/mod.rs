@@ -25,9 +25,9 @@ pub use schema::*;
 use crate::error::{Error, Result};
 use crate::formats::text_file::TextFile;
 use crate::physics::blade::source::{
-    read_beamdyn, read_hawc2 as read_hawc2_st, read_twist, TabulatedBlade,
+    read_twist, BeamDynFiles, BladeFiles, Hawc2Files, TabulatedBlade,
 };
-use crate::physics::rotor::bem::Station;
+use crate::physics::rotor::bem::AeroStation;
 use crate::physics::rotor::files::{read_aerodyn, read_hawc2, read_prebend};
 use crate::physics::rotor::schedule::Table as ScheduleTable;
 use crate::physics::rotor::stations::GaussStations;
@@ -237,11 +237,16 @@ impl Preset {
             ),
             _ => String::new(),
         };
-        let blade = match &twist {
-            Some(twist) => read_hawc2_st(&file, twist, b.st_set, b.st_subset),
-            None => read_beamdyn(&file),
-        }
-        .map_err(|e| Error::Invalid {
+        let files: Box<dyn BladeFiles> = match twist {
+            Some(twist) => Box::new(Hawc2Files {
+                st: file,
+                twist,
+                set: b.st_set,
+                subset: b.st_subset,
+            }),
+            None => Box::new(BeamDynFiles { primary: file }),
+        };
+        let blade = files.read().map_err(|e| Error::Invalid {
             origin: self.origin.clone(),
             message: format!("blade.file = \"{}\"{subset}: {e}", b.file),
         })?;
@@ -375,7 +380,7 @@ impl Preset {
     /// The `aero.stations` Gauss stations on [`Self::aero_blade`], built once and shared by
     /// the presets edited from this one in other keys (`None` without an aerodynamic
     /// description).
-    pub fn aero_stations(&self) -> Option<Result<Arc<Vec<Station>>>> {
+    pub fn aero_stations(&self) -> Option<Result<Arc<Vec<AeroStation>>>> {
         let files = self.rotor_files.as_ref()?;
         let blade = files.blade.as_ref()?;
         Some(files.stations.of(blade, self.aero.stations))

@@ -7,7 +7,7 @@ use flutterscope::formats::hawc2_aero::{read_opt, read_pc};
 use flutterscope::model::aero::rotor_of;
 use flutterscope::model::operating::steady;
 use flutterscope::physics::aero::blade_element::Unsteadiness;
-use flutterscope::physics::rotor::bem::{solve, Conditions, Deflection, Rotor, Station};
+use flutterscope::physics::rotor::bem::{solve, AeroStation, Conditions, Deflection, Rotor};
 use flutterscope::physics::rotor::files::{read_aerodyn, read_hawc2};
 use flutterscope::physics::rotor::induction::HighThrust;
 use flutterscope::physics::rotor::AeroBlade;
@@ -65,10 +65,10 @@ fn rotor(blade: &AeroBlade, hub_radius: f64) -> Rotor {
 }
 
 /// The three-bladed rotor of `blade` on a hub of `hub_radius` with `count` Gauss stations.
-fn rig(blade: &AeroBlade, hub_radius: f64, count: usize) -> (Rotor, Vec<Station>) {
+fn rig(blade: &AeroBlade, hub_radius: f64, count: usize) -> (Rotor, Vec<AeroStation>) {
     (
         rotor(blade, hub_radius),
-        Station::gauss(blade, count).unwrap(),
+        AeroStation::gauss(blade, count).unwrap(),
     )
 }
 
@@ -195,7 +195,7 @@ fn iea15mw_deflected_against_the_operation_table() {
         high_thrust: HighThrust::Madsen,
         ..rotor(&blade, 3.97)
     };
-    let stations = Station::gauss(&blade, 30).unwrap();
+    let stations = AeroStation::gauss(&blade, 30).unwrap();
     // Largest |power|, |thrust| difference from the table achieved at each wind speed.
     let bounds = [
         (5.0, 0.035, 0.035),

@@ -5,14 +5,14 @@
 
 use flutterscope::physics::blade::fem::{assemble, Mesh};
 use flutterscope::physics::blade::modal::{BladeMode, Family, ModalBlade};
-use flutterscope::physics::blade::{BladeTable, Section};
+use flutterscope::physics::blade::{BeamSection, BladeTable};
 use nalgebra::{DMatrix, DVector};
 
 /// β_n L of the clamped–free beam.
 const BETA_L: [f64; 3] = [1.875_104_1, 4.694_091_1, 7.854_757_4];
 
 fn uniform(length: f64, m: f64, ei_flap: f64, ei_edge: f64, gj: f64, ip: f64) -> BladeTable {
-    let section = |z: f64| Section {
+    let section = |z: f64| BeamSection {
         z,
         mass: m,
         cg: [0.0, 0.0],
@@ -571,7 +571,7 @@ fn iea_15mw_beamdyn_and_hawc2_files_agree_on_the_section_centres() {
     let (bd, h2) = (iea_15mw_beamdyn(), iea_15mw_hawc2(IEA_CLASSIC, 1));
     assert_eq!(bd.sections.len(), h2.sections.len());
     let from_shear =
-        |s: &Section, p: [f64; 2]| [p[0] - s.shear_centre[0], p[1] - s.shear_centre[1]];
+        |s: &BeamSection, p: [f64; 2]| [p[0] - s.shear_centre[0], p[1] - s.shear_centre[1]];
     let mut widest: f64 = 0.0;
     for (a, b) in bd.sections.iter().zip(&h2.sections) {
         for (pa, pb) in [(a.cg, b.cg), (a.tension_centre, b.tension_centre)] {

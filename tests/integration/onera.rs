@@ -478,17 +478,9 @@ fn rigid_states_ignore_the_structure_and_loads_use_the_geometric_arm() {
 }
 
 #[test]
-fn state_counts_and_generalized_force() {
+fn state_counts() {
     assert_eq!(onera::states_per_station(OneraForcing::Rigid), 7);
     assert_eq!(onera::states_per_station(OneraForcing::Coupled), 8);
-    let loads = onera::Loads {
-        flap: 2.0,
-        twist: -3.0,
-    };
-    let (mut qp, mut qu) = (vec![1.0, 0.0], vec![0.0, 0.5]);
-    onera::add_generalized_force(loads, 0.25, &[1.0, -2.0], &[0.5, 4.0], &mut qp, &mut qu);
-    assert_eq!(qp, vec![1.0 - 0.75, 1.5]);
-    assert_eq!(qu, vec![0.25, 0.5 + 2.0]);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -7,7 +7,7 @@ use flutterscope::model::assemble;
 use flutterscope::physics::aero::NoAero;
 use flutterscope::physics::blade::fem::{assemble as assemble_blade, Mesh};
 use flutterscope::physics::blade::modal::ModalBlade;
-use flutterscope::physics::blade::{BladeTable, Section};
+use flutterscope::physics::blade::{BeamSection, BladeTable};
 use flutterscope::physics::inflow::{stations, OperatingPoint};
 use flutterscope::physics::structure::tabulated::TabulatedStructure;
 use flutterscope::physics::structure::{Family, Structure};
@@ -27,7 +27,7 @@ fn rel(a: f64, b: f64) -> f64 {
 fn paper_blade_as_table(p: &ValidPreset) -> BladeTable {
     let s = assemble(p).unwrap().section;
     let propeller = s.m * (s.km2_2 - s.km1_2);
-    let section = |z: f64| Section {
+    let section = |z: f64| BeamSection {
         z,
         mass: s.m,
         cg: [0.0, -s.cg_offset],
@@ -191,4 +191,51 @@ fn tip_rows_of_a_tabulated_blade_read_its_mode_shapes_at_the_tip() {
     let natural = structure.natural_modes().unwrap();
     assert_eq!(natural[0].family, Family::Flap);
     assert_eq!(natural[0].label, "flap 1");
+}
+
+/// A blade file's 6×6 section matrices stay in the table, one per station, and are what each
+/// Euler–Bernoulli section was reduced from: reducing them again, with their frame and origin,
+/// gives the section's stiffness and centres bit for bit. A classic HAWC2 st file has none.
+#[test]
+fn the_files_six_by_six_matrices_stay_with_their_sections() {
+    use flutterscope::physics::blade::classical::reduce;
+    for (name, from_file) in [("nrel5mw", true), ("iea15mw-btc", true), ("iea15mw", false)] {
+        let p = Preset::load(name, &[]).unwrap();
+        let table = &p.tabulated_blade().unwrap().table;
+        if !from_file {
+            assert!(table.matrices.is_empty(), "{name}");
+            continue;
+        }
+        assert_eq!(table.matrices.len(), table.sections.len(), "{name}");
+        for (k, (m, s)) in table.matrices.iter().zip(&table.sections).enumerate() {
+            let c = reduce(&m.stiffness, &m.frame).unwrap();
+            let at = |p: [f64; 2]| [p[0] + m.origin[0], p[1] + m.origin[1]];
+            assert_eq!(
+                [
+                    c.ei_flap,
+                    c.ei_edge,
+                    c.ei_cross,
+                    c.gj,
+                    c.flap_twist,
+                    c.edge_twist
+                ],
+                [
+                    s.ei_flap,
+                    s.ei_edge,
+                    s.ei_cross,
+                    s.gj,
+                    s.flap_twist,
+                    s.edge_twist
+                ],
+                "{name} station {k}"
+            );
+            assert_eq!(at(c.shear_centre), s.shear_centre, "{name} station {k}");
+            assert_eq!(at(c.tension_centre), s.tension_centre, "{name} station {k}");
+            assert_eq!(
+                m.mass.is_some(),
+                name == "nrel5mw",
+                "{name}: BeamDyn gives the mass"
+            );
+        }
+    }
 }

@@ -17,7 +17,7 @@
 //! Adding a model: implement [`StripModel`] in its own file, including `steady_states` (the
 //! states that make `ż = 0` for a static deflection, with their derivative, so the equilibrium
 //! solve needs no special case) and, if it is not affine and must be simulated as such (ONERA,
-//! §5.3), `nonlinear_support`; then add it to [`model_for`].
+//! §5.3), `nonlinear_support`; then add it to `crate::model::aero::model_for`.
 
 pub mod blade_element;
 pub mod onera;
@@ -226,13 +226,6 @@ pub trait StripModel: Send + Sync + std::fmt::Debug {
     /// The states for which `ż = 0` when the strip is held at `deflection = [φ, u, v]` with no
     /// motion, and their derivative with respect to `[φ, u, v]`.
     fn steady_states(&self, s: &Station, deflection: [f64; RATES], out: &mut SteadyStates);
-
-    /// Optional scale of each state (its angle-of-attack contribution per unit state). Not used
-    /// by the eigen-analysis, which measures structural shares by participation factors (scale
-    /// free); kept so models may document their state scaling. Default: zeros.
-    fn state_weights(&self, _s: &Station, out: &mut [f64]) {
-        out.fill(0.0);
-    }
 
     /// The nonlinear part's support ([`NonlinearSupport`]); empty: simulated linearised.
     fn nonlinear_support(&self) -> NonlinearSupport {

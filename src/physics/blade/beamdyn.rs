@@ -16,7 +16,7 @@
 //! straight along `kp_zr` (prebend and sweep in `kp_xr`, `kp_yr` are neglected, §11.2).
 
 use super::classical::{reduce, FileFrame};
-use super::{BladeTable, Section};
+use super::{BeamSection, BladeTable, SectionMatrices};
 use crate::error::{Error, Result};
 use crate::formats::beamdyn::{BeamDynBlade, BeamDynPrimary};
 
@@ -87,8 +87,19 @@ pub fn from_beamdyn(
                 None => Ok(section),
             }
         })
-        .collect::<Result<Vec<Section>>>()?;
-    BladeTable::new(origin, hub_radius, sections)
+        .collect::<Result<Vec<BeamSection>>>()?;
+    // BeamDyn's matrices are about the reference axis (its key-point line).
+    let matrices = blade
+        .stations
+        .iter()
+        .map(|s| SectionMatrices {
+            stiffness: s.stiffness,
+            mass: Some(s.mass),
+            frame,
+            origin: [0.0, 0.0],
+        })
+        .collect();
+    BladeTable::new(origin, hub_radius, sections)?.with_matrices(matrices)
 }
 
 /// BeamDyn's section axes in ours: `ξ = x1`, `η = −x2` (docs/model.md §11.5).

@@ -15,7 +15,7 @@
 //! read from the flexibility `S = K⁻¹`. With no shear or extension coupling (`K_ab = 0`) `C` is
 //! exactly `K_bb` and both centres are the origin.
 
-use super::Section;
+use super::BeamSection;
 use nalgebra::{Matrix2, Matrix3};
 
 /// How a file's section axes lie in ours: `ours = A · file` for positions, `A` orthogonal.
@@ -53,8 +53,8 @@ impl ClassicalSection {
         mass: f64,
         cg: [f64; 2],
         inertia: [f64; 3],
-    ) -> Section {
-        Section {
+    ) -> BeamSection {
+        BeamSection {
             z,
             mass,
             cg,

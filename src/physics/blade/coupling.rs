@@ -6,10 +6,10 @@
 //! The added coupling must leave each station's bending–torsion stiffness positive definite, or
 //! the strain energy is not; [`indefinite_station`] finds the first station where it does not.
 
-use super::{BladeTable, Section};
+use super::{BeamSection, BladeTable};
 
 /// The flap–twist coupling α adds to one station (N·m²).
-pub fn added_coupling(s: &Section, alpha: f64) -> f64 {
+pub fn added_coupling(s: &BeamSection, alpha: f64) -> f64 {
     alpha * (s.ei_flap * s.gj).sqrt()
 }
 
@@ -27,14 +27,14 @@ pub fn with_bend_twist_coupling(table: &BladeTable, alpha: f64) -> BladeTable {
 }
 
 /// The normalised flap–twist coupling of a station, `g_ξ/√(EI_ξ·GJ)`: what α adds to.
-pub fn coupling_ratio(s: &Section) -> f64 {
+pub fn coupling_ratio(s: &BeamSection) -> f64 {
     s.flap_twist / (s.ei_flap * s.gj).sqrt()
 }
 
 /// The first station (index and section) whose stiffness in the curvatures
 /// `(κ_ξ, κ_η, φ')` is not positive definite once `alpha` is added (§11.2: the matrix
 /// `[[EI_ξ, EI_ξη, −g_ξ], [EI_ξη, EI_η, −g_η], [−g_ξ, −g_η, GJ]]`), if any.
-pub fn indefinite_station(table: &BladeTable, alpha: f64) -> Option<(usize, Section)> {
+pub fn indefinite_station(table: &BladeTable, alpha: f64) -> Option<(usize, BeamSection)> {
     table.sections.iter().enumerate().find_map(|(k, s)| {
         let g = s.flap_twist + added_coupling(s, alpha);
         (!stiffness_is_definite(s, g)).then_some((k, *s))
@@ -43,7 +43,7 @@ pub fn indefinite_station(table: &BladeTable, alpha: f64) -> Option<(usize, Sect
 
 /// Sylvester's criterion on the section stiffness with flap–twist coupling `g` (scaled by the
 /// diagonal, so the test does not depend on the magnitudes, which span decades).
-fn stiffness_is_definite(s: &Section, g: f64) -> bool {
+fn stiffness_is_definite(s: &BeamSection, g: f64) -> bool {
     let d = [s.ei_flap.sqrt(), s.ei_edge.sqrt(), s.gj.sqrt()];
     // Correlation form: unit diagonal, off-diagonals scaled by the diagonal roots.
     let a = s.ei_cross / (d[0] * d[1]);
@@ -58,8 +58,8 @@ fn stiffness_is_definite(s: &Section, g: f64) -> bool {
 mod tests {
     use super::*;
 
-    fn station(g: f64) -> Section {
-        Section {
+    fn station(g: f64) -> BeamSection {
+        BeamSection {
             z: 0.0,
             mass: 100.0,
             cg: [0.0, 0.0],

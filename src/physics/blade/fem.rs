@@ -18,17 +18,42 @@
 //! re-assembly. With every offset zero the terms reduce exactly (bit for bit) to those of a blade
 //! whose shear and tension centres lie on the pitch axis.
 
-use super::{BladeTable, Section};
+use super::{BeamSection, BladeTable};
 use crate::error::{Error, Result};
 use crate::physics::basis::gauss_legendre;
 use nalgebra::{DMatrix, DVector};
 
-/// Degrees of freedom per node: `u, u', v, v', φ`.
-pub const NODE_DOFS: usize = 5;
-/// Offsets of each quantity in a node's block.
-pub const U: usize = 0;
-pub const V: usize = 2;
-pub const PHI: usize = 4;
+/// Where each family's degrees of freedom sit in a node's block: the element's own layout,
+/// which what groups the dofs (the family shares of a mode) reads from the assembled matrices
+/// ([`BladeMatrices::layout`]) rather than assuming.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct NodeLayout {
+    /// Degrees of freedom per node.
+    pub dofs: usize,
+    /// Per family (flap, edge, twist): its first offset in the node's block and how many.
+    pub families: [(usize, usize); 3],
+}
+
+impl NodeLayout {
+    /// The family (flap 0, edge 1, twist 2) of free dof `i` (node blocks one after another).
+    pub fn family_of(&self, i: usize) -> usize {
+        let offset = i % self.dofs;
+        self.families
+            .iter()
+            .position(|&(first, count)| (first..first + count).contains(&offset))
+            .unwrap_or(2)
+    }
+}
+
+/// This element's layout: `u, u'` (flap), `v, v'` (edge), `φ` (twist) per node.
+pub const LAYOUT: NodeLayout = NodeLayout {
+    dofs: 5,
+    families: [(U, 2), (V, 2), (PHI, 1)],
+};
+const NODE_DOFS: usize = 5;
+const U: usize = 0;
+const V: usize = 2;
+const PHI: usize = 4;
 
 /// Gauss points per element: exact for the mass (cubic × cubic × linear property, degree 7) and
 /// for the tension term (cubic T(z) × quadratic slopes, degree 7).
@@ -82,6 +107,8 @@ pub struct BladeMatrices {
     pub k0: DMatrix<f64>,
     /// Per Ω² (rad/s)⁻²: `K(Ω) = K₀ + Ω² K_Ω`.
     pub k_omega: DMatrix<f64>,
+    /// Where each family's dofs sit in a node's block.
+    pub layout: NodeLayout,
 }
 
 /// Shape functions of one element at local `s ∈ [0, 1]` as rows over its 10 dofs
@@ -236,7 +263,7 @@ fn to_rotor_rate(v: [f64; 2], v_rate: [f64; 2], theta: f64, theta_rate: f64) -> 
 
 impl RotorOffsets {
     /// docs/model.md §11.2: the offsets of `sec` (with `rate` its span derivative) at `theta`.
-    fn of(sec: &Section, rate: &Section, theta: f64) -> RotorOffsets {
+    fn of(sec: &BeamSection, rate: &BeamSection, theta: f64) -> RotorOffsets {
         let relative = |a: [f64; 2], b: [f64; 2]| [a[0] - b[0], a[1] - b[1]];
         let tension = relative(sec.tension_centre, sec.shear_centre);
         let tension_rate = relative(rate.tension_centre, rate.shear_centre);
@@ -346,6 +373,7 @@ pub fn assemble(table: &BladeTable, mesh: &Mesh, pitch: f64) -> Result<BladeMatr
         mass,
         k0,
         k_omega,
+        layout: LAYOUT,
     })
 }
 

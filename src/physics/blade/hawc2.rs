@@ -20,7 +20,7 @@
 //! in-plane offsets from the pitch bearing's axis, in `c2_def`, are neglected as §11.2 says).
 
 use super::classical::{reduce, ClassicalSection, FileFrame};
-use super::{BladeTable, Section};
+use super::{BeamSection, BladeTable, SectionMatrices};
 use crate::error::{Error, Result};
 use crate::formats::aerodyn::AeroDynBlade;
 use crate::formats::hawc2_st::{ClassicRow, FpmRow, StFile, StRows};
@@ -87,17 +87,21 @@ pub fn from_hawc2_st(
         set,
         subset,
     };
-    let sections = match rows {
-        StRows::Classic(rows) => rows
-            .iter()
-            .map(|r| classic_section(r, twist, &place))
-            .collect::<Result<Vec<_>>>()?,
-        StRows::FullyPopulated(rows) => rows
-            .iter()
-            .map(|r| fpm_section(r, twist, &place))
-            .collect::<Result<Vec<_>>>()?,
+    let (sections, matrices) = match rows {
+        StRows::Classic(rows) => (
+            rows.iter()
+                .map(|r| classic_section(r, twist, &place))
+                .collect::<Result<Vec<_>>>()?,
+            Vec::new(),
+        ),
+        StRows::FullyPopulated(rows) => (
+            rows.iter()
+                .map(|r| fpm_section(r, twist, &place))
+                .collect::<Result<Vec<_>>>()?,
+            rows.iter().map(fpm_matrices).collect(),
+        ),
     };
-    BladeTable::new(&origin, hub_radius, sections)
+    BladeTable::new(&origin, hub_radius, sections)?.with_matrices(matrices)
 }
 
 /// Where a row came from, for its errors.
@@ -177,7 +181,7 @@ fn mass_section(c: &MassColumns, place: &Place) -> Result<([f64; 2], [f64; 3])> 
 
 /// docs/model.md §11.6: a classic (isotropic) row: `E I_x`, `E I_y` along the principal axes at
 /// the elastic centre, `G I_p` about the shear centre, no bend–twist coupling.
-fn classic_section(r: &ClassicRow, twist: &ChordTwist, place: &Place) -> Result<Section> {
+fn classic_section(r: &ClassicRow, twist: &ChordTwist, place: &Place) -> Result<BeamSection> {
     place.positive(
         r.line,
         &[
@@ -220,9 +224,21 @@ fn classic_section(r: &ClassicRow, twist: &ChordTwist, place: &Place) -> Result<
     Ok(section.at_station(r.r, twist.at(r.r), r.m, cg, inertia))
 }
 
+/// A fully populated row's 6×6 stiffness as the file gives it: at the elastic centre, along the
+/// principal axes (docs/model.md §11.6). Its mass is in the row's mass columns.
+fn fpm_matrices(r: &FpmRow) -> SectionMatrices {
+    let frame = chord_frame();
+    SectionMatrices {
+        stiffness: r.stiffness(),
+        mass: None,
+        frame: frame.turned(r.pitch_deg.to_radians()),
+        origin: frame.position([r.x_e, r.y_e]),
+    }
+}
+
 /// docs/model.md §11.6: a fully populated row: the 6×6 at the elastic centre along the
 /// principal axes, reduced; its centres found from the elastic centre.
-fn fpm_section(r: &FpmRow, twist: &ChordTwist, place: &Place) -> Result<Section> {
+fn fpm_section(r: &FpmRow, twist: &ChordTwist, place: &Place) -> Result<BeamSection> {
     let (cg, inertia) = mass_section(
         &MassColumns {
             line: r.line,

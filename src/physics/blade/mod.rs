@@ -22,7 +22,7 @@ use crate::error::{Error, Result};
 
 /// One input station, in its section frame `(ξ, η)` about the reference (pitch) axis.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Section {
+pub struct BeamSection {
     /// Span position from the root (m).
     pub z: f64,
     /// Mass per length (kg/m).
@@ -55,26 +55,26 @@ pub struct Section {
     pub tension_centre: [f64; 2],
 }
 
-impl Section {
+impl BeamSection {
     /// Linear interpolation between two stations (at fraction `t` from `a` to `b`).
-    fn lerp(a: &Section, b: &Section, t: f64) -> Section {
-        Section::zip_with(a, b, |x, y| x + (y - x) * t)
+    fn lerp(a: &BeamSection, b: &BeamSection, t: f64) -> BeamSection {
+        BeamSection::zip_with(a, b, |x, y| x + (y - x) * t)
     }
 
     /// The per-metre rate of every property from `a` to `b` (the slope of the linear
     /// interpolation; `z` is then 1).
-    fn rate(a: &Section, b: &Section) -> Section {
+    fn rate(a: &BeamSection, b: &BeamSection) -> BeamSection {
         let h = b.z - a.z;
-        Section {
+        BeamSection {
             z: 1.0,
-            ..Section::zip_with(a, b, |x, y| (y - x) / h)
+            ..BeamSection::zip_with(a, b, |x, y| (y - x) / h)
         }
     }
 
     /// Every property of `a` and `b` combined by `f`, field by field.
-    fn zip_with(a: &Section, b: &Section, f: impl Fn(f64, f64) -> f64) -> Section {
+    fn zip_with(a: &BeamSection, b: &BeamSection, f: impl Fn(f64, f64) -> f64) -> BeamSection {
         let pair = |x: [f64; 2], y: [f64; 2]| [f(x[0], y[0]), f(x[1], y[1])];
-        Section {
+        BeamSection {
             z: f(a.z, b.z),
             mass: f(a.mass, b.mass),
             cg: pair(a.cg, b.cg),
@@ -106,7 +106,7 @@ impl Section {
         }
     }
 
-    /// What [`Section::check`] finds wrong with this section, without where it is.
+    /// What [`BeamSection::check`] finds wrong with this section, without where it is.
     fn fault(&self) -> Option<String> {
         let positive = [
             ("mass per length", self.mass),
@@ -145,6 +145,23 @@ impl Section {
     }
 }
 
+/// A section's 6×6 matrices as its file gives them (docs/model.md §11.2, §11.5–§11.6): what a
+/// [`BeamSection`] is reduced from ([`classical::reduce`]), kept whole for a beam that carries
+/// shear and extension.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SectionMatrices {
+    /// The stiffness relating `(F₁, F₂, F₃, M₁, M₂, M₃)` to `(γ₁, γ₂, ε₃, κ₁, κ₂, κ₃)` in the
+    /// file's section axes (3 along the blade) about [`SectionMatrices::origin`].
+    pub stiffness: [[f64; 6]; 6],
+    /// The mass per length in the same axes and about the same point, where the file gives one
+    /// (BeamDyn).
+    pub mass: Option<[[f64; 6]; 6]>,
+    /// How the file's section axes lie in ours.
+    pub frame: classical::FileFrame,
+    /// The matrices' origin from the reference axis (m, `[ξ, η]`).
+    pub origin: [f64; 2],
+}
+
 /// A blade as a table of sections along its span.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BladeTable {
@@ -153,13 +170,18 @@ pub struct BladeTable {
     /// Hub radius (m): the root is at `r = hub_radius`.
     pub hub_radius: f64,
     /// Stations sorted by `z`, the first at the root (`z = 0`), the last at the tip.
-    pub sections: Vec<Section>,
+    pub sections: Vec<BeamSection>,
+    /// Each station's matrices, in station order, where the file gives its sections as 6×6
+    /// matrices (BeamDyn, a HAWC2 fully populated st file); empty for a HAWC2 classic st file,
+    /// whose columns the sections hold. The file's, before any coupling a preset adds
+    /// ([`coupling::with_bend_twist_coupling`]).
+    pub matrices: Vec<SectionMatrices>,
 }
 
 impl BladeTable {
     /// A table checked for what the elements need: at least two stations, strictly increasing
     /// span from 0, every property finite and every mass and stiffness positive.
-    pub fn new(origin: &str, hub_radius: f64, sections: Vec<Section>) -> Result<BladeTable> {
+    pub fn new(origin: &str, hub_radius: f64, sections: Vec<BeamSection>) -> Result<BladeTable> {
         let invalid = |message: String| Error::Invalid {
             origin: origin.to_string(),
             message,
@@ -199,7 +221,24 @@ impl BladeTable {
             origin: origin.to_string(),
             hub_radius,
             sections,
+            matrices: Vec::new(),
         })
+    }
+
+    /// The table with the matrices its sections were reduced from, one per station.
+    pub fn with_matrices(mut self, matrices: Vec<SectionMatrices>) -> Result<BladeTable> {
+        if !matrices.is_empty() && matrices.len() != self.sections.len() {
+            return Err(Error::Invalid {
+                origin: self.origin.clone(),
+                message: format!(
+                    "{} section matrices for {} stations",
+                    matrices.len(),
+                    self.sections.len()
+                ),
+            });
+        }
+        self.matrices = matrices;
+        Ok(self)
     }
 
     /// Blade length (m): the span of the last station.
@@ -208,22 +247,22 @@ impl BladeTable {
     }
 
     /// The section at span `z`, linear between the stations (clamped to the ends).
-    pub fn at(&self, z: f64) -> Section {
+    pub fn at(&self, z: f64) -> BeamSection {
         let (a, b) = self.interval(z);
         let t = ((z - a.z) / (b.z - a.z)).clamp(0.0, 1.0);
-        Section::lerp(a, b, t)
+        BeamSection::lerp(a, b, t)
     }
 
     /// The rate of change along the span of every property at `z` (per metre): the slope of the
     /// table interval holding `z` (at a station, the interval outboard of it), as the offsets'
     /// rates in the tension-centre slopes need (docs/model.md §11.2).
-    pub fn rate_at(&self, z: f64) -> Section {
+    pub fn rate_at(&self, z: f64) -> BeamSection {
         let (a, b) = self.interval(z);
-        Section::rate(a, b)
+        BeamSection::rate(a, b)
     }
 
     /// The two stations around `z` (the first or last interval beyond the ends).
-    fn interval(&self, z: f64) -> (&Section, &Section) {
+    fn interval(&self, z: f64) -> (&BeamSection, &BeamSection) {
         let s = &self.sections;
         let k = s.partition_point(|x| x.z <= z).clamp(1, s.len() - 1);
         (&s[k - 1], &s[k])

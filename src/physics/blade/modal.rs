@@ -5,8 +5,8 @@
 //! modal damping ratio (docs/model.md §11.4) and its shape on the element dofs, which
 //! [`BladeMatrices::reference_axis_at`] evaluates at any span position.
 
-use super::fem::{assemble, BladeGeometry, BladeMatrices, Mesh, NODE_DOFS, U, V};
-use super::{BladeTable, Section};
+use super::fem::{assemble, BladeGeometry, BladeMatrices, Mesh, NodeLayout};
+use super::{BeamSection, BladeTable};
 use crate::error::{Error, Result};
 use crate::numeric::banded::{half_bandwidth, SymmetricBand};
 use crate::numeric::cholesky::symmetrised;
@@ -81,10 +81,11 @@ pub fn stiffness_damping(
     let scaled = BladeTable {
         origin: table.origin.clone(),
         hub_radius: table.hub_radius,
+        matrices: table.matrices.clone(),
         sections: table
             .sections
             .iter()
-            .map(|s| Section {
+            .map(|s| BeamSection {
                 ei_flap: f.flap * s.ei_flap,
                 ei_edge: f.edge * s.ei_edge,
                 ei_cross: mean(f.flap, f.edge) * s.ei_cross,
@@ -160,7 +161,7 @@ impl ModalBlade {
         }
         let reduced_k0 = symmetrised(basis.tr_mul(&k0.mul(&basis)));
         let reduced_k_omega = symmetrised(basis.tr_mul(&k_omega.mul(&basis)));
-        let reduced_family = reduced_family_mass(&mass, &basis);
+        let reduced_family = reduced_family_mass(&mass, &basis, &matrices.layout);
         Ok(ModalBlade {
             geometry: matrices.geometry(),
             basis: Arc::new(basis),
@@ -306,12 +307,12 @@ pub struct Projections {
 /// `Φᵀ M_b Φ` for the flap, edge and twist blocks `b` of the mass matrix (the diagonal blocks of
 /// each group of dofs, the cross terms from the centre of mass offset left out): O(n·band·b),
 /// once per basis.
-pub fn reduced_family_mass(mass: &SymmetricBand, basis: &DMatrix<f64>) -> [DMatrix<f64>; 3] {
-    let group = |i: usize| match i % NODE_DOFS {
-        d if d == U || d == U + 1 => 0,
-        d if d == V || d == V + 1 => 1,
-        _ => 2, // PHI, the only other offset
-    };
+pub fn reduced_family_mass(
+    mass: &SymmetricBand,
+    basis: &DMatrix<f64>,
+    layout: &NodeLayout,
+) -> [DMatrix<f64>; 3] {
+    let group = |i: usize| layout.family_of(i);
     let (n, b) = (basis.nrows(), basis.ncols());
     let mut products = [(); 3].map(|_| DMatrix::zeros(n, b));
     for i in 0..n {

@@ -155,7 +155,7 @@ impl PitchRangeBlade {
             .transpose()?;
         let families: Vec<[DMatrix<f64>; 3]> = samples
             .iter()
-            .map(|s| reduced_family_mass(&band_of(&s.mass), &basis))
+            .map(|s| reduced_family_mass(&band_of(&s.mass), &basis, &s.layout))
             .collect();
         let family = [0, 1, 2].map(|g| {
             Harmonics::from_samples(&families.iter().map(|f| f[g].clone()).collect::<Vec<_>>())

@@ -70,6 +70,41 @@ impl TabulatedBlade {
     }
 }
 
+/// The files a tabulated blade is read from, in one of the formats the program reads: each format
+/// is one implementation (a BeamDyn blade, a HAWC2 st file with its twist), and a new one (a
+/// layup ontology, say) is one more.
+pub trait BladeFiles {
+    /// The blade as its files describe it: sections and the damping they state. Errors name the
+    /// file and line; a file of another known kind says which kind it is.
+    fn read(&self) -> Result<TabulatedBlade>;
+}
+
+/// A BeamDyn blade: its primary file ([`read_beamdyn`]).
+pub struct BeamDynFiles<F> {
+    pub primary: F,
+}
+
+impl<F: TextFile> BladeFiles for BeamDynFiles<F> {
+    fn read(&self) -> Result<TabulatedBlade> {
+        read_beamdyn(&self.primary)
+    }
+}
+
+/// A HAWC2 blade: subset `subset` of set `set` of its st file, turned by the chord's `twist`
+/// ([`read_hawc2`]).
+pub struct Hawc2Files<F> {
+    pub st: F,
+    pub twist: ChordTwist,
+    pub set: usize,
+    pub subset: usize,
+}
+
+impl<F: TextFile> BladeFiles for Hawc2Files<F> {
+    fn read(&self) -> Result<TabulatedBlade> {
+        read_hawc2(&self.st, &self.twist, self.set, self.subset)
+    }
+}
+
 /// The BeamDyn primary file, then the blade file its `BldFile` names (relative to it, as
 /// BeamDyn resolves it). Errors name the file and line; a file of another known kind says which
 /// kind it is and what to do instead.
@@ -206,7 +241,8 @@ pub fn pitch_range_basis(
     s: &BasisSettings,
 ) -> Result<(BladeTable, PitchRangeBlade)> {
     let coupled = with_bend_twist_coupling(&blade.table, s.coupling);
-    let table = BladeTable::new(&coupled.origin, s.hub_radius, coupled.sections)?;
+    let table = BladeTable::new(&coupled.origin, s.hub_radius, coupled.sections)?
+        .with_matrices(coupled.matrices)?;
     let mesh = Mesh::following(&table, s.min_elements);
     let (low, high) = s.pitches;
     let damping = match blade.damping {

@@ -55,7 +55,7 @@ pub struct Conditions {
 
 /// One blade element where the caller wants the flow: a span position with its quadrature weight.
 #[derive(Debug, Clone)]
-pub struct Station {
+pub struct AeroStation {
     /// Span from the blade root (m).
     pub span: f64,
     /// Quadrature weight (m): the totals are `Σ weight · load`.
@@ -75,10 +75,10 @@ pub struct Deflection {
     pub flap: f64,
 }
 
-impl Station {
+impl AeroStation {
     /// The station at `span` with its section and prebend from `blade`.
-    pub fn on(blade: &AeroBlade, span: f64, weight: f64) -> Result<Station> {
-        Ok(Station {
+    pub fn on(blade: &AeroBlade, span: f64, weight: f64) -> Result<AeroStation> {
+        Ok(AeroStation {
             span,
             weight,
             section: blade.section_at(span)?,
@@ -89,14 +89,14 @@ impl Station {
     /// `count` stations at the Gauss–Legendre points of the blade's described span: the totals
     /// are then the Gauss quadrature of the load integrals, and no station sits on the hub or
     /// the tip, where the loss factors vanish.
-    pub fn gauss(blade: &AeroBlade, count: usize) -> Result<Vec<Station>> {
+    pub fn gauss(blade: &AeroBlade, count: usize) -> Result<Vec<AeroStation>> {
         let (first, last) = blade.span_range();
         let half = 0.5 * (last - first);
         let (nodes, weights) = gauss_legendre(count);
         nodes
             .iter()
             .zip(&weights)
-            .map(|(&xi, &w)| Station::on(blade, first + half * (xi + 1.0), half * w))
+            .map(|(&xi, &w)| AeroStation::on(blade, first + half * (xi + 1.0), half * w))
             .collect()
     }
 }
@@ -163,7 +163,7 @@ const MIN_LOSS: f64 = 1e-4;
 /// the elastic deflection of a static equilibrium.
 pub fn solve(
     rotor: &Rotor,
-    stations: &[Station],
+    stations: &[AeroStation],
     deflection: &[Deflection],
     at: &Conditions,
 ) -> Result<OperatingState> {
@@ -205,7 +205,7 @@ struct Placement {
 /// takes it (Ning 2014's code, `defineCurvature`).
 fn placements(
     rotor: &Rotor,
-    stations: &[Station],
+    stations: &[AeroStation],
     deflected: impl Fn(usize) -> Deflection,
 ) -> Vec<Placement> {
     let (sb, cb) = rotor.precone.sin_cos();
@@ -241,7 +241,7 @@ fn placements(
 /// in-plane part times the distance from the shaft.
 fn totals(
     rotor: &Rotor,
-    stations: &[Station],
+    stations: &[AeroStation],
     places: &[Placement],
     flows: Vec<StationFlow>,
     at: &Conditions,
@@ -302,7 +302,7 @@ struct Blade<'a> {
 
 fn station_flow(
     rotor: &Rotor,
-    station: &Station,
+    station: &AeroStation,
     place: &Placement,
     twist: f64,
     at: &Conditions,

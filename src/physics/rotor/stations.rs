@@ -7,7 +7,7 @@
 //! sweep along the schedule or a key press that moves the wind speed reuses them.
 
 use crate::error::Result;
-use crate::physics::rotor::bem::Station;
+use crate::physics::rotor::bem::AeroStation;
 use crate::physics::rotor::AeroBlade;
 use std::sync::{Arc, Mutex};
 
@@ -22,11 +22,11 @@ const KEPT_COUNTS: usize = 4;
 pub struct GaussStations(Arc<Mutex<Vec<Built>>>);
 
 /// Stations built for one count.
-type Built = (usize, Arc<Vec<Station>>);
+type Built = (usize, Arc<Vec<AeroStation>>);
 
 impl GaussStations {
-    /// The `count` Gauss stations of `blade` ([`Station::gauss`]), built on first use.
-    pub fn of(&self, blade: &AeroBlade, count: usize) -> Result<Arc<Vec<Station>>> {
+    /// The `count` Gauss stations of `blade` ([`AeroStation::gauss`]), built on first use.
+    pub fn of(&self, blade: &AeroBlade, count: usize) -> Result<Arc<Vec<AeroStation>>> {
         let built = |cache: &[Built]| {
             cache
                 .iter()
@@ -37,7 +37,7 @@ impl GaussStations {
         if let Some(s) = self.0.lock().ok().and_then(|c| built(&c)) {
             return Ok(s);
         }
-        let stations = Arc::new(Station::gauss(blade, count)?);
+        let stations = Arc::new(AeroStation::gauss(blade, count)?);
         if let Ok(mut cache) = self.0.lock() {
             if built(&cache).is_none() {
                 // A sweep over `aero.stations` would otherwise keep every count it visited.

@@ -1,0 +1,372 @@
+//! The coupled aeroelastic system: structure + strip aerodynamics as one first-order ODE
+//! (docs/model.md §6), its static equilibrium and its linearisation.
+//!
+//! State `x = [q, q̇, z]`: the structure's coordinates `q` (`n_q`: Galerkin coefficients of the
+//! paper's blade, modal coordinates of a tabulated one; [`Structure`]), their rates and the
+//! aerodynamic states `z` (station-major: `z[s·n_s + i]` is state `i` of station `s`).
+//!
+//! `(M − M_a) q̈ = Q(q, q̇, z) − K q − C q̇`, `ż = G(q, q̇, z)`, where `Q` is the projection
+//! `Q = Σ_s w_s (m_φ e_φ(x_s) + f_u e_u(x_s) + f_v e_v(x_s))` of the strip loads on the
+//! structure's motion rows (`φ = e_φ·q`, `u = e_u·q`, `v = e_v·q` at the station,
+//! [`MotionRows`]; the paper's blade has `e_v = 0`) and `M_a = Σ_s w_s Pᵀ M_a,s P` the apparent
+//! mass (P maps `q` to the strip's `[φ, u, v]`).
+//!
+//! The system is written for any [`StripModel`], linear or not: [`System::rhs`] gives `ẋ`,
+//! [`System::jacobian`] its exact Jacobian (chain rule through the models' analytic partials),
+//! [`System::equilibrium`] a damped Newton solve (one step for the affine models), and
+//! [`System::linearise`] the state matrix `A = ∂ẋ/∂x` at equilibrium. A nonlinear model (ONERA,
+//! §5.3) joins by implementing `StripModel`. For its time response (§7), [`System::splitting`]
+//! separates the right-hand side about a reference state into the exact tangent and the few
+//! scalar nonlinear strip outputs the model declares, and [`System::remainder`] evaluates those.
+//!
+//! Files: this one builds the system and evaluates it (state layout, right-hand side, Jacobian,
+//! the strip projection); [`equilibrium`] solves the static equilibrium, [`linear`] linearises
+//! about it, [`splitting`] separates the right-hand side for the time stepper.
+
+mod equilibrium;
+mod linear;
+mod splitting;
+
+pub use linear::LinearSystem;
+pub use splitting::{RemainderScratch, Splitting};
+
+use crate::error::{Error, Result};
+use crate::physics::aero::{Kinematics, StripEval, StripModel, LOADS, RATES};
+use crate::physics::inflow::Station;
+use crate::physics::structure::Structure;
+use nalgebra::{DMatrix, DVector};
+use std::sync::Arc;
+
+pub struct System {
+    structure: Arc<dyn Structure>,
+    stations: Vec<Station>,
+    model: Box<dyn StripModel>,
+    /// The rows e_φ, e_u and e_v that map q to each strip's φ, u and v.
+    rows: Arc<Vec<[DVector<f64>; RATES]>>,
+    /// The same at the tip.
+    tip_rows: [DVector<f64>; RATES],
+    /// (M − M_a)⁻¹, factored once: every rhs and Jacobian needs it.
+    mass_inv: DMatrix<f64>,
+    stiffness: DMatrix<f64>,
+    damping: DMatrix<f64>,
+    /// States per station.
+    ns: usize,
+}
+
+/// Which derivatives a [`System::project`] call assembles.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Derivatives {
+    None,
+    /// ∂Q/∂q and ∂Q/∂z only: all the static equilibrium's Newton step reads. Skipping the rest
+    /// saves about half of each projection on a real blade (30 stations, 60 lag states), where
+    /// the operating point takes two of them per Newton step on every BEM pass.
+    Static,
+    All,
+}
+
+/// Generalised loads and aero-state rates at one state, with their Jacobians when asked.
+struct Projection {
+    force: DVector<f64>,
+    zdot: DVector<f64>,
+    /// ∂Q/∂q, ∂Q/∂q̇, ∂Q/∂z.
+    dq: DMatrix<f64>,
+    dv: DMatrix<f64>,
+    dz: DMatrix<f64>,
+    /// ∂G/∂q, ∂G/∂q̇, ∂G/∂z.
+    gq: DMatrix<f64>,
+    gv: DMatrix<f64>,
+    gz: DMatrix<f64>,
+}
+
+impl System {
+    /// Build from an assembled structure, stations (along the structure's span) and a strip
+    /// model.
+    pub fn from_parts(
+        structure: Arc<dyn Structure>,
+        stations: Vec<Station>,
+        model: Box<dyn StripModel>,
+    ) -> Result<System> {
+        let motion = |x: f64| {
+            let r = structure.motion_rows(x);
+            [r.twist, r.flap, r.edge]
+        };
+        let rows: Arc<Vec<_>> = Arc::new(stations.iter().map(|s| motion(s.x)).collect());
+        let tip_rows = motion(structure.length());
+        let stiffness = structure.stiffness();
+        check_finite("stiffness matrix", &stiffness)?;
+        let damping = structure.damping().clone();
+        check_finite("damping matrix", &damping)?;
+        let mass_inv = mass_inverse(structure.as_ref(), &stations, &rows, model.as_ref())?;
+        let ns = model.states_per_station();
+        Ok(System {
+            structure,
+            stations,
+            model,
+            rows,
+            tip_rows,
+            mass_inv,
+            stiffness,
+            damping,
+            ns,
+        })
+    }
+
+    /// This system on another inflow: `stations` at the same span positions with their own speed
+    /// and angles, and `model` the same strip model (a steady operating point's next BEM pass,
+    /// docs/model.md §12.6). The structure's rows at the stations and its matrices are shared,
+    /// not rebuilt; only the apparent mass, which turns with the inflow angle, is assembled
+    /// again.
+    pub fn on_inflow(&self, stations: Vec<Station>, model: Box<dyn StripModel>) -> Result<System> {
+        debug_assert!(self
+            .stations
+            .iter()
+            .zip(&stations)
+            .all(|(a, b)| a.x == b.x && a.weight == b.weight));
+        let mass_inv = mass_inverse(
+            self.structure.as_ref(),
+            &stations,
+            &self.rows,
+            model.as_ref(),
+        )?;
+        Ok(System {
+            structure: Arc::clone(&self.structure),
+            stations,
+            model,
+            rows: Arc::clone(&self.rows),
+            tip_rows: self.tip_rows.clone(),
+            mass_inv,
+            stiffness: self.stiffness.clone(),
+            damping: self.damping.clone(),
+            ns: self.ns,
+        })
+    }
+
+    /// Length of the state vector: 2 n_q + aero states.
+    pub fn dim(&self) -> usize {
+        2 * self.nq() + self.n_aero()
+    }
+    /// Structural coordinates n_q.
+    pub fn nq(&self) -> usize {
+        self.structure.coordinates()
+    }
+    pub fn n_aero(&self) -> usize {
+        self.ns * self.stations.len()
+    }
+    pub fn structure(&self) -> &dyn Structure {
+        self.structure.as_ref()
+    }
+    pub fn stations(&self) -> &[Station] {
+        &self.stations
+    }
+    pub fn model(&self) -> &dyn StripModel {
+        self.model.as_ref()
+    }
+
+    /// Tip twist φ(L) (rad) and tip flap u(L) (m) of a state.
+    pub fn tip(&self, x: &DVector<f64>) -> (f64, f64) {
+        let q = x.rows(0, self.nq());
+        (self.tip_rows[0].dot(&q), self.tip_rows[1].dot(&q))
+    }
+
+    /// `[φ, u, v]` (twist toward feather, flap downwind, edge toward the leading edge) at the
+    /// tip's reference axis in state `x`.
+    pub fn tip_motion(&self, x: &DVector<f64>) -> [f64; RATES] {
+        let q = x.rows(0, self.nq());
+        self.tip_rows.each_ref().map(|row| row.dot(&q))
+    }
+
+    /// `[φ, u, v]` at every station in state `x`.
+    pub fn station_motion(&self, x: &DVector<f64>) -> Vec<[f64; RATES]> {
+        let q = x.rows(0, self.nq());
+        (0..self.stations.len())
+            .map(|si| self.deflection_at(si, q))
+            .collect()
+    }
+
+    /// ẋ = f(x).
+    pub fn rhs(&self, x: &DVector<f64>) -> DVector<f64> {
+        let nq = self.nq();
+        let (q, v, z) = self.split(x);
+        let pr = self.project(q, v, z, Derivatives::None);
+        let mut out = DVector::zeros(self.dim());
+        out.rows_mut(0, nq).copy_from(&v);
+        let net = &pr.force - &self.stiffness * q - &self.damping * v;
+        out.rows_mut(nq, nq).copy_from(&(&self.mass_inv * net));
+        out.rows_mut(2 * nq, self.n_aero()).copy_from(&pr.zdot);
+        out
+    }
+
+    /// ∂ẋ/∂x at `x`, exact.
+    pub fn jacobian(&self, x: &DVector<f64>) -> DMatrix<f64> {
+        let (nq, na) = (self.nq(), self.n_aero());
+        let (q, v, z) = self.split(x);
+        let pr = self.project(q, v, z, Derivatives::All);
+        let mut a = DMatrix::zeros(self.dim(), self.dim());
+        a.view_mut((0, nq), (nq, nq)).fill_with_identity();
+        a.view_mut((nq, 0), (nq, nq))
+            .copy_from(&(&self.mass_inv * (&pr.dq - &self.stiffness)));
+        a.view_mut((nq, nq), (nq, nq))
+            .copy_from(&(&self.mass_inv * (&pr.dv - &self.damping)));
+        if na > 0 {
+            a.view_mut((nq, 2 * nq), (nq, na))
+                .copy_from(&(&self.mass_inv * &pr.dz));
+            a.view_mut((2 * nq, 0), (na, nq)).copy_from(&pr.gq);
+            a.view_mut((2 * nq, nq), (na, nq)).copy_from(&pr.gv);
+            a.view_mut((2 * nq, 2 * nq), (na, na)).copy_from(&pr.gz);
+        }
+        a
+    }
+
+    // ---- internals ----
+
+    fn split<'a>(
+        &self,
+        x: &'a DVector<f64>,
+    ) -> (
+        nalgebra::DVectorView<'a, f64>,
+        nalgebra::DVectorView<'a, f64>,
+        nalgebra::DVectorView<'a, f64>,
+    ) {
+        let nq = self.nq();
+        (x.rows(0, nq), x.rows(nq, nq), x.rows(2 * nq, self.n_aero()))
+    }
+
+    /// `[φ, u, v]` at station `si` for coordinates `q`.
+    fn deflection_at(&self, si: usize, q: nalgebra::DVectorView<f64>) -> [f64; RATES] {
+        self.rows[si].each_ref().map(|row| row.dot(&q))
+    }
+
+    fn kinematic_rows(&self, si: usize) -> &[DVector<f64>; RATES] {
+        &self.rows[si]
+    }
+
+    fn project(
+        &self,
+        q: nalgebra::DVectorView<f64>,
+        v: nalgebra::DVectorView<f64>,
+        z: nalgebra::DVectorView<f64>,
+        wanted: Derivatives,
+    ) -> Projection {
+        let (nq, na, ns) = (self.nq(), self.n_aero(), self.ns);
+        let want_jac = wanted != Derivatives::None;
+        let want_all = wanted == Derivatives::All;
+        let sized = |on: bool, r: usize, c: usize| {
+            if on {
+                DMatrix::zeros(r, c)
+            } else {
+                DMatrix::zeros(0, 0)
+            }
+        };
+        let mut pr = Projection {
+            force: DVector::zeros(nq),
+            zdot: DVector::zeros(na),
+            dq: sized(want_jac, nq, nq),
+            dv: sized(want_all, nq, nq),
+            dz: sized(want_jac, nq, na),
+            gq: sized(want_all, na, nq),
+            gv: sized(want_all, na, nq),
+            gz: sized(want_all, na, na),
+        };
+        let mut eval = StripEval::new(ns);
+        let mut zs = Vec::with_capacity(ns);
+        for (si, s) in self.stations.iter().enumerate() {
+            let [phi, u, edge] = self.deflection_at(si, q);
+            let [phi_dot, u_dot, v_dot] = self.deflection_at(si, v);
+            let k = Kinematics {
+                phi,
+                u,
+                v: edge,
+                phi_dot,
+                u_dot,
+                v_dot,
+            };
+            zs.clear();
+            zs.extend(z.rows(si * ns, ns).iter());
+            eval.clear();
+            self.model.evaluate(s, &k, &zs, &mut eval, want_jac);
+            let rows = self.kinematic_rows(si);
+            let w = s.weight;
+            for (load, row) in eval.loads.iter().zip(rows) {
+                pr.force.axpy(w * load, row, 1.0);
+            }
+            pr.zdot.rows_mut(si * ns, ns).copy_from_slice(&eval.zdot);
+            if !want_jac {
+                continue;
+            }
+            for l in 0..LOADS {
+                for j in 0..RATES {
+                    let dpos = eval.dloads_dk[l][j];
+                    if dpos != 0.0 {
+                        pr.dq.ger(w * dpos, &rows[l], &rows[j], 1.0);
+                    }
+                    let drate = eval.dloads_dk[l][j + RATES];
+                    if want_all && drate != 0.0 {
+                        pr.dv.ger(w * drate, &rows[l], &rows[j], 1.0);
+                    }
+                }
+                for i in 0..ns {
+                    let mut col = pr.dz.column_mut(si * ns + i);
+                    col.axpy(w * eval.dloads_dz[l][i], &rows[l], 1.0);
+                }
+            }
+            if !want_all {
+                continue;
+            }
+            for i in 0..ns {
+                let r = si * ns + i;
+                let d = eval.dzdot_dk[i];
+                for (j, row) in rows.iter().enumerate() {
+                    if d[j] != 0.0 {
+                        let mut gq = pr.gq.row_mut(r);
+                        gq += d[j] * row.transpose();
+                    }
+                    if d[j + RATES] != 0.0 {
+                        let mut gv = pr.gv.row_mut(r);
+                        gv += d[j + RATES] * row.transpose();
+                    }
+                }
+                for j in 0..ns {
+                    pr.gz[(r, si * ns + j)] = eval.dzdot_dz[i * ns + j];
+                }
+            }
+        }
+        pr
+    }
+}
+
+/// `(M − M_a)⁻¹`: the structure's mass with the strips' apparent mass `M_a` moved to the
+/// left-hand side (docs/model.md §5, §12.5).
+fn mass_inverse(
+    structure: &dyn Structure,
+    stations: &[Station],
+    rows: &[[DVector<f64>; RATES]],
+    model: &dyn StripModel,
+) -> Result<DMatrix<f64>> {
+    let mut mass = structure.mass().clone();
+    for (s, rows) in stations.iter().zip(rows) {
+        let ma = model.apparent_mass(s);
+        for l in 0..LOADS {
+            for j in 0..RATES {
+                if ma[l][j] != 0.0 {
+                    // Loads M_a q̈ move to the left-hand side: M − M_a.
+                    mass.ger(-s.weight * ma[l][j], &rows[l], &rows[j], 1.0);
+                }
+            }
+        }
+    }
+    check_finite("mass matrix", &mass)?;
+    let mass_inv = mass.lu().try_inverse().ok_or_else(|| {
+        Error::numerical("the mass matrix (structure plus apparent mass) is singular")
+    })?;
+    check_finite("inverse mass matrix", &mass_inv)?;
+    Ok(mass_inv)
+}
+
+/// Every entry finite, or a numerical error naming the matrix.
+pub fn check_finite(what: &str, m: &DMatrix<f64>) -> Result<()> {
+    if m.iter().all(|v| v.is_finite()) {
+        Ok(())
+    } else {
+        Err(Error::numerical(format!("{what} has non-finite entries")))
+    }
+}
