@@ -3,7 +3,7 @@
 //! Run: `cargo bench --bench simulate`.
 
 use flutterscope::analysis::eigen::{analyse_system, linear_system};
-use flutterscope::analysis::simulate::simulate;
+use flutterscope::analysis::response::simulate;
 use flutterscope::preset::{Preset, ValidPreset};
 
 fn main() {

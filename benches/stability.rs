@@ -4,7 +4,7 @@
 
 use flutterscope::analysis::eigen::analyse;
 use flutterscope::analysis::flutter::{flutter_boundary, flutter_search};
-use flutterscope::analysis::simulate::simulate;
+use flutterscope::analysis::response::simulate;
 use flutterscope::analysis::sweep::{grid_sweep, named_modes, Grid};
 use flutterscope::preset::{Preset, ValidPreset};
 

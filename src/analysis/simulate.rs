@@ -38,7 +38,6 @@
 use crate::error::{Error, Result};
 use crate::numeric::balance::{balanced, balancing_scale};
 use crate::physics::system::{check_finite, LinearSystem, RemainderScratch, Splitting, System};
-use crate::preset::ValidPreset;
 use nalgebra::{DMatrix, DVector, Dyn, LU};
 use serde::Serialize;
 use std::sync::Arc;
@@ -444,12 +443,6 @@ pub struct Simulator {
 }
 
 impl Simulator {
-    /// Set up the preset's model and the start state of `simulation.*` (one build, see
-    /// [`crate::analysis::solve`]).
-    pub fn new(p: &ValidPreset) -> Result<Simulator> {
-        crate::analysis::solve::solve(p)?.simulator(p)
-    }
-
     /// Start from rest instead of the reference state: `q = 0, q̇ = 0`, aerodynamic states 0 (the
     /// load switched on at t = 0).
     pub fn start_from_rest(&mut self) {
@@ -699,35 +692,4 @@ fn sample_interval(sample_rate: f64) -> Result<f64> {
         )));
     }
     Ok(1.0 / sample_rate)
-}
-
-/// A whole run.
-#[derive(Debug, Clone, Serialize)]
-pub struct Response {
-    pub status: RunStatus,
-    pub t: Vec<f64>,
-    pub tip_twist: Vec<f64>,
-    pub tip_flap: Vec<f64>,
-    /// Time the run stopped at the divergence bound.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub diverged_at: Option<f64>,
-}
-
-/// Samples in `[0, duration]` at the preset's sample rate, both ends included.
-pub fn sample_count(p: &ValidPreset) -> usize {
-    (p.simulation.duration * p.simulation.sample_rate + 1e-9).floor() as usize + 1
-}
-
-/// Simulate the preset for `simulation.duration`.
-pub fn simulate(p: &ValidPreset) -> Result<Response> {
-    let mut sim = Simulator::new(p)?;
-    let samples = sim.advance(sample_count(p))?;
-    let status = sim.status();
-    Ok(Response {
-        status,
-        diverged_at: (status == RunStatus::Diverging).then(|| sim.time()),
-        t: samples.iter().map(|s| s.t).collect(),
-        tip_twist: samples.iter().map(|s| s.tip_twist).collect(),
-        tip_flap: samples.iter().map(|s| s.tip_flap).collect(),
-    })
 }

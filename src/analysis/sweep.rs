@@ -13,7 +13,8 @@
 //! shards' rows in order reproduces the unsharded output exactly.
 
 use crate::analysis::cancel::Cancel;
-use crate::analysis::eigen::{analyse, Mode, Stability};
+use crate::analysis::eigen::{analyse, Stability};
+use crate::analysis::mode::Mode;
 use crate::analysis::tracking::{follow, match_modes, Matching, Point, REFINEMENT_DEPTH};
 use crate::error::{Error, Result};
 use crate::preset::{key_spec, ValidPreset};

@@ -3,8 +3,8 @@
 //! does no I/O, so key sequences are tested without a terminal or a worker.
 
 use crate::analysis::campbell::{schedule_wind_range, Campbell, ROTOR_SPEED_KEY, WIND_SPEED_KEY};
-use crate::analysis::eigen::Mode;
 use crate::analysis::flutter::{Search, SearchRange};
+use crate::analysis::mode::Mode;
 use crate::analysis::simulate::{RunStatus, TipSample};
 use crate::explorer::display::{ColorMode, MarkerKind};
 use crate::explorer::engine::Solved;

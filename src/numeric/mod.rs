@@ -20,6 +20,8 @@ mod inverse_iteration;
 mod isolate;
 pub mod lanczos;
 pub mod root;
+mod roots;
 
 pub use assignment::hungarian;
-pub use eigen::{decompose, eigen_decomposition, shares, Roots, Solver};
+pub use eigen::{decompose, eigen_decomposition};
+pub use roots::{shares, Roots, Solver};

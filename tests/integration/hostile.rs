@@ -19,7 +19,7 @@
 use assert_cmd::cargo::cargo_bin_cmd;
 use flutterscope::analysis::eigen::{analyse, Stability};
 use flutterscope::analysis::flutter::{flutter_search, Search};
-use flutterscope::analysis::simulate::{simulate, Response};
+use flutterscope::analysis::response::{simulate, Response};
 use flutterscope::error::Error;
 use flutterscope::physics::structure::{for_preset, NaturalMode};
 use flutterscope::preset::{builtin_names, AeroModel, KeySpec, Preset, ValidPreset, BUILTIN, KEYS};

@@ -4,8 +4,9 @@
 
 use super::{sig, Theme};
 use crate::analysis::campbell::ROTOR_SPEED_KEY;
-use crate::analysis::eigen::{Mode, Stability, Verdict};
+use crate::analysis::eigen::{Stability, Verdict};
 use crate::analysis::flutter::{Boundary, BoundaryKind, Search};
+use crate::analysis::mode::Mode;
 use crate::explorer::state::{
     shown_decimals, unit, value_text, AppState, BoundaryJob, ParamKind, Side, ViewMode,
     COUPLING_KEY, PARAMS, SOLVE_BUDGET_S,
