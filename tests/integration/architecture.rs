@@ -1,6 +1,7 @@
 //! The crate's file-level import graph: every `.rs` file under `src/` is a node, and a file has
 //! an edge to each module file whose items it names through `crate::`, `super::` or `self::`
-//! paths (in `use` statements, grouped or not, and inline). A path resolves to the deepest
+//! paths (in `use` statements, grouped or not, and inline) and, in `use` statements, paths into
+//! its own child modules (`use eigen::decompose` in a `mod.rs`). A path resolves to the deepest
 //! module file that exists for it (`src/a/b.rs` or `src/a/b/mod.rs`), so a parent `mod.rs` is
 //! a target only when the path stops at the parent. Comments, string literals and a trailing
 //! `#[cfg(test)] mod tests` block are not read. Cycles are the graph's strongly connected
@@ -238,8 +239,8 @@ fn expand_use_tree(tree: &str) -> Vec<String> {
     out
 }
 
-/// The `crate::`, `super::` and `self::` paths in `code` (already through [`code_only`]), as
-/// segment lists starting with that keyword.
+/// The paths in `code` (already through [`code_only`]) as segment lists: every path of its `use`
+/// statements, and the inline paths that start with `crate`, `super` or `self`.
 fn paths_in(code: &str) -> Vec<Vec<String>> {
     let is_ident = |c: char| c.is_alphanumeric() || c == '_';
     let mut paths = Vec::new();
@@ -253,7 +254,9 @@ fn paths_in(code: &str) -> Vec<Vec<String>> {
             let end = code[i..].find(';').map_or(code.len(), |e| i + e);
             for path in expand_use_tree(&code[i + 4..end]) {
                 let segs: Vec<String> = path.split("::").map(|s| s.trim().to_string()).collect();
-                if matches!(segs[0].as_str(), "crate" | "super" | "self") {
+                // A path with another first segment is an external crate's or, in a file with
+                // that child module, the child's (told apart in `graph_of`).
+                if !segs[0].is_empty() && segs[0] != "std" {
                     paths.push(segs);
                 }
             }
@@ -342,7 +345,7 @@ fn graph_of(sources: &[(String, String)]) -> Graph {
                     module.clear();
                     rest = &rest[1..];
                 }
-                _ => {
+                "self" | "super" => {
                     while let Some(first) = rest.first() {
                         match first.as_str() {
                             "self" => rest = &rest[1..],
@@ -352,6 +355,13 @@ fn graph_of(sources: &[(String, String)]) -> Graph {
                             }
                             _ => break,
                         }
+                    }
+                }
+                child => {
+                    let mut module = here.clone();
+                    module.push(child.to_string());
+                    if file_of(&module, &files).is_none() {
+                        continue;
                     }
                 }
             }
@@ -434,9 +444,12 @@ fn cycle_finder_finds_a_known_cycle() {
     let file = |rel: &str, text: &str| (rel.to_string(), text.to_string());
     let sources = vec![
         file("lib.rs", "pub mod a;\npub mod b;\npub mod c;\n"),
-        file("a/mod.rs", "pub mod x;\npub mod y;\n"),
-        // a::x → a::y through a grouped use, a::y → b through an inline path, b → a::x through
-        // `super`, closing a three-file cycle.
+        file(
+            "a/mod.rs",
+            "pub mod x;\npub mod y;\npub use y::Thing;\nuse nalgebra::DMatrix;\n",
+        ),
+        // a::x → a::y and a through a grouped use, a → a::y through its re-export, a::y → b
+        // through an inline path, b → a::x through `super`: a cycle of four files.
         file("a/x.rs", "use crate::{a::{y::Thing, self}, c};\n"),
         file(
             "a/y.rs",
@@ -457,11 +470,19 @@ fn cycle_finder_finds_a_known_cycle() {
         .iter()
         .map(|c| c.iter().map(|&i| graph.names[i].as_str()).collect())
         .collect();
-    assert_eq!(named, vec![vec!["src/a/x.rs", "src/a/y.rs", "src/b.rs"]]);
+    assert_eq!(
+        named,
+        vec![vec!["src/a/mod.rs", "src/a/x.rs", "src/a/y.rs", "src/b.rs"]]
+    );
     let id = |name: &str| graph.names.iter().position(|n| n == name).unwrap();
     // `a::{self}` stops at a/mod.rs; `crate::c` is the file c.rs.
     assert!(graph.edges[id("src/a/x.rs")].contains(&id("src/a/mod.rs")));
     assert!(graph.edges[id("src/a/x.rs")].contains(&id("src/c.rs")));
     assert!(graph.edges[id("src/c.rs")].is_empty());
+    // A `mod.rs` re-exporting from its child uses the child; an external crate is no file.
+    assert_eq!(
+        graph.edges[id("src/a/mod.rs")],
+        [id("src/a/y.rs")].into_iter().collect()
+    );
     assert!(!graph.edges[id("src/a/y.rs")].contains(&id("src/c.rs")));
 }

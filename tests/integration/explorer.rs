@@ -17,9 +17,10 @@ use flutterscope::explorer::headless::{
     self, parse_size, preset_entries, render_text, settle, settled_state,
 };
 use flutterscope::explorer::keys::{action_for, Action, BINDINGS};
-use flutterscope::explorer::state::{
-    update, AppState, CampbellAxis, Effect, Msg, Options, ViewMode, PARAMS,
-};
+use flutterscope::explorer::state::jobs::CampbellAxis;
+use flutterscope::explorer::state::params::PARAMS;
+use flutterscope::explorer::state::update::update;
+use flutterscope::explorer::state::{AppState, Effect, Msg, Options, ViewMode};
 use flutterscope::explorer::worker::Worker;
 use flutterscope::explorer::{Engine, Physics, Solve, Solved, Stream};
 use flutterscope::physics::section::SectionProps;
