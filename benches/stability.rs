@@ -4,8 +4,9 @@
 
 use flutterscope::analysis::eigen::analyse;
 use flutterscope::analysis::flutter::{flutter_boundary, flutter_search};
+use flutterscope::analysis::grid::Grid;
 use flutterscope::analysis::response::simulate;
-use flutterscope::analysis::sweep::{grid_sweep, named_modes, Grid};
+use flutterscope::analysis::sweep::{grid_sweep, named_modes};
 use flutterscope::preset::{Preset, ValidPreset};
 
 fn main() {

@@ -5,6 +5,7 @@ pub mod campbell;
 pub mod cancel;
 pub mod eigen;
 pub mod flutter;
+pub mod grid;
 pub mod identify;
 pub mod mode;
 pub mod mode_shape;

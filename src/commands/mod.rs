@@ -200,7 +200,7 @@ pub fn parse_vary(spec: &str) -> Result<(String, Vec<f64>)> {
         let count = if count.is_finite() {
             format!(
                 "{} (10 million) per --vary",
-                crate::analysis::sweep::beyond_limit(count, MAX_AXIS_POINTS)
+                crate::analysis::grid::beyond_limit(count, MAX_AXIS_POINTS)
             )
         } else {
             format!(
