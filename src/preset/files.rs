@@ -169,7 +169,7 @@ impl BladeFile {
     /// The file's text, through the size-capped reader for a file on disk.
     pub fn read(&self) -> Result<String> {
         match self {
-            BladeFile::Disk(path) => crate::formats::read_text(path),
+            BladeFile::Disk(path) => crate::formats::text::read_text(path),
             BladeFile::Builtin {
                 text: Some(text), ..
             } => Ok(text.to_string()),
