@@ -1,8 +1,8 @@
-//! Explorer speed (issue 4): one 160×48 frame rendered into a TestBackend buffer (target < 2 ms),
+//! Explorer speed: one 160×48 frame rendered into a TestBackend buffer (target < 2 ms),
 //! and a key press → re-solve → rendered frame for the quasi-steady, theodorsen and onera models
 //! at N = 5 (target < 30 ms). The re-solve is what the worker's solver thread runs for a key: one
 //! build of the system, its eigen-analysis and the start of the tip simulation from the same
-//! linearisation (issue 12). The boundary search and the streamed samples that follow run in the
+//! linearisation. The boundary search and the streamed samples that follow run in the
 //! background and are not part of the latency.
 
 use flutterscope::analysis::cancel::Cancel;
@@ -10,7 +10,9 @@ use flutterscope::explorer::display::{MarkerKind, ViewKind};
 use flutterscope::explorer::headless::settled_state;
 use flutterscope::explorer::keys::Action;
 use flutterscope::explorer::runner;
-use flutterscope::explorer::state::{update, AppState, Effect, Msg, PARAMS};
+use flutterscope::explorer::state::params::PARAMS;
+use flutterscope::explorer::state::update::update;
+use flutterscope::explorer::state::{AppState, Effect, Msg};
 use flutterscope::explorer::{ui, Engine, Physics};
 use flutterscope::preset::{Preset, ValidPreset, DEFAULT_PRESET};
 use ratatui::backend::TestBackend;
@@ -55,7 +57,7 @@ fn key_to_solved_frame_160x48(bencher: divan::Bencher, model: &str) {
     key_to_frame(bencher, state, "rotor speed");
 }
 
-/// Issue 14: the IEA 15MW in the wind (12 modes, 30 stations) at its rated point; a key on the
+/// The IEA 15MW in the wind (12 modes, 30 stations) at its rated point; a key on the
 /// rotor speed (an overspeed step, the structure's build kept) and on the wind speed (a step
 /// along the schedule: new pitch and rotor speed, its own deflected operating point). Targets:
 /// < 30 ms with theodorsen, < 150 ms with onera.

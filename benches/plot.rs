@@ -1,4 +1,4 @@
-//! Writing plots (issue 6): any single plot under 200 ms. Figures of realistic size are drawn
+//! Writing plots: any single plot under 200 ms. Figures of realistic size are drawn
 //! and written to a temporary file as SVG and PNG: a Campbell diagram (16 tracked modes over
 //! 201 rotor speeds, 1P/3P lines, two panels) and a tip response (20 000 samples, two panels).
 

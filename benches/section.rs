@@ -1,5 +1,5 @@
 //! One layup section evaluation (docs/model.md §2.1): CLT, contour moments, stiffness and mass.
-//! Target (issue 5): under 100 µs, so dragging the ply angle re-solves within one frame.
+//! Target: under 100 µs, so dragging the ply angle re-solves within one frame.
 
 use flutterscope::model::section::layup_input;
 use flutterscope::physics::laminate::layup_section_props;

@@ -1,9 +1,9 @@
-//! Time-response and stall-model timings (README figures, issue 7): 20 s at 200 samples/s with
+//! Time-response and stall-model timings (README figures): 20 s at 200 samples/s with
 //! N = 5 for every aerodynamic model, and the ONERA linearisation with eigen-analysis.
 //! Run: `cargo bench --bench simulate`.
 
 use flutterscope::analysis::eigen::{analyse_system, linear_system};
-use flutterscope::analysis::simulate::simulate;
+use flutterscope::analysis::response::simulate;
 use flutterscope::preset::{Preset, ValidPreset};
 
 fn main() {

@@ -4,8 +4,9 @@
 
 use flutterscope::analysis::eigen::analyse;
 use flutterscope::analysis::flutter::{flutter_boundary, flutter_search};
-use flutterscope::analysis::simulate::simulate;
-use flutterscope::analysis::sweep::{grid_sweep, named_modes, Grid};
+use flutterscope::analysis::grid::Grid;
+use flutterscope::analysis::response::simulate;
+use flutterscope::analysis::sweep::{grid_sweep, named_modes};
 use flutterscope::preset::{Preset, ValidPreset};
 
 fn main() {
@@ -80,7 +81,7 @@ fn flutter_search_goland(b: divan::Bencher) {
     b.bench(|| flutter_boundary(&p, "operating.tunnel_speed", 50.0, 250.0, 41).unwrap());
 }
 
-/// 20 s at 200 samples/s, N = 5, quasi-steady: target (issue 7) < 10 ms.
+/// 20 s at 200 samples/s, N = 5, quasi-steady: target < 10 ms.
 #[divan::bench(sample_count = 10)]
 fn simulate_20s_quasi_steady(b: divan::Bencher) {
     let p = preset("liu2017", &["structure.modes=5"]);

@@ -1,5 +1,5 @@
 //! Structure assembly plus natural frequencies (docs/model.md §3–§4) for N = 5, 10, 20 modes per field.
-//! Target (issue 2): N = 5 under 50 µs in release, so every explorer key press re-solves at once.
+//! Target: N = 5 under 50 µs in release, so every explorer key press re-solves at once.
 //!
 //! Run: `cargo bench --bench structure`.
 

@@ -58,8 +58,21 @@ impl PresetArgs {
     /// The preset after `--set`, any key allowed: for `section`, which evaluates the layup
     /// whatever the blade uses.
     pub fn load_for_layup(&self) -> crate::error::Result<crate::preset::ValidPreset> {
-        crate::commands::load_preset(&self.preset, &self.set)
+        load_preset(&self.preset, &self.set)
     }
+}
+
+/// A preset by name or path after `--set` overrides, its notes (what the overrides left unused)
+/// on stderr.
+pub fn load_preset(
+    name: &str,
+    overrides: &[String],
+) -> crate::error::Result<crate::preset::ValidPreset> {
+    let p = crate::preset::Preset::load(name, overrides)?;
+    for note in &p.notes {
+        eprintln!("note: {note}");
+    }
+    Ok(p)
 }
 
 /// The explorer's display settings as command-line values, named as the explorer names them.

@@ -12,9 +12,9 @@
 //! the roots their aeroelastic meaning.
 
 use crate::analysis::identify::{identify, Identified};
+use crate::analysis::mode::Mode;
 use crate::error::Result;
 use crate::numeric::decompose;
-use crate::physics::structure::{Family, Shares};
 use crate::physics::system::LinearSystem;
 use crate::preset::ValidPreset;
 use nalgebra::Complex;
@@ -29,94 +29,6 @@ pub enum Verdict {
     Flutter,
     /// A non-oscillatory mode (ω = 0) has σ ≥ 0.
     Divergence,
-}
-
-/// One eigenvalue λ = σ + iω with its identification.
-#[derive(Debug, Clone, Serialize)]
-pub struct Mode {
-    /// σ (1/s).
-    pub re: f64,
-    /// ω (rad/s), ≥ 0 (one entry per conjugate pair).
-    pub im: f64,
-    /// ω / 2π.
-    pub frequency_hz: f64,
-    /// ζ = −σ/|λ|.
-    pub damping_ratio: f64,
-    /// `flap k` / `edge k` / `torsion k`: the in-vacuo natural mode the root is named after
-    /// ([`crate::analysis::identify`]); `aero lag k` for aerodynamic-state roots.
-    pub label: String,
-    /// The family of that natural mode (none for an aerodynamic root).
-    pub family: Option<Family>,
-    /// Kinetic-energy shares of flap, edge and twist in the root's motion (docs/model.md §6.2).
-    pub shares: Shares,
-    /// Frequency (Hz) of the in-vacuo natural mode the root is named after.
-    pub in_vacuo_hz: Option<f64>,
-    /// An overdamped mode (two real roots): σ of its more stable root; `re` is the other.
-    pub second_re: Option<f64>,
-    /// Share of the eigenvector's energy in the structural coordinates (0…1).
-    pub structural_share: f64,
-    /// Structural coordinates q of the right eigenvector, unit norm; used for tracking and mode
-    /// shapes.
-    #[serde(skip)]
-    pub shape: Vec<Complex<f64>>,
-    /// Structural coordinates of the left eigenvector, unit norm (empty without aerodynamic
-    /// states, where only right vectors are computed); used for tracking.
-    #[serde(skip)]
-    pub left_shape: Vec<Complex<f64>>,
-}
-
-impl Mode {
-    /// A bare root `λ = re + i·im` (im ≥ 0) with its frequency and damping ratio, not yet named.
-    pub fn root(re: f64, im: f64) -> Mode {
-        let magnitude = re.hypot(im);
-        Mode {
-            re,
-            im,
-            frequency_hz: im / std::f64::consts::TAU,
-            damping_ratio: if magnitude > 0.0 {
-                -re / magnitude
-            } else {
-                0.0
-            },
-            label: String::new(),
-            family: None,
-            shares: Shares::from_energies(0.0, 0.0, 0.0),
-            in_vacuo_hz: None,
-            second_re: None,
-            structural_share: 1.0,
-            shape: Vec::new(),
-            left_shape: Vec::new(),
-        }
-    }
-
-    /// The name with the shares of its motion, as every command and pane reports a mode:
-    /// `torsion 1 (flap 38 %, twist 60 %)`; families below 0.5 % are left out.
-    pub fn described(&self) -> String {
-        match self.content() {
-            Some(content) => format!("{} ({content})", self.label),
-            None => self.label.clone(),
-        }
-    }
-
-    /// The shares of its motion, `flap 38 %, twist 60 %` (families below 0.5 % left out); none
-    /// for an aerodynamic root.
-    pub fn content(&self) -> Option<String> {
-        let parts: Vec<String> = [
-            ("flap", self.shares.flap),
-            ("edge", self.shares.edge),
-            ("twist", self.shares.twist),
-        ]
-        .iter()
-        .filter(|(_, s)| *s >= 0.005)
-        .map(|(name, s)| format!("{name} {:.0} %", 100.0 * s))
-        .collect();
-        (!parts.is_empty() && self.family.is_some()).then(|| parts.join(", "))
-    }
-
-    /// Whether the mode is an overdamped pair of real roots.
-    pub fn overdamped(&self) -> bool {
-        self.second_re.is_some()
-    }
 }
 
 /// All eigenvalues of one operating point.

@@ -27,7 +27,8 @@
 //! search with an error naming the bracket and the value.
 
 use crate::analysis::cancel::Cancel;
-use crate::analysis::eigen::{analyse, Mode, Stability, NEUTRAL_TOLERANCE};
+use crate::analysis::eigen::{analyse, Stability, NEUTRAL_TOLERANCE};
+use crate::analysis::mode::Mode;
 use crate::analysis::sweep::{failed_points, point_result, FailedPoint, PointResult};
 use crate::analysis::tracking::{follow_decided, Point, REFINEMENT_DEPTH};
 use crate::error::{Error, Result};

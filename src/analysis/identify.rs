@@ -25,7 +25,7 @@
 //!    real roots, two each (two slots per mode, filled one-to-one by the same cost): a mode
 //!    that aerodynamic damping has made non-oscillatory is one mode with two decay rates.
 
-use crate::analysis::eigen::Mode;
+use crate::analysis::mode::Mode;
 use crate::error::Result;
 use crate::numeric::{hungarian, shares};
 use crate::physics::structure::{NaturalMode, Structure};

@@ -15,7 +15,7 @@
 //! veering narrower than the step); then [`follow`] re-solves the midpoint and follows the branch over the
 //! two half steps, down to [`REFINEMENT_DEPTH`] halvings, rather than guess.
 
-use crate::analysis::eigen::Mode;
+use crate::analysis::mode::Mode;
 use crate::numeric::hungarian;
 use nalgebra::Complex;
 

@@ -1,6 +1,7 @@
 //! `flutterscope eigen`: eigenvalues of the linearised aeroelastic system and the verdict.
 
-use crate::analysis::eigen::{analyse, Mode, Stability, Verdict};
+use crate::analysis::eigen::{analyse, Stability, Verdict};
+use crate::analysis::mode::Mode;
 use crate::error::Result;
 use crate::preset::ValidPreset;
 

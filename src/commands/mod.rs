@@ -97,16 +97,6 @@ pub fn run(command: Command) -> Result<()> {
     }
 }
 
-/// A preset by name or path after `--set` overrides, its notes (what the overrides left unused)
-/// on stderr.
-pub fn load_preset(name: &str, overrides: &[String]) -> Result<crate::preset::ValidPreset> {
-    let p = crate::preset::Preset::load(name, overrides)?;
-    for note in &p.notes {
-        eprintln!("note: {note}");
-    }
-    Ok(p)
-}
-
 /// No subcommand in a terminal: the explorer on the default preset.
 pub fn run_default_tui(args: &crate::cli::TuiArgs) -> Result<()> {
     tui::run(args)
@@ -210,7 +200,7 @@ pub fn parse_vary(spec: &str) -> Result<(String, Vec<f64>)> {
         let count = if count.is_finite() {
             format!(
                 "{} (10 million) per --vary",
-                crate::analysis::sweep::beyond_limit(count, MAX_AXIS_POINTS)
+                crate::analysis::grid::beyond_limit(count, MAX_AXIS_POINTS)
             )
         } else {
             format!(

@@ -36,7 +36,7 @@ pub fn run(json: bool) -> Result<()> {
 
 /// One preset as TOML with every key, the defaults it leaves out included.
 pub fn show(name: &str, overrides: &[String]) -> Result<()> {
-    let p = super::load_preset(name, overrides)?;
+    let p = crate::cli::load_preset(name, overrides)?;
     p.overrides_act(overrides)?;
     super::print_text(&format!(
         "# {} (every key, defaults included)\n{}",

@@ -1,6 +1,8 @@
 //! `flutterscope simulate`: tip twist and flap over time.
 
-use crate::analysis::simulate::{simulate, Response, RunStatus};
+use crate::analysis::simulate::RunStatus;
+
+use crate::analysis::response::{simulate, Response};
 use crate::error::Result;
 use crate::preset::ValidPreset;
 use std::io::Write;

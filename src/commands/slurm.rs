@@ -5,7 +5,7 @@
 //! order) computes shard k/N, so concatenating the tasks' outputs in index order reproduces the
 //! unsharded sweep.
 
-use crate::analysis::sweep::Shard;
+use crate::analysis::grid::Shard;
 use crate::error::{Error, Result};
 
 /// The shard `--shard TEXT` names: `auto` from the Slurm environment, else `I/N`.

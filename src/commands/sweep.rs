@@ -2,7 +2,8 @@
 //! cores, optionally one shard of the grid.
 
 use super::stdout_error;
-use crate::analysis::sweep::{grid_sweep, Grid, Shard, SweepRow, SweepSummary};
+use crate::analysis::grid::{Grid, Shard};
+use crate::analysis::sweep::{grid_sweep, SweepRow, SweepSummary};
 use crate::error::{Error, Result};
 use crate::preset::ValidPreset;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};

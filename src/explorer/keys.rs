@@ -5,7 +5,7 @@ use crate::explorer::display::MarkerKind;
 use crate::preset::AeroModel;
 use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 
-/// What a key asks for. Pure intent: [`crate::explorer::state::update`] decides what it means.
+/// What a key asks for. Pure intent: [`crate::explorer::state::update::update`] decides what it means.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Action {
     FocusPrev,

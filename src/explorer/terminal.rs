@@ -9,7 +9,8 @@
 use crate::error::{Error, Result};
 use crate::explorer::engine::Engine;
 use crate::explorer::keys::action_for;
-use crate::explorer::state::{update, AppState, Effect, Msg};
+use crate::explorer::state::update::update;
+use crate::explorer::state::{AppState, Effect, Msg};
 use crate::explorer::worker::{Worker, JOBS_THREAD, SOLVER_THREAD};
 use crossbeam_channel::{unbounded, Receiver, RecvTimeoutError, Sender};
 use crossterm::cursor::{Hide, Show};

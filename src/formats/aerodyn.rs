@@ -4,7 +4,7 @@
 //! Columns are found by their header names, since newer files add columns (`BlCb`, `BlCenBn`,
 //! `BlCenBt`, …) that this reader does not need.
 
-use super::{column, read_text, value, whole, Source, Table};
+use super::text::{column, read_text, value, whole, Source, Table};
 use crate::error::Result;
 use std::path::Path;
 

@@ -6,7 +6,7 @@
 //! a dynamic-stall model, not to the static polar. Airfoil coordinates (`NumCoords`, inline or
 //! an `@"file"` reference) are not read.
 
-use super::{read_text, value, KeyLine, Row, Source, Table};
+use super::text::{read_text, value, KeyLine, Row, Source, Table};
 use crate::error::Result;
 use std::path::Path;
 
@@ -208,7 +208,8 @@ fn after_ua_block<'a>(src: &Source<'a>, from: usize, t: usize) -> Result<KeyLine
         match src.key_line(idx) {
             Some(k) if k.key.eq_ignore_ascii_case("NumAlf") => return Ok(k),
             Some(k)
-                if !k.key.eq_ignore_ascii_case("Re") && super::parse_number(k.key).is_none() =>
+                if !k.key.eq_ignore_ascii_case("Re")
+                    && super::text::parse_number(k.key).is_none() =>
             {
                 pos = idx + 1
             }

@@ -6,7 +6,7 @@
 //! the order (shear 1, shear 2, extension, bending 1, bending 2, torsion) — K44/K55 the two
 //! bending stiffnesses, K66 torsion — as printed, row by row.
 
-use super::{array, read_text, value, Source, Table};
+use super::text::{array, read_text, value, Source, Table};
 use crate::error::Result;
 use std::path::{Path, PathBuf};
 

@@ -5,7 +5,7 @@
 //! stiffness (and no shear-centre or elastic-axis offsets): nothing here offers one. A
 //! structural model that needs torsion must take it from elsewhere (BeamDyn, HAWC2 st).
 
-use super::{read_text, Row, Source, Table};
+use super::text::{read_text, Row, Source, Table};
 use crate::error::Result;
 use std::path::Path;
 
@@ -78,7 +78,7 @@ pub fn parse_blade(text: &str, origin: &str) -> Result<ElastoDynBlade> {
         "expected the distributed-properties header 'BlFract PitchAxis …'",
     )?;
     let names = src.tokens(header);
-    let col = |name| super::column(&src, &names, header, name);
+    let col = |name| super::text::column(&src, &names, header, name);
     let (c_fract, c_pitch, c_twist) = (col("BlFract")?, col("PitchAxis")?, col("StrcTwst")?);
     let (c_mass, c_flap, c_edge) = (col("BMassDen")?, col("FlpStff")?, col("EdgStff")?);
     let units = src.expect_text(
@@ -88,7 +88,7 @@ pub fn parse_blade(text: &str, origin: &str) -> Result<ElastoDynBlade> {
     let table = Table::new(n, "distributed-property rows", &names);
     let (rows, _) = src.rows(units + 1, &table)?;
     src.increasing(&rows, c_fract, "BlFract")?;
-    let at = |r: &Row, c| super::value(r, c);
+    let at = |r: &Row, c| super::text::value(r, c);
     Ok(ElastoDynBlade {
         damping,
         adjustment,

@@ -6,7 +6,7 @@
 //! as free text; data rows are read like Fortran list-directed reads, so text after the needed
 //! numbers of a row is ignored.
 
-use super::{read_text, value, whole, Row, Source, Table};
+use super::text::{read_text, value, whole, Row, Source, Table};
 use crate::error::Result;
 use std::path::Path;
 
@@ -136,7 +136,7 @@ pub fn parse_pc(text: &str, origin: &str) -> Result<PcFile> {
             let thickness_pct = src
                 .tokens(header)
                 .get(2)
-                .and_then(|t| super::parse_number(t))
+                .and_then(|t| super::text::parse_number(t))
                 .ok_or_else(|| {
                     src.err(
                         header,

@@ -9,7 +9,7 @@
 //! The file's first line conventionally gives the number of sets, but HAWC2 finds sets by their
 //! `#N` marks and so does this reader (the IEA 15MW noFPM file says 1 and holds 2).
 
-use super::{array, numbers, read_text, Row, Source, Table};
+use super::text::{array, numbers, read_text, Row, Source, Table};
 use crate::error::{Error, Result};
 use std::path::Path;
 

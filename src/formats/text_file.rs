@@ -13,7 +13,7 @@ pub trait TextFile: Sized {
     fn sibling(&self, name: &str) -> Self;
 }
 
-/// A file on disk, read through the size-capped reader ([`crate::formats::read_text`]).
+/// A file on disk, read through the size-capped reader (`formats::text::read_text`).
 #[derive(Debug, Clone, PartialEq)]
 pub struct DiskFile(pub std::path::PathBuf);
 
@@ -22,7 +22,7 @@ impl TextFile for DiskFile {
         self.0.display().to_string()
     }
     fn read(&self) -> Result<String> {
-        crate::formats::read_text(&self.0)
+        super::text::read_text(&self.0)
     }
     fn sibling(&self, name: &str) -> DiskFile {
         let dir = self.0.parent().unwrap_or_else(|| std::path::Path::new(""));

@@ -9,7 +9,7 @@
 //! permutation, found in O(n²), leaves the QR iteration only the active block B, which has none
 //! of that structure; when nothing isolates, B is the matrix itself.
 
-use super::eigen::Roots;
+use super::roots::Roots;
 use nalgebra::{Complex, DMatrix, DVector, Dyn, PermutationSequence};
 use std::ops::Range;
 
@@ -322,7 +322,8 @@ fn normalised(mut v: DVector<Complex<f64>>) -> DVector<Complex<f64>> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::numeric::eigen::{eigen_decomposition, Solver};
+    use crate::numeric::eigen::eigen_decomposition;
+    use crate::numeric::roots::Solver;
 
     /// Deterministic entries in (−1, 1).
     fn noise(i: usize, j: usize, seed: usize) -> f64 {

@@ -1,11 +1,11 @@
 //! Numerical linear algebra with no physics in it, one algorithm per file (as faer lays itself
 //! out). It exists so that the analyses read as physics and the solvers can be tested, measured
 //! and reused on plain matrices: the dense non-symmetric eigendecomposition behind the stability
-//! analysis ([`decompose`]) and its parts, isolation by permutation, balancing (also used by the
-//! simulator), faer's general eigendecomposition (also used for the strong-form natural modes),
-//! banded symmetric matrices and the lowest eigenpairs of a banded pencil by shift-invert block
-//! Lanczos (the tabulated blade's modes), and the optimal assignment that mode labelling and
-//! tracking share ([`hungarian`]). Nothing here depends on the rest of the crate but its error type.
+//! analysis ([`decompose`]) and its parts, isolation by permutation, balancing, the exponential
+//! propagators of the time response ([`phi_functions`]), faer's general eigendecomposition (also
+//! used for the strong-form natural modes), banded symmetric matrices and the lowest eigenpairs
+//! of a banded pencil by shift-invert block Lanczos (the tabulated blade's modes), and the
+//! optimal assignment that mode labelling and tracking share ([`hungarian`]). Nothing here depends on the rest of the crate but its error type.
 
 mod assignment;
 pub(crate) mod balance;
@@ -19,7 +19,10 @@ mod hessenberg_reduction;
 mod inverse_iteration;
 mod isolate;
 pub mod lanczos;
+pub mod phi_functions;
 pub mod root;
+mod roots;
 
 pub use assignment::hungarian;
-pub use eigen::{decompose, eigen_decomposition, shares, Roots, Solver};
+pub use eigen::{decompose, eigen_decomposition};
+pub use roots::{shares, Roots, Solver};

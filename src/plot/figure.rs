@@ -98,10 +98,6 @@ impl Series {
         self.style.color = Some(color);
         self
     }
-    pub fn with_width(mut self, width: u32) -> Self {
-        self.style.width = width.max(1);
-        self
-    }
 }
 
 /// Where a reference line runs.

@@ -5,7 +5,8 @@
 use super::{Figure, Guide, Mark, Marker, Panel, Series, PALETTE};
 use crate::analysis::campbell::{typical, ROTOR_SPEED_KEY};
 use crate::analysis::flutter::{BoundaryKind, Search};
-use crate::analysis::simulate::{Response, RunStatus};
+use crate::analysis::response::Response;
+use crate::analysis::simulate::RunStatus;
 use crate::analysis::sweep::{FailedPoint, SweepRow, TrackedMode, TrackedSweep};
 use crate::physics::laminate::LayupSection;
 

@@ -2,7 +2,7 @@
 //! presets and `--set` overrides, and names the numeric parameters that sweeps, flutter searches
 //! and the explorer vary; every out-of-range message is built here ([`KeySpec::check`]).
 
-use super::Preset;
+use super::schema::Preset;
 use crate::error::{Error, Result};
 
 /// Most finite elements `structure.min_elements` may ask for: the modes come from a dense

@@ -118,7 +118,7 @@ impl Preset {
             || name_or_path.contains('/');
         if looks_like_path || path.exists() {
             // The capped reader: a wrong path (a device, a FIFO, a huge file) fails at once.
-            let text = crate::formats::read_text(path).map_err(|e| Error::Preset {
+            let text = crate::formats::text::read_text(path).map_err(|e| Error::Preset {
                 origin: name_or_path.to_string(),
                 message: match e {
                     Error::Format { message, .. } => format!(

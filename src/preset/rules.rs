@@ -3,7 +3,7 @@
 //! every preset whatever its `section.source` (`flutterscope section` evaluates the layup of any
 //! preset).
 
-use super::{AeroModel, BladeSource, ContourShape, Preset, Schedule, SectionSource};
+use super::schema::{AeroModel, BladeSource, ContourShape, Preset, Schedule, SectionSource};
 use crate::error::{Error, Result};
 use crate::physics::blade::coupling::{coupling_ratio, indefinite_station};
 

@@ -181,7 +181,7 @@ fn iea15mw_rigid_against_the_flexible_operation_table() {
 /// axis the BEM sees (§12.2), and HAWC2's thrust–induction relation (`aero.high_thrust =
 /// "madsen"`). The blade bends downwind and twists toward feather under load, which brings power
 /// and thrust toward the table's at every wind speed from 7 m/s up; at 5 m/s (λ = 12.7, C_T ≈
-/// 0.94) the induction relation decides the power: Buhl's leaves it 12.6 % short. The 5 %
+/// 0.94) the induction relation decides the power: Buhl's leaves it 12.6 % short. The 5 % bound
 /// is met for power and thrust from 5 to 9 m/s and for power at 10 m/s; not for thrust at 10 m/s
 /// nor above rated (README, validation table; docs/model.md §12.4 says why). Each bound is what is
 /// achieved, rounded up: losing the cone, tilt, prebend, deflected geometry or the induction

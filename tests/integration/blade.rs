@@ -171,7 +171,7 @@ fn a_downwind_tip_load_bends_downwind_and_positive_coupling_twists_toward_feathe
     );
 }
 
-/// Issue 16's validation: the NREL 5MW blade from its BeamDyn files at 12.1 rpm, pitch 0, no
+/// Validation: the NREL 5MW blade from its BeamDyn files at 12.1 rpm, pitch 0, no
 /// aerodynamics, against OpenFAST's BeamDyn linearisation (presets/blades/nrel5mw/reference:
 /// 0.739, 1.110, 2.087 Hz): the first three within 1.5 % and flap, edge, flap; modes 4 and 5 are
 /// the second edge and third flap modes. (BeamDyn's modes 4–5, 3.785 and 4.953 Hz, are not yet
@@ -600,8 +600,8 @@ fn iea_15mw_beamdyn_and_hawc2_files_agree_on_the_section_centres() {
     assert!(widest > 0.8, "centres {widest} m apart at most");
 }
 
-/// Issue 16's acceptance: the classic and the fully populated st files describe the same blade,
-/// so their first eight frequencies agree at rest and at rated speed. The issue asks 2 %; they
+/// The classic and the fully populated st files describe the same blade,
+/// so their first eight frequencies agree at rest and at rated speed. The bound is 2 %; they
 /// agree to 1e-4, the FPM's 6×6 at the elastic centre reducing to the classic columns.
 #[test]
 fn iea_15mw_classic_and_fully_populated_st_files_give_the_same_frequencies() {
@@ -750,7 +750,7 @@ fn an_unphysical_hawc2_st_row_names_its_file_line_and_column() {
     assert_eq!(table.length(), 10.0);
 }
 
-/// Issue 16: convergence with the mesh and with the basis (docs/model.md §11.3–§11.4), NREL 5MW
+/// Convergence with the mesh and with the basis (docs/model.md §11.3–§11.4), NREL 5MW
 /// from BeamDyn at 12.1 rpm. Each `Mesh::following` refinement (48 → 96 → 192 → 384 elements)
 /// holds the coarser mesh's nodes and the elements are conforming and exactly integrated, so the
 /// first five frequencies fall monotonically (the finite elements bound them from above) and

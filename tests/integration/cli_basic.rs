@@ -1,6 +1,5 @@
-//! The headless binary end to end: `modes`, `reproduce table1|table2`, and bad input (issue 2
-//! item 4): every failure exits non-zero with a message naming file, key, value and range, and
-//! never panics.
+//! The headless binary end to end: `modes`, `reproduce table1|table2`, and bad input: every
+//! failure exits non-zero with a message naming file, key, value and range, and never panics.
 
 use assert_cmd::cargo::cargo_bin_cmd;
 use std::path::PathBuf;
@@ -136,7 +135,7 @@ fn reproduce_table2_meets_model_targets() {
     assert!(text.stdout.contains("paper Present") && text.stdout.contains("ours AC (Eq. 13)"));
 }
 
-// ---- bad input (issue 2 item 4) ----
+// ---- bad input ----
 
 #[test]
 fn malformed_toml_names_the_file() {
@@ -297,7 +296,7 @@ fn presets_show_prints_every_key_with_defaults_and_overrides() {
     );
 }
 
-// ---- hostile input (issue 15): errors that name what is wrong and where ----
+// ---- hostile input: errors that name what is wrong and where ----
 
 /// A centre of mass so far from the elastic axis that the inertia about it would be negative
 /// used to surface as "mass matrix is not positive definite"; the rule names keys and values.
@@ -492,7 +491,7 @@ fn a_huge_snapshot_size_is_too_large() {
 }
 
 /// Still air with the stall model: the frozen aerodynamic states are neutral roots (σ = 0), and the
-/// verdict says so rather than claiming every root decays (issue 15).
+/// verdict says so rather than claiming every root decays.
 #[test]
 fn still_air_verdict_names_the_neutral_roots() {
     let r = run(&[
@@ -559,7 +558,7 @@ fn propeller_moment_divergence_names_its_keys() {
     );
 }
 
-/// Issue 16's blade keys through the binary: ranges and the rules across them name the keys,
+/// The blade keys through the binary: ranges and the rules across them name the keys,
 /// exit 1, and never panic.
 #[test]
 fn blade_keys_name_themselves_in_errors() {

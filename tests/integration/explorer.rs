@@ -6,8 +6,9 @@ use crossbeam_channel::{bounded, unbounded, Receiver, Sender};
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use flutterscope::analysis::campbell::Campbell;
 use flutterscope::analysis::cancel::Cancel;
-use flutterscope::analysis::eigen::{Mode, Stability, Verdict};
+use flutterscope::analysis::eigen::{Stability, Verdict};
 use flutterscope::analysis::flutter::{Boundary, BoundaryKind, Search, SearchRange};
+use flutterscope::analysis::mode::Mode;
 use flutterscope::analysis::simulate::{RunStatus, TipSample};
 use flutterscope::analysis::sweep::{TrackedMode, TrackedSweep};
 use flutterscope::error::{Error, Result};
@@ -16,9 +17,10 @@ use flutterscope::explorer::headless::{
     self, parse_size, preset_entries, render_text, settle, settled_state,
 };
 use flutterscope::explorer::keys::{action_for, Action, BINDINGS};
-use flutterscope::explorer::state::{
-    update, AppState, CampbellAxis, Effect, Msg, Options, ViewMode, PARAMS,
-};
+use flutterscope::explorer::state::jobs::CampbellAxis;
+use flutterscope::explorer::state::params::PARAMS;
+use flutterscope::explorer::state::update::update;
+use flutterscope::explorer::state::{AppState, Effect, Msg, Options, ViewMode};
 use flutterscope::explorer::worker::Worker;
 use flutterscope::explorer::{Engine, Physics, Solve, Solved, Stream};
 use flutterscope::physics::section::SectionProps;
@@ -1351,7 +1353,7 @@ fn the_solved_shape_of_a_structural_root_is_the_natural_mode_shape() {
     }
 }
 
-/// Along the turbine's schedule (issue 14 item 2): a real blade's rotor speed and pitch are the
+/// Along the turbine's schedule: a real blade's rotor speed and pitch are the
 /// schedule's at the wind speed and shown as following it (↻); dragging the rotor speed
 /// overrides it (overspeed) while the pitch still follows; `o` puts both back on the schedule.
 #[test]
@@ -1385,7 +1387,7 @@ fn rotor_speed_and_pitch_follow_the_schedule_until_overridden() {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Issue 14: the Campbell view against wind speed along the schedule, and margins along the
+// The Campbell view against wind speed along the schedule, and margins along the
 // schedule and the coupling.
 // ---------------------------------------------------------------------------------------------
 

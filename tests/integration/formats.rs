@@ -6,9 +6,8 @@
 use flutterscope::error::{Error, Result};
 use flutterscope::formats::airfoil::{AirfoilFile, PolarColumns};
 use flutterscope::formats::hawc2_st::{StFile, StRows};
-use flutterscope::formats::{
-    aerodyn, airfoil, beamdyn, elastodyn, hawc2_aero, hawc2_st, read_text, MAX_FILE_BYTES,
-};
+use flutterscope::formats::text::{read_text, MAX_FILE_BYTES};
+use flutterscope::formats::{aerodyn, airfoil, beamdyn, elastodyn, hawc2_aero, hawc2_st};
 use flutterscope::preset::Preset;
 use std::path::{Path, PathBuf};
 

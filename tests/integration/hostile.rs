@@ -1,4 +1,4 @@
-//! The hostile-input corpus (issue 15): whatever a user, a script or a damaged file feeds the
+//! The hostile-input corpus: whatever a user, a script or a damaged file feeds the
 //! program, it answers with finite numbers or an error that names what was wrong; never a panic,
 //! never a NaN. Four parts:
 //!
@@ -19,7 +19,7 @@
 use assert_cmd::cargo::cargo_bin_cmd;
 use flutterscope::analysis::eigen::{analyse, Stability};
 use flutterscope::analysis::flutter::{flutter_search, Search};
-use flutterscope::analysis::simulate::{simulate, Response};
+use flutterscope::analysis::response::{simulate, Response};
 use flutterscope::error::Error;
 use flutterscope::model::for_preset;
 use flutterscope::physics::structure::NaturalMode;

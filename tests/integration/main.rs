@@ -1,6 +1,7 @@
 //! The integration tests, one binary (one link on the 2-core CI machine): each module is an
 //! area of the program, driven through the library or the real `flutterscope` binary.
 
+mod architecture;
 mod bem;
 mod blade;
 mod cli_basic;

@@ -1,4 +1,4 @@
-//! `flutterscope modes` on a real blade (issue 16 items 5–8): the NREL 5MW preset from its
+//! `flutterscope modes` on a real blade: the NREL 5MW preset from its
 //! BeamDyn files, its families, numbers, shares and damping against OpenFAST's BeamDyn
 //! linearisation, the mode shapes (text, JSON, plot), where blade files resolve from, and the
 //! refusal of ElastoDyn blade files.
@@ -90,7 +90,7 @@ fn num(v: &Value, key: &str) -> f64 {
         .unwrap_or_else(|| panic!("{key} is not a number in {v}"))
 }
 
-/// Issue 16's validation through the command line: the first three modes at 12.1 rpm as the
+/// Validation through the command line: the first three modes at 12.1 rpm as the
 /// library test measures them (tests/integration/blade.rs: 0.7436, 1.1194, 2.0562 Hz), flap,
 /// edge, flap, with their families, numbers and shares.
 #[test]
@@ -136,7 +136,7 @@ fn nrel5mw_modes_have_families_numbers_shares_and_damping() {
         let zeta = num(m, "damping_ratio");
         assert!(zeta > 0.0 && zeta < 0.2, "{m}");
     }
-    // Modes 4–12 (issue 16 asks which families modes 4–5 are): edge 2, flap 3, then the first
+    // Modes 4–12 (which families modes 4–5 are): edge 2, flap 3, then the first
     // torsion mode at 5.58 Hz.
     let families: Vec<&str> = modes
         .iter()

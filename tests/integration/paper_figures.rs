@@ -1,4 +1,4 @@
-//! `reproduce fig2..fig5` (issue 6): each figure's series have the expected count and lengths
+//! `reproduce fig2..fig5`: each figure's series have the expected count and lengths
 //! and only finite values; the findings name ply angles from the paper's set; the figures draw.
 
 use flutterscope::commands::reproduce::paper_figures::{self, TipQuantity, MODELS, PLY_ANGLES};

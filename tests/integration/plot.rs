@@ -438,7 +438,8 @@ fn malformed_figures_are_usage_errors_not_panics() {
 
 mod from_results {
     use flutterscope::analysis::flutter::{Boundary, BoundaryKind, Search};
-    use flutterscope::analysis::simulate::{Response, RunStatus};
+    use flutterscope::analysis::response::Response;
+    use flutterscope::analysis::simulate::RunStatus;
     use flutterscope::analysis::sweep::{RowStatus, SweepRow, TrackedMode, TrackedSweep};
     use flutterscope::plot::from_results;
     use flutterscope::plot::{GuideKind, PALETTE};

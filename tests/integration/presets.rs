@@ -1,6 +1,6 @@
-//! Presets (issue 2 item 4): the shipped paper preset, the key table, `--set` overrides, and the
+//! Presets: the shipped paper preset, the key table, `--set` overrides, and the
 //! section sources behind `section.source`; the blade sources behind `blade.source` and their
-//! keys (issue 16 item 5).
+//! keys.
 
 use flutterscope::error::Error;
 use flutterscope::model::assemble;
@@ -53,7 +53,7 @@ fn every_builtin_preset_assembles() {
     }
 }
 
-/// Issue 16 item 6: the NREL 5MW preset is the blade of its BeamDyn files, at rated speed.
+/// The NREL 5MW preset is the blade of its BeamDyn files, at rated speed.
 #[test]
 fn nrel5mw_is_the_5mw_blade_from_its_beamdyn_files() {
     let p = Preset::load("nrel5mw", &[]).unwrap();
@@ -462,13 +462,12 @@ fn layup_source_is_close_to_table_on_the_papers_box() {
     }
 }
 
-/// Issue 5 item 5, issue 3 item 7 and issue 14 item 8: the demo blade takes its stiffness from
-/// the layup, so the ply angle acts continuously; its rotor-speed flutter boundary lies inside
-/// the explorer's slider range and moves visibly with the ply angle; and it is a blade of
-/// realistic mass for its size: 10–25 kg/m on 8.4 m (Sandia's 9 m CX-100 weighs about 170 kg),
-/// a Lock number ρ·a·c·R⁴/I_b between 5 and 12 (the old 3.5 kg/m demo had 30, which overdamped
-/// its flap modes), a radius of gyration of 10–30 % of the chord, and flap 1 above 1P at its
-/// operating speed.
+/// The demo blade takes its stiffness from the layup, so the ply angle acts continuously; its
+/// rotor-speed flutter boundary lies inside the explorer's slider range and moves visibly with the
+/// ply angle; and it is a blade of realistic mass for its size: 10–25 kg/m on 8.4 m (Sandia's 9 m
+/// CX-100 weighs about 170 kg), a Lock number ρ·a·c·R⁴/I_b between 5 and 12 (the old 3.5 kg/m demo
+/// had 30, which overdamped its flap modes), a radius of gyration of 10–30 % of the chord, and
+/// flap 1 above 1P at its operating speed.
 #[test]
 fn demo_blade_follows_the_ply_angle_through_its_layup() {
     use flutterscope::analysis::flutter::flutter_boundary;

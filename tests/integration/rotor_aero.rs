@@ -202,7 +202,7 @@ fn flap_is_heavily_damped_edge_lightly_and_stall_takes_the_edge_damping_away() {
     assert!(damping(20.0, "flap 1") < 0.25 * damping(14.0, "flap 1"));
 }
 
-/// Overspeed flutter (issue 17 item 6): along the rotor speed at the preset's wind and scheduled
+/// Overspeed flutter: along the rotor speed at the preset's wind and scheduled
 /// pitch, the IEA 15MW blade's boundary, also as a multiple of its rated rotor speed.
 #[test]
 fn overspeed_flutter_is_quoted_against_the_rated_rotor_speed() {
@@ -230,7 +230,7 @@ fn overspeed_flutter_is_quoted_against_the_rated_rotor_speed() {
     assert!(f > 0.6 && f < 4.2, "{f}");
 }
 
-/// The aeroelastic Campbell diagram along the schedule (issue 17 item 5): every wind speed of
+/// The aeroelastic Campbell diagram along the schedule: every wind speed of
 /// the IEA 15MW's operating range solves, at the table's rotor speed and pitch, and the first
 /// edge mode stays lightly damped while the first flap mode is heavily damped below rated.
 #[test]
@@ -259,7 +259,7 @@ fn the_campbell_along_the_schedule_solves_every_wind_speed() {
 
 /// With the air taken away the aeroelastic eigenvalues are the structure's own: every root of
 /// a real blade at its scheduled rotor speed and pitch has the natural frequency (|λ|/2π) and
-/// modal damping ratio of one of the blade's rotating modes there, one to one (issue 17).
+/// modal damping ratio of one of the blade's rotating modes there, one to one.
 #[test]
 fn without_air_the_roots_are_the_structural_modes() {
     use flutterscope::analysis::eigen::analyse;

@@ -1,4 +1,4 @@
-//! Stall flutter and time responses (issue 7; docs/model.md §5.3, §6, §7): the ONERA model in the
+//! Stall flutter and time responses (docs/model.md §5.3, §6, §7): the ONERA model in the
 //! system (equilibrium, Jacobian, eigenvalues, agreement with Theodorsen below stall), the
 //! exponential stepper against exact and independent solutions, the rigid form's one-way
 //! coupling, divergence handling, streaming, and the `simulate` command's JSON.
@@ -6,8 +6,10 @@
 use assert_cmd::Command;
 use flutterscope::analysis::eigen::{analyse, analyse_system, linear_system};
 use flutterscope::analysis::flutter::{flutter_boundary, BoundaryKind};
-use flutterscope::analysis::simulate::{propagators, simulate, RunStatus, Simulator};
+use flutterscope::analysis::response::{simulate, simulator};
+use flutterscope::analysis::simulate::RunStatus;
 use flutterscope::analysis::sweep::track;
+use flutterscope::numeric::phi_functions::propagators;
 use flutterscope::physics::system::System;
 use flutterscope::preset::{Preset, ValidPreset};
 use nalgebra::{DMatrix, DVector};
@@ -185,7 +187,7 @@ fn linear_response_matches_the_exact_exponential_solution() {
             "simulation.kick_flap=0.05",
         ],
     );
-    let mut sim = Simulator::new(&p).unwrap();
+    let mut sim = simulator(&p).unwrap();
     let lin = sim.linear().clone();
     let y0 = sim.state() - &lin.x_eq;
     let samples = sim.advance(2001).unwrap();
@@ -319,7 +321,7 @@ fn stall_transient_from_rest_matches_a_fine_runge_kutta_reference() {
     let system = flutterscope::model::system(&p).unwrap();
     let reference = rk4_tip(&system, &DVector::zeros(system.dim()), 1e-5, 500, 21);
     let run = |tolerance: Option<f64>| {
-        let mut sim = Simulator::new(&p).unwrap();
+        let mut sim = simulator(&p).unwrap();
         if let Some(tol) = tolerance {
             sim.set_tolerance(tol, tol * p.blade.length);
         }
@@ -364,7 +366,7 @@ fn rigid_forcing_leaves_the_aero_states_independent_of_the_structure() {
     let run = |kick: &str| {
         let mut o: Vec<&str> = base.to_vec();
         o.push(kick);
-        let mut sim = Simulator::new(&stall(&o)).unwrap();
+        let mut sim = simulator(&stall(&o)).unwrap();
         let mut states = vec![];
         for _ in 0..100 {
             sim.advance(1).unwrap();
@@ -410,9 +412,9 @@ fn diverging_stall_run_ends_cleanly() {
 #[test]
 fn streaming_equals_one_run_and_kicks_move_the_tip() {
     let p = stall(&[]);
-    let mut a = Simulator::new(&p).unwrap();
+    let mut a = simulator(&p).unwrap();
     let whole = a.advance(100).unwrap();
-    let mut b = Simulator::new(&p).unwrap();
+    let mut b = simulator(&p).unwrap();
     let mut parts = b.advance(37).unwrap();
     parts.extend(b.advance(63).unwrap());
     assert_eq!(whole, parts);
@@ -597,7 +599,7 @@ fn rigid_transient_matches_a_fine_runge_kutta_reference() {
     ]);
     let system = flutterscope::model::system(&p).unwrap();
     let reference = rk4_tip(&system, &DVector::zeros(system.dim()), 1e-5, 500, 21);
-    let mut sim = Simulator::new(&p).unwrap();
+    let mut sim = simulator(&p).unwrap();
     let samples = sim.advance(21).unwrap();
     for (s, (twist, flap)) in samples.iter().zip(&reference) {
         assert!(

@@ -4,7 +4,8 @@
 use assert_cmd::Command;
 use flutterscope::analysis::eigen::{analyse, analyse_system, linear_system};
 use flutterscope::analysis::flutter::{flutter_boundary, BoundaryKind};
-use flutterscope::analysis::simulate::{simulate, RunStatus, Simulator};
+use flutterscope::analysis::response::{simulate, simulator};
+use flutterscope::analysis::simulate::{RunStatus, Simulator};
 use flutterscope::analysis::sweep::track;
 use flutterscope::error::Error;
 use flutterscope::model::assemble;
@@ -311,9 +312,9 @@ fn rest_start_settles_to_equilibrium_and_flutter_diverges_cleanly() {
 #[test]
 fn incremental_stepping_equals_one_run_and_kicks_move_the_tip() {
     let p = preset("demo-blade", &[]);
-    let mut a = Simulator::new(&p).unwrap();
+    let mut a = simulator(&p).unwrap();
     let whole = a.advance(100).unwrap();
-    let mut b = Simulator::new(&p).unwrap();
+    let mut b = simulator(&p).unwrap();
     let mut parts = b.advance(37).unwrap();
     parts.extend(b.advance(63).unwrap());
     assert_eq!(whole, parts);

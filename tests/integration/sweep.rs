@@ -1,7 +1,8 @@
 //! Sweeps: shards merge into the whole, CSV and JSON through the real binary.
 
 use assert_cmd::Command;
-use flutterscope::analysis::sweep::{grid_sweep, Grid, Shard, SweepRow};
+use flutterscope::analysis::grid::{Grid, Shard};
+use flutterscope::analysis::sweep::{grid_sweep, SweepRow};
 use flutterscope::preset::{Preset, ValidPreset};
 
 fn rows(p: &ValidPreset, grid: &Grid, shard: Option<Shard>) -> Vec<SweepRow> {

@@ -50,7 +50,7 @@ fn paper_blade_as_table(p: &ValidPreset) -> BladeTable {
     .unwrap()
 }
 
-/// Issue 16's validation: "a uniform tabulated blade equals the existing Galerkin model of the
+/// Validation: "a uniform tabulated blade equals the existing Galerkin model of the
 /// paper's blade to 0.1 %", for the first three flap and first two torsion modes, still and at the
 /// preset's rotor speed. The Galerkin model's tension term on twist (`F_c K_A² φ'²`, §3) has no
 /// counterpart in the files of real blades (§11.2), so it is set to zero for the comparison. Under

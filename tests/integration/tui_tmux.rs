@@ -221,7 +221,7 @@ fn explorer_runs_adjusts_helps_and_quits_cleanly_in_a_terminal() {
     s.quit_cleanly();
 }
 
-/// Issue 14: a real blade in a real terminal. `--set` applies to the starting preset (the
+/// A real blade in a real terminal. `--set` applies to the starting preset (the
 /// coupling opens at 0.10 and comes back with it after cycling away); the coupling knob is
 /// selected and dragged, each step re-solved; the mode-shape pane opens and steps to the next
 /// mode; `q` ends with status 0 and a restored terminal.
@@ -271,7 +271,7 @@ fn a_real_blade_drags_its_coupling_shows_its_modes_and_quits_cleanly() {
     s.quit_cleanly();
 }
 
-/// Issue 14 along the schedule, in a real terminal: the wind speed moves the operating point
+/// A real blade along its schedule, in a real terminal: the wind speed moves the operating point
 /// (rotor speed follows, `↻`), the wind-speed margin runs cut-in to cut-out, the coupling drags,
 /// `w` opens the Campbell view against wind speed (computing in the background, then drawn with
 /// the schedule's harmonics) and toggles back to rotor speed, and `q` ends cleanly.
@@ -377,7 +377,7 @@ const FLOOD_KEYS: &[&str] = &[
 const BATCH: usize = 50;
 const FLOOD: usize = 3000;
 
-/// Issue 15: the explorer under abuse. A few thousand random keys (fixed seed) with preset
+/// The explorer under abuse. A few thousand random keys (fixed seed) with preset
 /// cycling, aero-model cycling through ONERA and wind and rotor speed dragged to zero, the window
 /// resized to 20×5 and 400×120 in between; then paused, it must fall back to idle, and `q` must
 /// end it with status 0 and a restored terminal. Prints its CPU measurements.

@@ -8,8 +8,10 @@
 //! "Rightmost" eigenvalues are all roots (structural and aerodynamic-lag, one per conjugate
 //! pair) ordered by real part, largest first — the paper's "1st, 2nd, … eigenvalue" (§4.2).
 
-use crate::analysis::eigen::{analyse, Mode, Stability};
-use crate::analysis::simulate::{sample_count, simulate, RunStatus};
+use crate::analysis::eigen::{analyse, Stability};
+use crate::analysis::mode::Mode;
+use crate::analysis::response::{sample_count, simulate};
+use crate::analysis::simulate::RunStatus;
 use crate::analysis::solve::solve;
 use crate::error::Result;
 use crate::plot::{self, Figure, Guide, Mark, Panel, Series};

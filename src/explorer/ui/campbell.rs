@@ -6,7 +6,8 @@
 use super::{marker, pane, sig, Theme};
 use crate::analysis::campbell::{oscillates, ROTOR_SPEED_KEY};
 use crate::analysis::sweep::TrackedMode;
-use crate::explorer::state::{AppState, CampbellAxis};
+use crate::explorer::state::jobs::CampbellAxis;
+use crate::explorer::state::AppState;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::{Color, Style};
 use ratatui::text::{Line, Span};

@@ -4,7 +4,7 @@
 //! An overdamped mode shows no frequency. The least-damped mode is highlighted.
 
 use super::{pane, sig, Theme};
-use crate::analysis::eigen::Mode;
+use crate::analysis::mode::Mode;
 use crate::explorer::state::AppState;
 use ratatui::layout::{Constraint, Rect};
 use ratatui::style::Style;

@@ -3,7 +3,8 @@
 //! section stiffnesses C22, C23, C33, or for a tabulated blade which blade it is.
 
 use super::{pane, sig, Theme};
-use crate::explorer::state::{offered_rows, AppState, ParamKind, PARAMS};
+use crate::explorer::state::params::{offered_rows, ParamKind, PARAMS};
+use crate::explorer::state::AppState;
 use crate::preset::{AeroModel, ValidPreset};
 use ratatui::layout::Rect;
 use ratatui::text::{Line, Span};
@@ -18,7 +19,7 @@ pub fn height(p: &ValidPreset) -> u16 {
 
 /// Whether an offered parameter changes nothing until another setting changes, so the pane dims
 /// it: wind and tunnel speed without aerodynamics (`a` turns them on). Knobs that can change
-/// nothing for the preset's blade are not offered at all ([`crate::explorer::state::offered`]).
+/// nothing for the preset's blade are not offered at all ([`crate::explorer::state::params::offered`]).
 fn matters_not(p: &ValidPreset, kind: &ParamKind) -> bool {
     match kind {
         ParamKind::Number { key, .. } => {

@@ -4,7 +4,7 @@
 //! with the solve (`Solved::shapes`, docs/model.md §6.5); this pane only draws them.
 
 use super::{marker, pane, sig, Theme};
-use crate::analysis::eigen::Mode;
+use crate::analysis::mode::Mode;
 use crate::analysis::mode_shape::ModeShape;
 use crate::explorer::state::{frequency_order, AppState};
 use crate::physics::structure::Family;

@@ -4,12 +4,14 @@
 
 use super::{sig, Theme};
 use crate::analysis::campbell::ROTOR_SPEED_KEY;
-use crate::analysis::eigen::{Mode, Stability, Verdict};
+use crate::analysis::eigen::{Stability, Verdict};
 use crate::analysis::flutter::{Boundary, BoundaryKind, Search};
-use crate::explorer::state::{
-    shown_decimals, unit, value_text, AppState, BoundaryJob, ParamKind, Side, ViewMode,
-    COUPLING_KEY, PARAMS, SOLVE_BUDGET_S,
+use crate::analysis::mode::Mode;
+use crate::explorer::state::jobs::{BoundaryJob, Side};
+use crate::explorer::state::params::{
+    shown_decimals, unit, value_text, ParamKind, COUPLING_KEY, PARAMS,
 };
+use crate::explorer::state::{AppState, ViewMode, SOLVE_BUDGET_S};
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};

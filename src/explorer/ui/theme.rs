@@ -128,10 +128,6 @@ impl Theme {
         self.pick(Color::DarkGray, 240, (100, 100, 100))
     }
 
-    pub fn unstable_color(&self) -> Color {
-        self.pick(Color::Red, 196, (240, 60, 60))
-    }
-
     /// Colour of a trail `age` steps old out of `len`: fading towards the background.
     pub fn trail(&self, age: usize, len: usize) -> Color {
         let f = (age as f64 + 1.0) / (len.max(1) as f64 + 1.0); // 0 (new) … 1 (old)

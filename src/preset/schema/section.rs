@@ -1,0 +1,157 @@
+//! The `[section]` table: the cross-section's properties, given directly, from a table, or from
+//! a laminate layup on a thin-walled contour.
+
+use serde::{Deserialize, Serialize};
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SectionSource {
+    Direct,
+    Table,
+    Layup,
+}
+
+impl SectionSource {
+    /// As written in a preset.
+    pub fn name(self) -> &'static str {
+        match self {
+            SectionSource::Direct => "direct",
+            SectionSource::Table => "table",
+            SectionSource::Layup => "layup",
+        }
+    }
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Section {
+    pub source: SectionSource,
+    /// CAS ply angle θ (deg): `[θ]` upper wall, `[−θ]` lower wall (table and layup sources).
+    pub ply_angle: f64,
+    /// m (kg/m). Ignored by the layup source, which computes it from the contour.
+    pub mass_per_length: f64,
+    /// I (kg·m), polar mass moment about the elastic axis per length.
+    pub polar_inertia: f64,
+    /// K_A² (m²).
+    pub ka2: f64,
+    /// K_m1² (m²), thickness direction.
+    pub km1_2: f64,
+    /// K_m2² (m²), chordwise.
+    pub km2_2: f64,
+    /// Chord c (m).
+    pub chord: f64,
+    /// e_a = x_EA − x_AC (m), positive when the elastic axis is aft of the aerodynamic centre.
+    pub ea_offset: f64,
+    /// d = x_cg − x_EA (m), positive aft.
+    pub cg_offset: f64,
+    /// Torsion stiffness C22 (N·m²), direct source.
+    pub c22: f64,
+    /// Bending–twist coupling C23 (N·m²), direct source.
+    pub c23: f64,
+    /// Flap bending stiffness C33 (N·m²), direct source.
+    pub c33: f64,
+    pub layup: Layup,
+    pub contour: Contour,
+}
+
+/// Ply material and lamination for `source = "layup"` (docs/model.md §2.1).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Layup {
+    /// E11 (Pa), fibre direction.
+    pub e11: f64,
+    /// E22 (Pa), transverse.
+    pub e22: f64,
+    /// ν12.
+    pub nu12: f64,
+    /// G12 (Pa).
+    pub g12: f64,
+    /// Ply density ρ (kg/m³).
+    pub density: f64,
+    /// Ply thickness (m).
+    pub ply_thickness: f64,
+    /// Plies per wall.
+    pub plies: usize,
+    /// Non-structural mass per length (kg/m), e.g. leading-edge ballast.
+    pub nonstructural_mass: f64,
+    /// Its chordwise position relative to the elastic axis (m, positive aft).
+    pub nonstructural_position: f64,
+}
+
+pub use crate::physics::laminate::ContourShape;
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Contour {
+    pub shape: ContourShape,
+    /// Box mid-line width (m).
+    pub width: f64,
+    /// Box mid-line height (m).
+    pub height: f64,
+    /// Ellipse chordwise semi-axis (m).
+    pub a: f64,
+    /// Ellipse thickness semi-axis (m).
+    pub b: f64,
+}
+
+impl Default for Section {
+    fn default() -> Self {
+        Section {
+            source: SectionSource::Table,
+            ply_angle: 45.0,
+            mass_per_length: 0.06377,
+            polar_inertia: 2.3e-6,
+            ka2: 3.6e-5,
+            km1_2: 1.4e-6,
+            km2_2: 3.47e-5,
+            chord: 0.01833,
+            ea_offset: -0.01833 / 4.0,
+            cg_offset: 0.0,
+            // The paper's Table 1 at 45°, units corrected (docs/model.md §2).
+            c22: 0.90509,
+            c23: -0.15919,
+            c33: 0.45931,
+            layup: Layup::default(),
+            contour: Contour::default(),
+        }
+    }
+}
+
+impl Layup {
+    /// The paper's laminate (docs/model.md §2.1): its glass/epoxy ply and six 0.127 mm plies per wall.
+    pub const PAPER: Layup = Layup {
+        e11: 25.8e9,
+        e22: 8.7e9,
+        nu12: 0.34,
+        g12: 3.5e9,
+        density: 1672.0,
+        ply_thickness: 0.127e-3,
+        plies: 6,
+        nonstructural_mass: 0.0,
+        nonstructural_position: 0.0,
+    };
+}
+
+impl Default for Layup {
+    fn default() -> Self {
+        Layup::PAPER
+    }
+}
+
+impl Contour {
+    /// The flat box whose layup reproduces the paper's Table 1 (docs/model.md §2): mid-line
+    /// 18.33 × 2.470 mm.
+    pub const PAPER_BOX: Contour = Contour {
+        shape: ContourShape::Box,
+        width: 0.01833,
+        height: 0.00247,
+        a: 0.01833 / 2.0,
+        b: 0.00247 / 2.0,
+    };
+}
+
+impl Default for Contour {
+    fn default() -> Self {
+        Contour::PAPER_BOX
+    }
+}
