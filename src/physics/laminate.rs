@@ -94,32 +94,43 @@ pub struct LayupInput {
     pub origin: String,
 }
 
+/// The paper's glass/epoxy ply (docs/model.md §2.1).
+pub const PAPER_MATERIAL: PlyMaterial = PlyMaterial {
+    e11: 25.8e9,
+    e22: 8.7e9,
+    nu12: 0.34,
+    g12: 3.5e9,
+};
+/// The paper's ply density (kg/m³), ply thickness (m) and plies per wall.
+pub const PAPER_DENSITY: f64 = 1672.0;
+pub const PAPER_PLY_THICKNESS: f64 = 0.127e-3;
+pub const PAPER_PLIES: usize = 6;
+
+/// The flat box whose layup reproduces the paper's Table 1 (docs/model.md §2): mid-line
+/// 18.33 × 2.470 mm, on the paper's chord.
+pub const PAPER_BOX: Contour = Contour {
+    shape: ContourShape::Box,
+    width: 0.01833,
+    height: 0.00247,
+    a: 0.01833 / 2.0,
+    b: 0.00247 / 2.0,
+    chord: 0.01833,
+};
+
 impl LayupInput {
-    /// The paper's laminate (six plies of glass–epoxy, docs/model.md §2) at `ply_angle` on the
-    /// flat box of mid-line 18.33 × 2.470 mm whose layup reproduces Table 1.
+    /// The paper's laminate at `ply_angle` on [`PAPER_BOX`], elastic axis a quarter chord ahead
+    /// of the aerodynamic centre.
     pub fn paper(ply_angle: f64) -> LayupInput {
         LayupInput {
-            material: PlyMaterial {
-                e11: 25.8e9,
-                e22: 8.7e9,
-                nu12: 0.34,
-                g12: 3.5e9,
-            },
-            density: 1672.0,
-            ply_thickness: 0.127e-3,
-            plies: 6,
+            material: PAPER_MATERIAL,
+            density: PAPER_DENSITY,
+            ply_thickness: PAPER_PLY_THICKNESS,
+            plies: PAPER_PLIES,
             ply_angle,
             nonstructural_mass: 0.0,
             nonstructural_position: 0.0,
-            contour: Contour {
-                shape: ContourShape::Box,
-                width: 0.01833,
-                height: 0.00247,
-                a: 0.01833 / 2.0,
-                b: 0.00247 / 2.0,
-                chord: 0.01833,
-            },
-            ea_offset: -0.01833 / 4.0,
+            contour: PAPER_BOX,
+            ea_offset: -PAPER_BOX.chord / 4.0,
             cg_offset: 0.0,
             origin: "paper Table 1 layup".into(),
         }

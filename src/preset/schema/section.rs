@@ -78,6 +78,7 @@ pub struct Layup {
     pub nonstructural_position: f64,
 }
 
+use crate::physics::laminate;
 pub use crate::physics::laminate::ContourShape;
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -120,13 +121,13 @@ impl Default for Section {
 impl Layup {
     /// The paper's laminate (docs/model.md §2.1): its glass/epoxy ply and six 0.127 mm plies per wall.
     pub const PAPER: Layup = Layup {
-        e11: 25.8e9,
-        e22: 8.7e9,
-        nu12: 0.34,
-        g12: 3.5e9,
-        density: 1672.0,
-        ply_thickness: 0.127e-3,
-        plies: 6,
+        e11: laminate::PAPER_MATERIAL.e11,
+        e22: laminate::PAPER_MATERIAL.e22,
+        nu12: laminate::PAPER_MATERIAL.nu12,
+        g12: laminate::PAPER_MATERIAL.g12,
+        density: laminate::PAPER_DENSITY,
+        ply_thickness: laminate::PAPER_PLY_THICKNESS,
+        plies: laminate::PAPER_PLIES,
         nonstructural_mass: 0.0,
         nonstructural_position: 0.0,
     };
@@ -142,11 +143,11 @@ impl Contour {
     /// The flat box whose layup reproduces the paper's Table 1 (docs/model.md §2): mid-line
     /// 18.33 × 2.470 mm.
     pub const PAPER_BOX: Contour = Contour {
-        shape: ContourShape::Box,
-        width: 0.01833,
-        height: 0.00247,
-        a: 0.01833 / 2.0,
-        b: 0.00247 / 2.0,
+        shape: laminate::PAPER_BOX.shape,
+        width: laminate::PAPER_BOX.width,
+        height: laminate::PAPER_BOX.height,
+        a: laminate::PAPER_BOX.a,
+        b: laminate::PAPER_BOX.b,
     };
 }
 
