@@ -25,11 +25,12 @@ use std::sync::Arc;
 pub fn for_preset(p: &ValidPreset) -> Result<Arc<dyn Structure>> {
     match blade_structure(p)? {
         None => {
-            static KEPT: Kept<(SectionProps, BladeSpec), StructuralModel> = Kept::new();
+            static KEPT: Kept<Vec<u64>, StructuralModel> = Kept::new();
             let (section, spec) = uniform_inputs(p)?;
-            let structure = KEPT.get_or_build((section, spec), KEPT_UNIFORM, || {
-                assemble_section(section, &spec)
-            })?;
+            let structure =
+                KEPT.get_or_build(uniform_key(&section, &spec), KEPT_UNIFORM, || {
+                    assemble_section(section, &spec)
+                })?;
             Ok(structure)
         }
         Some(built) => {
@@ -42,6 +43,32 @@ pub fn for_preset(p: &ValidPreset) -> Result<Arc<dyn Structure>> {
             Ok(structure)
         }
     }
+}
+
+/// Everything that fixes a uniform blade, bit for bit: `-0.0` and `0.0` are different inputs
+/// (a structure built from one prints its zeros with the other's sign).
+fn uniform_key(s: &SectionProps, b: &BladeSpec) -> Vec<u64> {
+    let section = [
+        s.m,
+        s.i,
+        s.ka2,
+        s.km1_2,
+        s.km2_2,
+        s.chord,
+        s.ea_offset,
+        s.cg_offset,
+        s.c22,
+        s.c23,
+        s.c33,
+    ];
+    let blade = [b.length, b.hub_radius, b.omega, b.loss_factor];
+    let choices = [b.n as u64, b.form as u64];
+    section
+        .iter()
+        .chain(&blade)
+        .map(|v| v.to_bits())
+        .chain(choices)
+        .collect()
 }
 
 /// Uniform blades kept: one per sweep worker and a few more.
