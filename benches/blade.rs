@@ -1,7 +1,7 @@
 //! Tabulated-blade structure timings (docs/model.md §11.3–§11.4, README figures): the IEA 15MW
 //! blade from its HAWC2 st file at the preset's 120 elements (600 dofs). Assembly (target < 20 ms),
 //! the modal basis at the preset's reference speeds, a rotor-speed change on the built basis
-//! (target < 200 µs), and `structure::for_preset` at a new pitch (a rebuild) and at a new rotor
+//! (target < 200 µs), and `model::for_preset` at a new pitch (a rebuild) and at a new rotor
 //! speed (the kept build).
 //!
 //! Run: `cargo bench --bench blade`.
@@ -84,7 +84,7 @@ fn modes_at_new_rotor_speed(b: divan::Bencher) {
     b.bench(|| modal.modes(divan::black_box(omega), 12).unwrap());
 }
 
-/// `structure::for_preset` at a pitch not seen before: assembly + basis + modes (a cache miss).
+/// `model::for_preset` at a pitch not seen before: assembly + basis + modes (a cache miss).
 #[divan::bench(sample_count = 20)]
 fn for_preset_new_pitch(b: divan::Bencher) {
     let p = preset();
@@ -96,7 +96,7 @@ fn for_preset_new_pitch(b: divan::Bencher) {
     .bench_refs(|p| for_preset(p).unwrap());
 }
 
-/// `structure::for_preset` at another rotor speed in the range: the kept build's modes only.
+/// `model::for_preset` at another rotor speed in the range: the kept build's modes only.
 #[divan::bench]
 fn for_preset_new_rotor_speed(b: divan::Bencher) {
     let p = preset();
