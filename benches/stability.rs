@@ -43,15 +43,18 @@ fn sweep_10k_quasi_steady(b: divan::Bencher) {
             (0..100).map(|k| 2.0 * k as f64).collect(),
         ],
     };
-    b.bench(|| {
-        let mut rows = 0usize;
-        grid_sweep(&p, &grid, None, &|_| {}, &mut |batch| {
-            rows += batch.len();
-            Ok(())
-        })
-        .unwrap();
-        rows
-    });
+    b.bench(|| rows_of(&p, &grid));
+}
+
+/// The rows of a whole grid sweep, streamed and counted as an output would take them.
+fn rows_of(p: &ValidPreset, grid: &Grid) -> usize {
+    let mut rows = 0usize;
+    grid_sweep(p, grid, None, &|_| {}, &mut |batch| {
+        rows += batch.len();
+        Ok(())
+    })
+    .unwrap();
+    rows
 }
 
 /// The paper's blade as the README sweeps it: 2,001 wind speeds, 5 to 30 m/s, tracked
@@ -63,15 +66,7 @@ fn sweep_2001_wind_speeds_liu2017(b: divan::Bencher) {
         keys: vec!["operating.wind_speed".into()],
         axes: vec![(0..=2000).map(|k| 5.0 + 0.0125 * k as f64).collect()],
     };
-    b.bench(|| {
-        let mut rows = 0usize;
-        grid_sweep(&p, &grid, None, &|_| {}, &mut |batch| {
-            rows += batch.len();
-            Ok(())
-        })
-        .unwrap();
-        rows
-    });
+    b.bench(|| rows_of(&p, &grid));
 }
 
 /// Goland flutter speed, 41-point bracket + bisection.

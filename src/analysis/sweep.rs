@@ -371,6 +371,22 @@ pub struct SweepRow {
     pub error: Option<String>,
 }
 
+impl SweepRow {
+    /// The one row of a point that could not be solved, with why (if known).
+    pub fn failed(values: Vec<f64>, error: Option<String>) -> SweepRow {
+        SweepRow {
+            values,
+            mode: None,
+            frequency_hz: f64::NAN,
+            damping_ratio: f64::NAN,
+            re: f64::NAN,
+            second_re: f64::NAN,
+            status: RowStatus::Failed,
+            error,
+        }
+    }
+}
+
 /// What a grid sweep could not compute, counted over the shard's own points, with the first
 /// row of each kind, for the command's warning.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -530,16 +546,7 @@ fn point_rows(
     failure: Option<String>,
 ) {
     let Some(held) = tracked.held.as_ref().filter(|_| failure.is_none()) else {
-        rows.push(SweepRow {
-            values,
-            mode: None,
-            frequency_hz: f64::NAN,
-            damping_ratio: f64::NAN,
-            re: f64::NAN,
-            second_re: f64::NAN,
-            status: RowStatus::Failed,
-            error: failure,
-        });
+        rows.push(SweepRow::failed(values, failure));
         return;
     };
     for (name, i) in names.iter().zip(&tracked.index) {

@@ -8,7 +8,7 @@ use super::section::section_properties;
 use crate::error::Result;
 use crate::physics::blade::source::BladeStructure;
 use crate::physics::section::SectionProps;
-use crate::physics::structure::galerkin::{assemble_section, BladeSpec, StructuralModel};
+use crate::physics::structure::galerkin::{assemble_section, BladeSpec, Form, StructuralModel};
 use crate::physics::structure::tabulated::TabulatedStructure;
 use crate::physics::structure::Structure;
 use crate::preset::ValidPreset;
@@ -25,7 +25,7 @@ use std::sync::Arc;
 pub fn for_preset(p: &ValidPreset) -> Result<Arc<dyn Structure>> {
     match blade_structure(p)? {
         None => {
-            static KEPT: Kept<Vec<u64>, StructuralModel> = Kept::new();
+            static KEPT: Kept<UniformKey, StructuralModel> = Kept::new();
             let (section, spec) = uniform_inputs(p)?;
             let structure =
                 KEPT.get_or_build(uniform_key(&section, &spec), KEPT_UNIFORM, || {
@@ -47,8 +47,8 @@ pub fn for_preset(p: &ValidPreset) -> Result<Arc<dyn Structure>> {
 
 /// Everything that fixes a uniform blade, bit for bit: `-0.0` and `0.0` are different inputs
 /// (a structure built from one prints its zeros with the other's sign).
-fn uniform_key(s: &SectionProps, b: &BladeSpec) -> Vec<u64> {
-    let section = [
+fn uniform_key(s: &SectionProps, b: &BladeSpec) -> UniformKey {
+    let values = [
         s.m,
         s.i,
         s.ka2,
@@ -60,16 +60,16 @@ fn uniform_key(s: &SectionProps, b: &BladeSpec) -> Vec<u64> {
         s.c22,
         s.c23,
         s.c33,
+        b.length,
+        b.hub_radius,
+        b.omega,
+        b.loss_factor,
     ];
-    let blade = [b.length, b.hub_radius, b.omega, b.loss_factor];
-    let choices = [b.n as u64, b.form as u64];
-    section
-        .iter()
-        .chain(&blade)
-        .map(|v| v.to_bits())
-        .chain(choices)
-        .collect()
+    (values.map(f64::to_bits), b.n, b.form)
 }
+
+/// What [`uniform_key`] gives: the section's and blade's values as bits, N and the form.
+type UniformKey = ([u64; 15], usize, Form);
 
 /// Uniform blades kept: one per sweep worker and a few more.
 const KEPT_UNIFORM: usize = 8;

@@ -129,16 +129,12 @@ pub fn settle<T>(
         // moved from the one it was built at. Its pitch moves the equilibrium little (on the
         // NREL 5MW at 25 m/s a structure 1.3° off moves the law's pitch by 1e-4°), so the passes
         // keep their acceleration across the rebuild.
-        if built
-            .as_ref()
-            .is_some_and(|b| (pitch - b.pitch).abs() > STRUCTURE_PITCH_TOLERANCE)
-        {
-            built = None;
-            last = None;
-        }
-        let b = match &built {
-            Some(b) => b,
-            None => built.insert(build(pitch)?),
+        let b = match built.take() {
+            Some(b) if (pitch - b.pitch).abs() <= STRUCTURE_PITCH_TOLERANCE => b,
+            _ => {
+                last = None;
+                build(pitch)?
+            }
         };
         let stations = frozen_inflow(strips, &flow, pitch);
         let system = match &last {
@@ -155,10 +151,6 @@ pub fn settle<T>(
             .zip(&shape)
             .fold(0.0, |m, (a, b)| f64::max(m, (a - b).abs()));
         if change <= TWIST_TOLERANCE {
-            let tag = match built {
-                Some(b) => b.tag,
-                None => unreachable!("a pass always has its build"),
-            };
             return Ok((
                 Operation {
                     pitch,
@@ -167,11 +159,12 @@ pub fn settle<T>(
                     equilibrium,
                     passes: pass,
                 },
-                tag,
+                b.tag,
             ));
         }
         shape = acceleration.step(&shape, &settled);
         last = Some(system);
+        built = Some(b);
     }
     Err(Error::numerical(format!(
         "static aeroelastic equilibrium: the elastic twist had not settled after {MAX_PASSES} \

@@ -632,16 +632,7 @@ mod from_results {
             row(10.0, "flap 1", 2.0),
             row(10.0, "torsion 1", 9.5),
             // A point that could not be solved: one row, no mode.
-            SweepRow {
-                values: vec![15.0],
-                mode: None,
-                frequency_hz: f64::NAN,
-                damping_ratio: f64::NAN,
-                re: f64::NAN,
-                second_re: f64::NAN,
-                status: RowStatus::Failed,
-                error: Some("numerical: no equilibrium".into()),
-            },
+            SweepRow::failed(vec![15.0], Some("numerical: no equilibrium".into())),
         ];
         let t = from_results::tracked_from_rows("operating.wind_speed", &rows);
         assert_eq!(t.values, [0.0, 5.0, 10.0, 15.0]);

@@ -28,29 +28,22 @@ use nalgebra::{DMatrix, DVector};
 /// ([`BladeMatrices::layout`]) rather than assuming.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct NodeLayout {
-    /// Degrees of freedom per node.
-    pub dofs: usize,
-    /// Per family (flap, edge, twist): its first offset in the node's block and how many.
-    pub families: [(usize, usize); 3],
+    /// The family (flap 0, edge 1, twist 2) of each dof of a node's block, in block order.
+    pub family: &'static [usize],
 }
 
 impl NodeLayout {
-    /// The family (flap 0, edge 1, twist 2) of free dof `i` (node blocks one after another).
+    /// The family of free dof `i` (node blocks one after another).
     pub fn family_of(&self, i: usize) -> usize {
-        let offset = i % self.dofs;
-        self.families
-            .iter()
-            .position(|&(first, count)| (first..first + count).contains(&offset))
-            .unwrap_or(2)
+        self.family[i % self.family.len()]
     }
 }
 
 /// This element's layout: `u, u'` (flap), `v, v'` (edge), `φ` (twist) per node.
 pub const LAYOUT: NodeLayout = NodeLayout {
-    dofs: 5,
-    families: [(U, 2), (V, 2), (PHI, 1)],
+    family: &[0, 0, 1, 1, 2],
 };
-const NODE_DOFS: usize = 5;
+const NODE_DOFS: usize = LAYOUT.family.len();
 const U: usize = 0;
 const V: usize = 2;
 const PHI: usize = 4;
