@@ -63,6 +63,7 @@ impl BuildKey {
                     coupling: p.blade.bend_twist_coupling,
                     hub_radius: p.blade.hub_radius,
                     min_elements: p.structure.min_elements,
+                    shear: p.structure.shear,
                     count: p.structure.modes,
                     speeds: reference_speeds(p),
                     pitches: pitch_range(p),

@@ -3,9 +3,10 @@
 //! centre offsets; the reference blades from their BeamDyn and HAWC2 files; convergence with the
 //! mesh and the modal basis.
 
+use flutterscope::numeric::banded::half_bandwidth;
 use flutterscope::physics::blade::fem::{assemble, Mesh};
 use flutterscope::physics::blade::modal::{BladeMode, Family, ModalBlade};
-use flutterscope::physics::blade::{BeamSection, BladeTable};
+use flutterscope::physics::blade::{BeamSection, BladeTable, ShearFlexibility};
 use nalgebra::{DMatrix, DVector};
 
 /// β_n L of the clamped–free beam.
@@ -26,6 +27,7 @@ fn uniform(length: f64, m: f64, ei_flap: f64, ei_edge: f64, gj: f64, ip: f64) ->
         twist: 0.0,
         shear_centre: [0.0, 0.0],
         tension_centre: [0.0, 0.0],
+        shear: ShearFlexibility::RIGID,
     };
     BladeTable::new(
         "uniform test blade",
@@ -168,49 +170,6 @@ fn a_downwind_tip_load_bends_downwind_and_positive_coupling_twists_toward_feathe
             tip_compliance(std::f64::consts::FRAC_PI_2),
             1000.0 / (12.0 * ei)
         ) < 1e-9
-    );
-}
-
-/// Validation: the NREL 5MW blade from its BeamDyn files at 12.1 rpm, pitch 0, no
-/// aerodynamics, against OpenFAST's BeamDyn linearisation (presets/blades/nrel5mw/reference:
-/// 0.739, 1.110, 2.087 Hz): the first three within 1.5 % and flap, edge, flap; modes 4 and 5 are
-/// the second edge and third flap modes. (BeamDyn's modes 4–5, 3.785 and 4.953 Hz, are not yet
-/// matched by this Euler–Bernoulli model: see docs/model.md §11.5.)
-#[test]
-fn nrel_5mw_from_beamdyn_matches_the_beamdyn_linearisation() {
-    use flutterscope::formats::beamdyn::{read_blade, read_primary};
-    use flutterscope::physics::blade::beamdyn::from_beamdyn;
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("presets/blades/nrel5mw");
-    let primary_path = dir.join("NRELOffshrBsline5MW_BeamDyn.dat");
-    let primary = read_primary(&primary_path).unwrap();
-    let blade = read_blade(&primary.blade_file_path(&primary_path)).unwrap();
-    let table = from_beamdyn(&primary, &blade, "NREL 5MW BeamDyn", 1.5).unwrap();
-    assert!((table.length() - 61.5).abs() < 0.01, "{}", table.length());
-    let omega = 12.1 * std::f64::consts::PI / 30.0;
-    let matrices = assemble(&table, &Mesh::following(&table, 60), 0.0).unwrap();
-    let modal = ModalBlade::new(matrices, &[0.0, omega], 20).unwrap();
-    let modes = modal.modes(omega, 5).unwrap();
-    let reference = [0.739, 1.110, 2.087];
-    for (k, (m, r)) in modes.iter().zip(reference).enumerate() {
-        assert!(
-            rel(m.frequency_hz, r) < 0.015,
-            "mode {}: {:.4} Hz vs BeamDyn {r} Hz ({:?}, shares {:?})",
-            k + 1,
-            m.frequency_hz,
-            m.family(),
-            m.shares
-        );
-    }
-    let families: Vec<Family> = modes.iter().map(|m| m.family()).collect();
-    assert_eq!(
-        families,
-        [
-            Family::Flap,
-            Family::Edge,
-            Family::Flap,
-            Family::Edge,
-            Family::Flap
-        ]
     );
 }
 
@@ -469,7 +428,12 @@ fn moving_the_reference_axis_changes_no_frequency() {
     let lowest = |t: &BladeTable, omega: f64| -> Vec<f64> {
         let m = assemble(t, &Mesh::following(t, 16), pitch).unwrap();
         let k = &m.k0 + &m.k_omega * (omega * omega);
-        lowest_eigenvalues(&k, &m.mass, 9, 6)
+        lowest_eigenvalues(
+            &k,
+            &m.mass,
+            half_bandwidth(&k).max(half_bandwidth(&m.mass)),
+            6,
+        )
     };
     for (along, speeds) in [([0.4, 0.0], vec![0.0, 3.0]), ([0.0, 0.3], vec![0.0])] {
         let moved = shifted(along);
@@ -494,7 +458,7 @@ fn blades(folder: &str) -> std::path::PathBuf {
         .join(folder)
 }
 
-fn nrel_5mw() -> BladeTable {
+pub(crate) fn nrel_5mw() -> BladeTable {
     use flutterscope::formats::beamdyn::{read_blade, read_primary};
     use flutterscope::physics::blade::beamdyn::from_beamdyn;
     let primary_path = blades("nrel5mw").join("NRELOffshrBsline5MW_BeamDyn.dat");
@@ -506,12 +470,12 @@ fn nrel_5mw() -> BladeTable {
 /// IEA 15MW hub radius (m), as in its OpenFAST and HAWC2 models.
 const IEA_HUB_RADIUS: f64 = 3.97;
 /// IEA 15MW rated rotor speed (rpm).
-const IEA_RATED_RPM: f64 = 7.56;
-const IEA_CLASSIC: &str = "IEA_15MW_RWT_Blade_st_noFPM.st";
-const IEA_FPM: &str = "IEA_15MW_RWT_Blade_st_FPM.st";
+pub(crate) const IEA_RATED_RPM: f64 = 7.56;
+pub(crate) const IEA_CLASSIC: &str = "IEA_15MW_RWT_Blade_st_noFPM.st";
+pub(crate) const IEA_FPM: &str = "IEA_15MW_RWT_Blade_st_FPM.st";
 const IEA_BTC: &str = "IEA_15MW_RWT_BTC8deg_Blade_st.dat";
 
-fn iea_15mw_beamdyn() -> BladeTable {
+pub(crate) fn iea_15mw_beamdyn() -> BladeTable {
     use flutterscope::formats::beamdyn::{read_blade, read_primary};
     use flutterscope::physics::blade::beamdyn::from_beamdyn;
     let primary_path = blades("iea15mw").join("IEA-15-240-RWT_BeamDyn.dat");
@@ -521,7 +485,7 @@ fn iea_15mw_beamdyn() -> BladeTable {
 }
 
 /// The IEA 15MW blade from one of its st files, the chord twist from its AeroDyn blade file.
-fn iea_15mw_hawc2(file: &str, set: usize) -> BladeTable {
+pub(crate) fn iea_15mw_hawc2(file: &str, set: usize) -> BladeTable {
     use flutterscope::formats::{aerodyn, hawc2_st};
     use flutterscope::physics::blade::hawc2::{from_hawc2_st, ChordTwist};
     let dir = blades("iea15mw");
@@ -532,7 +496,7 @@ fn iea_15mw_hawc2(file: &str, set: usize) -> BladeTable {
 }
 
 /// The lowest `count` modes at `rpm`, on 80 elements, from a basis of 30 modes at that speed.
-fn modes_at(table: &BladeTable, rpm: f64, count: usize) -> Vec<BladeMode> {
+pub(crate) fn modes_at(table: &BladeTable, rpm: f64, count: usize) -> Vec<BladeMode> {
     let omega = rpm * std::f64::consts::PI / 30.0;
     let matrices = assemble(table, &Mesh::following(table, 80), 0.0).unwrap();
     ModalBlade::new(matrices, &[omega], 30)
@@ -600,24 +564,33 @@ fn iea_15mw_beamdyn_and_hawc2_files_agree_on_the_section_centres() {
     assert!(widest > 0.8, "centres {widest} m apart at most");
 }
 
-/// The classic and the fully populated st files describe the same blade,
-/// so their first eight frequencies agree at rest and at rated speed. The bound is 2 %; they
-/// agree to 1e-4, the FPM's 6×6 at the elastic centre reducing to the classic columns.
+/// The classic and the fully populated st files describe the same blade, so their first eight
+/// frequencies agree at rest and at rated speed. In bending and torsion (the Euler–Bernoulli
+/// beam) to 1e-4, the FPM's 6×6 at the elastic centre reducing to the classic columns. Their
+/// shear differs: the FPM couples the two shear directions (K12 up to 2 % of K11) and its
+/// shear flexibility about the shear centre is up to 8 % above the classic `1/(k G A)`, which
+/// diagonalises it along the principal bending axes, so the shear-deformable frequencies agree
+/// to 0.5 % (measured: 0.25 % at most, edge 3).
 #[test]
 fn iea_15mw_classic_and_fully_populated_st_files_give_the_same_frequencies() {
     let (classic, fpm) = (iea_15mw_hawc2(IEA_CLASSIC, 1), iea_15mw_hawc2(IEA_FPM, 1));
-    for rpm in [0.0, IEA_RATED_RPM] {
-        let (a, b) = (modes_at(&classic, rpm, 8), modes_at(&fpm, rpm, 8));
-        for (k, (x, y)) in a.iter().zip(&b).enumerate() {
-            assert!(
-                rel(y.frequency_hz, x.frequency_hz) < 1e-4 && x.family() == y.family(),
-                "{rpm} rpm, mode {}: classic {:.4} Hz {:?}, FPM {:.4} Hz {:?}",
-                k + 1,
-                x.frequency_hz,
-                x.family(),
-                y.frequency_hz,
-                y.family()
-            );
+    for (classic, fpm, tolerance) in [
+        (classic.rigid_in_shear(), fpm.rigid_in_shear(), 1e-4),
+        (classic, fpm, 5e-3),
+    ] {
+        for rpm in [0.0, IEA_RATED_RPM] {
+            let (a, b) = (modes_at(&classic, rpm, 8), modes_at(&fpm, rpm, 8));
+            for (k, (x, y)) in a.iter().zip(&b).enumerate() {
+                assert!(
+                    rel(y.frequency_hz, x.frequency_hz) < tolerance && x.family() == y.family(),
+                    "{rpm} rpm, mode {}: classic {:.4} Hz {:?}, FPM {:.4} Hz {:?}",
+                    k + 1,
+                    x.frequency_hz,
+                    x.family(),
+                    y.frequency_hz,
+                    y.family()
+                );
+            }
         }
     }
 }
@@ -751,7 +724,8 @@ fn an_unphysical_hawc2_st_row_names_its_file_line_and_column() {
 }
 
 /// Convergence with the mesh and with the basis (docs/model.md §11.3–§11.4), NREL 5MW
-/// from BeamDyn at 12.1 rpm. Each `Mesh::following` refinement (48 → 96 → 192 → 384 elements)
+/// from BeamDyn at 12.1 rpm on the Euler–Bernoulli element (the shear-deformable one:
+/// tests/integration/timoshenko.rs). Each `Mesh::following` refinement (48 → 96 → 192 → 384 elements)
 /// holds the coarser mesh's nodes and the elements are conforming and exactly integrated, so the
 /// first five frequencies fall monotonically (the finite elements bound them from above) and
 /// their distance to the finest one shrinks. (The refinement halves the longest elements first,
@@ -761,7 +735,7 @@ fn an_unphysical_hawc2_st_row_names_its_file_line_and_column() {
 /// against ModalBlade's dense one on 48 elements.
 #[test]
 fn nrel_5mw_frequencies_settle_with_the_mesh_and_the_basis() {
-    let table = nrel_5mw();
+    let table = nrel_5mw().rigid_in_shear();
     let omega = 12.1 * std::f64::consts::PI / 30.0;
     let hz = |lambda: &f64| lambda.sqrt() / std::f64::consts::TAU;
     let meshes = [48, 96, 192, 384];
@@ -771,10 +745,15 @@ fn nrel_5mw_frequencies_settle_with_the_mesh_and_the_basis() {
             let m = assemble(&table, &Mesh::following(&table, n), 0.0).unwrap();
             assert_eq!(m.mesh.elements(), n);
             let k = &m.k0 + &m.k_omega * (omega * omega);
-            lowest_eigenvalues(&k, &m.mass, 9, 5)
-                .iter()
-                .map(hz)
-                .collect()
+            lowest_eigenvalues(
+                &k,
+                &m.mass,
+                half_bandwidth(&k).max(half_bandwidth(&m.mass)),
+                5,
+            )
+            .iter()
+            .map(hz)
+            .collect()
         })
         .collect();
     let coarse = assemble(&table, &Mesh::following(&table, 48), 0.0).unwrap();
@@ -863,9 +842,11 @@ fn dense_lowest_by_k(k: &DMatrix<f64>, m: &DMatrix<f64>, count: usize) -> Vec<f6
 /// pencil's: on the NREL 5MW (BeamDyn), the IEA 15MW (HAWC2) and its bend–twist-coupled variant
 /// (flap 1 and edge 1 close), K + 8 = 20 modes per speed as the presets build them, against a
 /// dense decomposition and the banded subspace iteration above. Within 1e-9 in frequency at 60
-/// and 120 elements; at 400 the pencil itself is only defined to a few 1e-8 in double precision
-/// (its stiffness' condition grows as the fourth power of the element count): the three
-/// solutions differ from each other by up to 3.5e-8 there, so that is what is asked of it.
+/// and 120 elements; at 400 the pencil itself is only defined to about 1e-7 in double precision
+/// (its stiffness' condition grows as the fourth power of the element count, and the
+/// shear-deformable beam's light shear-strain dofs add to it): the three solutions differ from
+/// each other by up to 3.5e-8 on the Euler–Bernoulli beam and 1.2e-7 on the shear-deformable one
+/// there (NREL 5MW edge 1 at 20 rpm), so 3e-7 is what is asked of it.
 #[test]
 fn banded_modes_equal_a_dense_decomposition() {
     use flutterscope::preset::Preset;
@@ -900,11 +881,12 @@ fn banded_modes_equal_a_dense_decomposition() {
                     .iter()
                     .map(|m| m.frequency_hz)
                     .collect();
-                let subspace: Vec<f64> = lowest_eigenvalues(&k, &matrices.mass, 9, 20)
+                let band = half_bandwidth(&k).max(half_bandwidth(&matrices.mass));
+                let subspace: Vec<f64> = lowest_eigenvalues(&k, &matrices.mass, band, 20)
                     .into_iter()
                     .map(hz)
                     .collect();
-                let tolerance = if elements <= 120 { 1e-9 } else { 1e-7 };
+                let tolerance = if elements <= 120 { 1e-9 } else { 3e-7 };
                 for reference in [&by_k, &subspace] {
                     let worst = banded
                         .iter()

@@ -1615,8 +1615,8 @@ fn snapshot_command(preset: &str, sets: &[&str], size: &str) -> String {
 }
 
 /// The rotor speed at which `flutterscope flutter` finds the first boundary from `from` toward
-/// `to` on the IEA 15MW.
-fn iea15mw_rotor_speed_boundary(from: &str, to: &str) -> f64 {
+/// `to` on the IEA 15MW, and the mode it names there (none where its tracking cannot tell).
+fn iea15mw_rotor_speed_boundary(from: &str, to: &str) -> (f64, Option<String>) {
     let out = assert_cmd::Command::cargo_bin("flutterscope")
         .unwrap()
         .args(["flutter", "--preset", "iea15mw", "--json"])
@@ -1631,28 +1631,36 @@ fn iea15mw_rotor_speed_boundary(from: &str, to: &str) -> f64 {
         .output()
         .unwrap();
     let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-    json["critical"].as_f64().expect("a boundary in the range")
+    (
+        json["critical"].as_f64().expect("a boundary in the range"),
+        json["mode"].as_str().map(str::to_string),
+    )
 }
 
-/// The IEA 15MW is stable at its rated 7.56 rpm between a stall instability at 2–3.5 rpm and the
-/// torsion flutter at 11.27 rpm. Stable, the margin names the nearest boundary on each side; at
-/// 11.6 rpm, unstable, it names the unstable stretch the rotor speed lies in and where it begins
-/// (it used to say `flutter from 2 rpm, -85 %`: the stall region's onset). Both as
-/// `flutterscope flutter` finds them from the rated speed.
+/// The IEA 15MW is stable at its rated 7.56 rpm between a stall instability at 3–3.5 rpm and the
+/// flutter at 11.34 rpm. Stable, the margin names the nearest boundary on each side, with the
+/// mode `flutterscope flutter` names there (at 11.34 rpm none: the torsion-1 branch veers past
+/// flap 3 on the way and the tracking cannot tell them apart); at 11.6 rpm, unstable, it names
+/// the unstable stretch the rotor speed lies in and where it begins (it used to say `flutter from
+/// 2 rpm, -85 %`: the stall region's onset). Both as `flutterscope flutter` finds them from the
+/// rated speed.
 #[test]
 fn the_rotor_speed_margin_names_the_stretch_the_current_speed_lies_in() {
     let rated = 7.56;
-    let (down, up) = (
+    let ((down, down_mode), (up, up_mode)) = (
         iea15mw_rotor_speed_boundary("7.56", "0"),
         iea15mw_rotor_speed_boundary("7.56", "15"),
     );
+    let named = |mode: Option<String>| mode.map(|m| format!(", {m}")).unwrap_or_default();
     let status = |frame: &str| frame.lines().rev().nth(1).unwrap().to_string();
     let stable = status(&snapshot_command("iea15mw", &[], "160x48"));
     let expected = format!(
-        "margin along rotor speed: flutter at {down:.2} rpm ({:.2}× rated, flap 1) and \
-         {up:.2} rpm ({:.2}× rated, torsion 1)",
+        "margin along rotor speed: flutter at {down:.2} rpm ({:.2}× rated{}) and \
+         {up:.2} rpm ({:.2}× rated{})",
         down / rated,
-        up / rated
+        named(down_mode),
+        up / rated,
+        named(up_mode)
     );
     assert!(stable.contains(&expected), "{stable}\nexpected {expected}");
     let unstable = status(&snapshot_command(
@@ -1727,7 +1735,7 @@ fn a_margin_search_ends_at_the_slider_end_and_prints_no_float_noise() {
     );
     assert!(!frame.contains("error"), "{frame}");
     assert!(
-        frame.contains("margin along bend–twist α: flutter at α -0.22"),
+        frame.contains("margin along bend–twist α: flutter at α -0.23"),
         "{frame}"
     );
     let noisy = frame

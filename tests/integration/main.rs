@@ -26,6 +26,7 @@ mod stability;
 mod structure;
 mod sweep;
 mod tabulated;
+mod timoshenko;
 mod tui_tmux;
 mod validation;
 

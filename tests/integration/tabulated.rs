@@ -7,7 +7,7 @@ use flutterscope::model::assemble;
 use flutterscope::physics::aero::NoAero;
 use flutterscope::physics::blade::fem::{assemble as assemble_blade, Mesh};
 use flutterscope::physics::blade::modal::ModalBlade;
-use flutterscope::physics::blade::{BeamSection, BladeTable};
+use flutterscope::physics::blade::{BeamSection, BladeTable, ShearFlexibility};
 use flutterscope::physics::inflow::{stations, OperatingPoint};
 use flutterscope::physics::structure::tabulated::TabulatedStructure;
 use flutterscope::physics::structure::{Family, Structure};
@@ -41,6 +41,7 @@ fn paper_blade_as_table(p: &ValidPreset) -> BladeTable {
         twist: 0.0,
         shear_centre: [0.0, 0.0],
         tension_centre: [0.0, 0.0],
+        shear: ShearFlexibility::RIGID,
     };
     BladeTable::new(
         "the paper's blade as a table",

@@ -15,8 +15,8 @@
 //! read from the flexibility `S = K⁻¹`. With no shear or extension coupling (`K_ab = 0`) `C` is
 //! exactly `K_bb` and both centres are the origin.
 
-use super::BeamSection;
-use nalgebra::{Matrix2, Matrix3};
+use super::{BeamSection, ShearFlexibility};
+use nalgebra::{Matrix2, Matrix3, Matrix5, Matrix6};
 
 /// How a file's section axes lie in ours: `ours = A · file` for positions, `A` orthogonal.
 ///
@@ -41,6 +41,8 @@ pub struct ClassicalSection {
     pub edge_twist: f64,
     pub shear_centre: [f64; 2],
     pub tension_centre: [f64; 2],
+    /// The transverse-shear flexibility about the shear centre (docs/model.md §11.2).
+    pub shear: ShearFlexibility,
 }
 
 impl ClassicalSection {
@@ -68,6 +70,7 @@ impl ClassicalSection {
             twist,
             shear_centre: self.shear_centre,
             tension_centre: self.tension_centre,
+            shear: self.shear,
         }
     }
 }
@@ -104,6 +107,49 @@ impl FileFrame {
         [o[(0, 0)], o[(1, 1)], o[(0, 1)]]
     }
 
+    /// `κ_file = T (κ_ξ, κ_η, φ')`: see [`FileFrame::bending_torsion`].
+    fn curvature_map(&self) -> Matrix3<f64> {
+        let j = Matrix2::new(0.0, -1.0, 1.0, 0.0);
+        let mut t = Matrix3::zeros();
+        t.fixed_view_mut::<2, 2>(0, 0)
+            .copy_from(&(j * self.a.transpose()));
+        t[(2, 2)] = self.a.determinant().signum();
+        t
+    }
+
+    /// The shear flexibility in our terms of a file's flexibility `s` of the strains
+    /// `(γ₁, γ₂, κ₁, κ₂, κ₃)` about the shear centre. A shear strain is a displacement slope, so
+    /// `γ_file = Aᵀ γ`; with the curvatures' map `T` the strains map by `G = diag(Aᵀ, T)`,
+    /// orthogonal, and the flexibility in ours is `Gᵀ s G` (docs/model.md §11.5).
+    pub fn shear_flexibility(&self, s: &Matrix5<f64>) -> ShearFlexibility {
+        let mut g = Matrix5::zeros();
+        g.fixed_view_mut::<2, 2>(0, 0)
+            .copy_from(&self.a.transpose());
+        g.fixed_view_mut::<3, 3>(2, 2)
+            .copy_from(&self.curvature_map());
+        let o = g.transpose() * s * g;
+        ShearFlexibility {
+            strain: [o[(0, 0)], o[(1, 1)], o[(0, 1)]],
+            coupling: [
+                o[(0, 2)],
+                o[(0, 3)],
+                o[(0, 4)],
+                o[(1, 2)],
+                o[(1, 3)],
+                o[(1, 4)],
+            ],
+        }
+    }
+
+    /// The shear flexibility of shear stiffnesses `k₁, k₂` (N) along the file's axes 1, 2 at the
+    /// shear centre, uncoupled (a HAWC2 classic row's `k_x G A`, `k_y G A`).
+    pub fn shear_stiffness(&self, k: [f64; 2]) -> ShearFlexibility {
+        let mut s = Matrix5::zeros();
+        s[(0, 0)] = 1.0 / k[0];
+        s[(1, 1)] = 1.0 / k[1];
+        self.shear_flexibility(&s)
+    }
+
     /// The bending–torsion stiffness `C` (file axes, strains `κ₁, κ₂, κ₃`) in our terms.
     ///
     /// A displacement curvature `w''` in the file's axes is `Aᵀ` of ours, and the file's bending
@@ -112,11 +158,7 @@ impl FileFrame {
     /// `T = diag(J Aᵀ, det A)`, `J = [[0, −1], [1, 0]]`, and our energy matrix is `Tᵀ C T`, read
     /// against docs/model.md §11.2's `EI_ξ, EI_η, EI_ξη, GJ, −g_ξ, −g_η`.
     pub fn bending_torsion(&self, c: &Matrix3<f64>) -> [f64; 6] {
-        let j = Matrix2::new(0.0, -1.0, 1.0, 0.0);
-        let b = j * self.a.transpose();
-        let mut t = Matrix3::zeros();
-        t.fixed_view_mut::<2, 2>(0, 0).copy_from(&b);
-        t[(2, 2)] = self.a.determinant().signum();
+        let t = self.curvature_map();
         let o = t.transpose() * c * t;
         [
             o[(0, 0)],
@@ -166,7 +208,23 @@ pub fn reduce(k: &[[f64; 6]; 6], frame: &FileFrame) -> Result<ClassicalSection, 
         edge_twist,
         shear_centre: frame.position(shear),
         tension_centre: frame.position(tension),
+        shear: frame.shear_flexibility(&shear_centre_flexibility(k, shear)?),
     })
+}
+
+/// The flexibility of `(γ₁, γ₂, κ₁, κ₂, κ₃)` about the shear centre `s` (from the matrix's
+/// origin, file axes), with the axial force zero: the whole flexibility `K⁻¹` with the shear
+/// strains carried to `s` (`γ₁ − κ₃s₂`, `γ₂ + κ₃s₁`), the axial row and column dropped.
+fn shear_centre_flexibility(k: &[[f64; 6]; 6], s: [f64; 2]) -> Result<Matrix5<f64>, String> {
+    let flexibility = Matrix6::from_fn(|i, j| k[i][j])
+        .try_inverse()
+        .ok_or("the 6×6 stiffness is singular")?;
+    let mut carry = Matrix6::identity();
+    carry[(0, 5)] = -s[1];
+    carry[(1, 5)] = s[0];
+    let at_shear_centre = carry * flexibility * carry.transpose();
+    const KEPT: [usize; 5] = [0, 1, 3, 4, 5];
+    Ok(Matrix5::from_fn(|i, j| at_shear_centre[(KEPT[i], KEPT[j])]))
 }
 
 #[cfg(test)]

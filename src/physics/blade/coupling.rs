@@ -57,6 +57,7 @@ fn stiffness_is_definite(s: &BeamSection, g: f64) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::physics::blade::ShearFlexibility;
 
     fn station(g: f64) -> BeamSection {
         BeamSection {
@@ -73,6 +74,7 @@ mod tests {
             twist: 0.0,
             shear_centre: [0.0, 0.0],
             tension_centre: [0.0, 0.0],
+            shear: ShearFlexibility::RIGID,
         }
     }
 

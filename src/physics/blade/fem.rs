@@ -23,30 +23,104 @@ use crate::error::{Error, Result};
 use crate::physics::basis::gauss_legendre;
 use nalgebra::{DMatrix, DVector};
 
-/// Where each family's degrees of freedom sit in a node's block: the element's own layout,
+/// Where each family's degrees of freedom sit among the free dofs: the element's own layout,
 /// which what groups the dofs (the family shares of a mode) reads from the assembled matrices
 /// ([`BladeMatrices::layout`]) rather than assuming.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct NodeLayout {
     /// The family (flap 0, edge 1, twist 2) of each dof of a node's block, in block order.
     pub family: &'static [usize],
+    /// The families of the dofs the clamped root keeps, numbered before the nodes' blocks.
+    pub root: &'static [usize],
 }
 
 impl NodeLayout {
-    /// The family of free dof `i` (node blocks one after another).
+    /// The family of free dof `i`.
     pub fn family_of(&self, i: usize) -> usize {
-        self.family[i % self.family.len()]
+        match i.checked_sub(self.root.len()) {
+            None => self.root[i],
+            Some(k) => self.family[k % self.family.len()],
+        }
+    }
+
+    /// Free dofs of a mesh of `elements` elements.
+    pub fn dofs(&self, elements: usize) -> usize {
+        self.root.len() + self.family.len() * elements
     }
 }
 
-/// This element's layout: `u, u'` (flap), `v, v'` (edge), `φ` (twist) per node.
-pub const LAYOUT: NodeLayout = NodeLayout {
-    family: &[0, 0, 1, 1, 2],
-};
-const NODE_DOFS: usize = LAYOUT.family.len();
+/// The beam the elements model (docs/model.md §11.2–§11.3).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Beam {
+    /// Rigid in shear: `[u, u', v, v', φ]` per node, the root clamped.
+    EulerBernoulli,
+    /// Shear-deformable: `[u, u', γ_u, v, v', γ_v, φ]` per node, `γ` the transverse shear strain
+    /// of the shear-centre line; the clamped root holds `u = v = φ = 0` and a zero section
+    /// rotation `u' − γ_u = v' − γ_v = 0`, so it keeps one dof per direction, `γ_u = u'`.
+    Timoshenko,
+}
+
+/// Local dofs of an element's node: both beams share this numbering, the Euler–Bernoulli beam
+/// leaving the shear strains out.
+const LOCAL: usize = 7;
 const U: usize = 0;
-const V: usize = 2;
-const PHI: usize = 4;
+const GU: usize = 2;
+const V: usize = 3;
+const GV: usize = 5;
+const PHI: usize = 6;
+/// An element's local dofs: two nodes.
+const ELEMENT: usize = 2 * LOCAL;
+
+/// A row of one quantity over an element's local dofs.
+type Row = [f64; ELEMENT];
+
+impl Beam {
+    /// The beam a table's sections call for.
+    pub fn of(table: &BladeTable) -> Beam {
+        if table.is_shear_deformable() {
+            Beam::Timoshenko
+        } else {
+            Beam::EulerBernoulli
+        }
+    }
+
+    /// Where each family's dofs sit.
+    pub fn layout(self) -> NodeLayout {
+        match self {
+            Beam::EulerBernoulli => NodeLayout {
+                family: &[0, 0, 1, 1, 2],
+                root: &[],
+            },
+            Beam::Timoshenko => NodeLayout {
+                family: &[0, 0, 0, 1, 1, 1, 2],
+                root: &[0, 1],
+            },
+        }
+    }
+
+    /// The free dof local dof `k` of node `node` is (`None`: held at zero by the clamp or not
+    /// modelled). Two local dofs may be one free dof: the root's slope and shear strain.
+    fn global(self, node: usize, k: usize) -> Option<usize> {
+        match self {
+            Beam::EulerBernoulli => {
+                const SLOT: [Option<usize>; LOCAL] =
+                    [Some(0), Some(1), None, Some(2), Some(3), None, Some(4)];
+                SLOT[k].filter(|_| node > 0).map(|j| (node - 1) * 5 + j)
+            }
+            Beam::Timoshenko if node == 0 => match k {
+                1 | GU => Some(0),
+                4 | GV => Some(1),
+                _ => None,
+            },
+            Beam::Timoshenko => Some(2 + (node - 1) * LOCAL + k),
+        }
+    }
+
+    /// The free dof of each of element `element`'s local dofs.
+    fn element_dofs(self, element: usize) -> [Option<usize>; ELEMENT] {
+        std::array::from_fn(|i| self.global(element + i / LOCAL, i % LOCAL))
+    }
+}
 
 /// Gauss points per element: exact for the mass (cubic × cubic × linear property, degree 7) and
 /// for the tension term (cubic T(z) × quadratic slopes, degree 7).
@@ -80,11 +154,6 @@ impl Mesh {
     pub fn elements(&self) -> usize {
         self.nodes.len() - 1
     }
-
-    /// Free degrees of freedom: every node but the clamped root.
-    pub fn dofs(&self) -> usize {
-        NODE_DOFS * self.elements()
-    }
 }
 
 /// The assembled structure of one blade at one pitch: `M`, `K₀`, `K_Ω` (free dofs only).
@@ -102,19 +171,26 @@ pub struct BladeMatrices {
     pub k_omega: DMatrix<f64>,
     /// Where each family's dofs sit in a node's block.
     pub layout: NodeLayout,
+    /// The beam the elements model.
+    pub beam: Beam,
 }
 
-/// Shape functions of one element at local `s ∈ [0, 1]` as rows over its 10 dofs
-/// `[u, u', v, v', φ]_a ++ [u, u', v, v', φ]_b`: values, slopes and curvatures in z.
+/// Shape functions of one element at local `s ∈ [0, 1]` as rows over its local dofs
+/// `[u, u', γ_u, v, v', γ_v, φ]_a ++ […]_b`: values, slopes and curvatures in z of the
+/// displacements, the shear strains (linear) and their slopes, and the twist.
 struct Shapes {
-    u: [f64; 10],
-    du: [f64; 10],
-    ddu: [f64; 10],
-    v: [f64; 10],
-    dv: [f64; 10],
-    ddv: [f64; 10],
-    phi: [f64; 10],
-    dphi: [f64; 10],
+    u: Row,
+    du: Row,
+    ddu: Row,
+    gu: Row,
+    dgu: Row,
+    v: Row,
+    dv: Row,
+    ddv: Row,
+    gv: Row,
+    dgv: Row,
+    phi: Row,
+    dphi: Row,
 }
 
 /// Hermite cubics (values, first and second z-derivatives) for `[w_a, w'_a, w_b, w'_b]`.
@@ -146,51 +222,63 @@ impl Shapes {
     fn at(s: f64, h: f64) -> Shapes {
         let (n, dn, ddn) = hermite(s, h);
         let place = |w: [f64; 4], offset: usize| {
-            let mut row = [0.0; 10];
+            let mut row = [0.0; ELEMENT];
             row[offset] = w[0];
             row[offset + 1] = w[1];
-            row[NODE_DOFS + offset] = w[2];
-            row[NODE_DOFS + offset + 1] = w[3];
+            row[LOCAL + offset] = w[2];
+            row[LOCAL + offset + 1] = w[3];
             row
         };
-        let mut phi = [0.0; 10];
-        let mut dphi = [0.0; 10];
-        phi[PHI] = 1.0 - s;
-        phi[NODE_DOFS + PHI] = s;
-        dphi[PHI] = -1.0 / h;
-        dphi[NODE_DOFS + PHI] = 1.0 / h;
+        let linear = |offset: usize| {
+            let (mut value, mut slope) = ([0.0; ELEMENT], [0.0; ELEMENT]);
+            value[offset] = 1.0 - s;
+            value[LOCAL + offset] = s;
+            slope[offset] = -1.0 / h;
+            slope[LOCAL + offset] = 1.0 / h;
+            (value, slope)
+        };
+        let (gu, dgu) = linear(GU);
+        let (gv, dgv) = linear(GV);
+        let (phi, dphi) = linear(PHI);
         Shapes {
             u: place(n, U),
             du: place(dn, U),
             ddu: place(ddn, U),
+            gu,
+            dgu,
             v: place(n, V),
             dv: place(dn, V),
             ddv: place(ddn, V),
+            gv,
+            dgv,
             phi,
             dphi,
         }
     }
 }
 
-/// Adds `w (aᵀb + bᵀa)` to a 10×10 element matrix: the symmetric part of a coupling term.
-fn add_sym(k: &mut [[f64; 10]; 10], w: f64, a: &[f64; 10], b: &[f64; 10]) {
+/// An element matrix over its local dofs.
+type ElementMatrix = [[f64; ELEMENT]; ELEMENT];
+
+/// Adds `w (aᵀb + bᵀa)` to an element matrix: the symmetric part of a coupling term.
+fn add_sym(k: &mut ElementMatrix, w: f64, a: &Row, b: &Row) {
     if w == 0.0 {
         return;
     }
-    for i in 0..10 {
-        for j in 0..10 {
+    for i in 0..ELEMENT {
+        for j in 0..ELEMENT {
             k[i][j] += w * (a[i] * b[j] + b[i] * a[j]);
         }
     }
 }
 
-/// Adds `w aᵀa` to a 10×10 element matrix.
-fn add_outer(k: &mut [[f64; 10]; 10], w: f64, a: &[f64; 10]) {
+/// Adds `w aᵀa` to an element matrix.
+fn add_outer(k: &mut ElementMatrix, w: f64, a: &Row) {
     if w == 0.0 {
         return;
     }
-    for i in 0..10 {
-        for j in 0..10 {
+    for i in 0..ELEMENT {
+        for j in 0..ELEMENT {
             k[i][j] += w * a[i] * a[j];
         }
     }
@@ -270,30 +358,58 @@ impl RotorOffsets {
 }
 
 /// `ca a + cb b`, entry by entry: a row of one quantity over an element's dofs.
-fn mix(a: &[f64; 10], ca: f64, b: &[f64; 10], cb: f64) -> [f64; 10] {
-    let mut r = [0.0; 10];
-    for i in 0..10 {
+fn mix(a: &Row, ca: f64, b: &Row, cb: f64) -> Row {
+    let mut r = [0.0; ELEMENT];
+    for i in 0..ELEMENT {
         r[i] = ca * a[i] + cb * b[i];
     }
     r
 }
 
 /// Assemble `M`, `K₀` and `K_Ω` of `table` on `mesh` at `pitch` (rad), clamped at the root
-/// (docs/model.md §11.2–§11.3).
+/// (docs/model.md §11.2–§11.3), as the beam its sections call for ([`Beam::of`]).
 pub fn assemble(table: &BladeTable, mesh: &Mesh, pitch: f64) -> Result<BladeMatrices> {
+    assemble_with(table, mesh, pitch, None)
+}
+
+/// Factors on the section stiffness per strain `(γ_ξ, γ_η, κ_ξ, κ_η, φ')`: a coupling term
+/// between two strains takes the mean of theirs (docs/model.md §11.4, stiffness-proportional
+/// damping).
+pub type StrainFactors = [f64; 5];
+
+/// `K₀` with every stiffness term scaled by [`StrainFactors`]: the damping matrix of
+/// stiffness-proportional damping, term by term the elastic stiffness of [`assemble`].
+pub fn scaled_stiffness(
+    table: &BladeTable,
+    mesh: &Mesh,
+    pitch: f64,
+    factors: StrainFactors,
+) -> Result<DMatrix<f64>> {
+    Ok(assemble_with(table, mesh, pitch, Some(factors))?.k0)
+}
+
+fn assemble_with(
+    table: &BladeTable,
+    mesh: &Mesh,
+    pitch: f64,
+    factors: Option<StrainFactors>,
+) -> Result<BladeMatrices> {
     if mesh.nodes.len() < 2 {
         return Err(Error::numerical("blade mesh needs at least one element"));
     }
-    let n = mesh.dofs();
+    let beam = Beam::of(table);
+    let n = beam.layout().dofs(mesh.elements());
     let mut mass = DMatrix::zeros(n, n);
     let mut k0 = DMatrix::zeros(n, n);
     let mut k_omega = DMatrix::zeros(n, n);
     let (gauss_s, gauss_w) = gauss_legendre(GAUSS_POINTS);
     let tension = tension_at_nodes(table, &mesh.nodes);
+    let scale = |i: usize, j: usize| factors.map_or(1.0, |f| 0.5 * (f[i] + f[j]));
     for e in 0..mesh.elements() {
         let (za, zb) = (mesh.nodes[e], mesh.nodes[e + 1]);
         let h = zb - za;
-        let (mut me, mut ke, mut kw) = ([[0.0; 10]; 10], [[0.0; 10]; 10], [[0.0; 10]; 10]);
+        let zero = [[0.0; ELEMENT]; ELEMENT];
+        let (mut me, mut ke, mut kw) = (zero, zero, zero);
         for (&xi, &wq) in gauss_s.iter().zip(&gauss_w) {
             let s = 0.5 * (xi + 1.0);
             let w = 0.5 * wq * h;
@@ -302,15 +418,47 @@ pub fn assemble(table: &BladeTable, mesh: &Mesh, pitch: f64) -> Result<BladeMatr
             let sh = Shapes::at(s, h);
             let theta = sec.twist + pitch;
             let (sn, cs) = theta.sin_cos();
-            // Curvatures of the shear-centre line in the section frame.
-            let k_xi = mix(&sh.ddu, cs, &sh.ddv, sn);
-            let k_eta = mix(&sh.ddu, -sn, &sh.ddv, cs);
-            add_outer(&mut ke, w * sec.ei_flap, &k_xi);
-            add_outer(&mut ke, w * sec.ei_edge, &k_eta);
-            add_sym(&mut ke, w * sec.ei_cross, &k_xi, &k_eta);
-            add_outer(&mut ke, w * sec.gj, &sh.dphi);
-            add_sym(&mut ke, -w * sec.flap_twist, &k_xi, &sh.dphi);
-            add_sym(&mut ke, -w * sec.edge_twist, &k_eta, &sh.dphi);
+            let to_section = |x: &Row, y: &Row| (mix(x, cs, y, sn), mix(x, -sn, y, cs));
+            match beam {
+                Beam::EulerBernoulli => {
+                    // Curvatures of the shear-centre line in the section frame.
+                    let (k_xi, k_eta) = to_section(&sh.ddu, &sh.ddv);
+                    let c = sec.bending_torsion();
+                    let strains = [&k_xi, &k_eta, &sh.dphi];
+                    // Diagonal terms first, then the couplings (flap–edge, then with the twist).
+                    for (i, j) in [(0, 0), (1, 1), (0, 1), (2, 2), (0, 2), (1, 2)] {
+                        let k = w * (scale(i + 2, j + 2) * c[(i, j)]);
+                        if i == j {
+                            add_outer(&mut ke, k, strains[i]);
+                        } else {
+                            add_sym(&mut ke, k, strains[i], strains[j]);
+                        }
+                    }
+                }
+                Beam::Timoshenko => {
+                    let k5 = sec.timoshenko_stiffness().ok_or_else(|| Error::Invalid {
+                        origin: table.origin.clone(),
+                        message: format!(
+                            "at z = {z} m the section's shear flexibility and bending–torsion \
+                             stiffness are not positive definite together"
+                        ),
+                    })?;
+                    // Section rotations `u' − γ`: their rates are the curvatures.
+                    let (k_xi, k_eta) = to_section(
+                        &mix(&sh.ddu, 1.0, &sh.dgu, -1.0),
+                        &mix(&sh.ddv, 1.0, &sh.dgv, -1.0),
+                    );
+                    let (g_xi, g_eta) = to_section(&sh.gu, &sh.gv);
+                    let strains = [&g_xi, &g_eta, &k_xi, &k_eta, &sh.dphi];
+                    for i in 0..5 {
+                        add_outer(&mut ke, w * (scale(i, i) * k5[(i, i)]), strains[i]);
+                        for j in i + 1..5 {
+                            let k = w * (scale(i, j) * k5[(i, j)]);
+                            add_sym(&mut ke, k, strains[i], strains[j]);
+                        }
+                    }
+                }
+            }
 
             // Mass about the shear centre, the axis the section turns about.
             let at = RotorOffsets::of(&sec, &table.rate_at(z), theta);
@@ -324,6 +472,15 @@ pub fn assemble(table: &BladeTable, mesh: &Mesh, pitch: f64) -> Result<BladeMatr
             add_outer(&mut me, w * polar, &sh.phi);
             add_sym(&mut me, -w * m * (y_c - y_s), &sh.u, &sh.phi);
             add_sym(&mut me, w * m * (x_c - x_s), &sh.v, &sh.phi);
+            if beam == Beam::Timoshenko {
+                // Rotary inertia of the section turning with the bending rotation.
+                let [j_xx, j_yy, j_xy] = rotary_inertia(&sec, theta);
+                let rot_u = mix(&sh.du, 1.0, &sh.gu, -1.0);
+                let rot_v = mix(&sh.dv, 1.0, &sh.gv, -1.0);
+                add_outer(&mut me, w * j_xx, &rot_u);
+                add_outer(&mut me, w * j_yy, &rot_v);
+                add_sym(&mut me, w * j_xy, &rot_u, &rot_v);
+            }
 
             // Per Ω²: the tension at the Gauss point, from the next node outboard (the mesh
             // follows the stations, so [z, z_b] lies in one table interval), on the slopes of the
@@ -343,9 +500,10 @@ pub fn assemble(table: &BladeTable, mesh: &Mesh, pitch: f64) -> Result<BladeMatr
                 &sh.phi,
             );
         }
-        scatter(&mut mass, &me, e);
-        scatter(&mut k0, &ke, e);
-        scatter(&mut k_omega, &kw, e);
+        let dofs = beam.element_dofs(e);
+        scatter(&mut mass, &me, &dofs);
+        scatter(&mut k0, &ke, &dofs);
+        scatter(&mut k_omega, &kw, &dofs);
     }
     for (name, a) in [
         ("mass", &mass),
@@ -366,8 +524,26 @@ pub fn assemble(table: &BladeTable, mesh: &Mesh, pitch: f64) -> Result<BladeMatr
         mass,
         k0,
         k_omega,
-        layout: LAYOUT,
+        layout: beam.layout(),
+        beam,
     })
+}
+
+/// The section's second moments of mass about its tension centre in the rotor frame,
+/// `[∫ρ(x − x_e)², ∫ρ(y − y_e)², ∫ρ(x − x_e)(y − y_e)]`: the rotary inertia of a section turning
+/// in bending about the line that does not stretch (docs/model.md §11.2).
+fn rotary_inertia(sec: &BeamSection, theta: f64) -> [f64; 3] {
+    let [i_xi, i_eta, i_xe] = sec.inertia;
+    let ([c_xi, c_eta], [e_xi, e_eta], m) = (sec.cg, sec.tension_centre, sec.mass);
+    let j_xi = i_xi - 2.0 * m * c_xi * e_xi + m * e_xi * e_xi;
+    let j_eta = i_eta - 2.0 * m * c_eta * e_eta + m * e_eta * e_eta;
+    let j_xe = i_xe - m * (c_xi * e_eta + c_eta * e_xi) + m * e_xi * e_eta;
+    let (sn, cs) = theta.sin_cos();
+    [
+        cs * cs * j_xi - 2.0 * cs * sn * j_xe + sn * sn * j_eta,
+        sn * sn * j_xi + 2.0 * cs * sn * j_xe + cs * cs * j_eta,
+        cs * sn * (j_xi - j_eta) + (cs * cs - sn * sn) * j_xe,
+    ]
 }
 
 /// The propeller (tennis-racket) stiffness per Ω² on the twist (docs/model.md §11.2): the
@@ -381,16 +557,13 @@ fn propeller(inertia: [f64; 3], m: f64, cg: [f64; 2], shear: [f64; 2], theta: f6
     about_pitch_axis + m * (2.0 * x_c * x_s - x_s * x_s - y_c * y_s)
 }
 
-/// Add an element matrix into the global one (the root node's dofs are clamped away).
-fn scatter(global: &mut DMatrix<f64>, local: &[[f64; 10]; 10], element: usize) {
-    let index = |i: usize| -> Option<usize> {
-        let node = element + i / NODE_DOFS;
-        (node > 0).then(|| (node - 1) * NODE_DOFS + i % NODE_DOFS)
-    };
-    for (i, row) in local.iter().enumerate() {
-        let Some(gi) = index(i) else { continue };
-        for (j, value) in row.iter().enumerate() {
-            let Some(gj) = index(j) else { continue };
+/// Add an element matrix into the global one at the element's free dofs (a clamped dof has
+/// none; two local dofs may share one).
+fn scatter(global: &mut DMatrix<f64>, local: &ElementMatrix, dofs: &[Option<usize>; ELEMENT]) {
+    for (row, gi) in local.iter().zip(dofs) {
+        let Some(gi) = *gi else { continue };
+        for (value, gj) in row.iter().zip(dofs) {
+            let Some(gj) = *gj else { continue };
             global[(gi, gj)] += value;
         }
     }
@@ -408,18 +581,18 @@ pub struct StationMotion {
 }
 
 /// How the motion of one point of the section at one span follows from the free dofs: rows
-/// over the 10 dofs of the element holding it, for `[u, u', v, v', φ]` of that point.
+/// over the local dofs of the element holding it, for `[u, u', v, v', φ]` of that point.
 #[derive(Debug, Clone, PartialEq)]
 pub struct StationMap {
     /// Global free-dof index of each element dof (`None`: clamped at the root).
-    dofs: [Option<usize>; 2 * NODE_DOFS],
-    rows: [[f64; 2 * NODE_DOFS]; NODE_DOFS],
+    dofs: [Option<usize>; ELEMENT],
+    rows: [Row; 5],
 }
 
 impl StationMap {
     /// The point's motion for the free-dof vector `q` (a mode shape, a static solution).
     pub fn motion(&self, q: &DVector<f64>) -> StationMotion {
-        let value = |row: &[f64; 10]| -> f64 {
+        let value = |row: &Row| -> f64 {
             self.dofs
                 .iter()
                 .zip(row)
@@ -427,11 +600,11 @@ impl StationMap {
                 .sum()
         };
         StationMotion {
-            flap: value(&self.rows[U]),
-            flap_slope: value(&self.rows[U + 1]),
-            edge: value(&self.rows[V]),
-            edge_slope: value(&self.rows[V + 1]),
-            twist: value(&self.rows[PHI]),
+            flap: value(&self.rows[0]),
+            flap_slope: value(&self.rows[1]),
+            edge: value(&self.rows[2]),
+            edge_slope: value(&self.rows[3]),
+            twist: value(&self.rows[4]),
         }
     }
 
@@ -448,9 +621,9 @@ impl StationMap {
         let mut f = DVector::zeros(dofs);
         for (k, d) in self.dofs.iter().enumerate() {
             if let Some(i) = d {
-                f[*i] += flap_force * self.rows[U][k]
-                    + edge_force * self.rows[V][k]
-                    + twist_moment * self.rows[PHI][k];
+                f[*i] += flap_force * self.rows[0][k]
+                    + edge_force * self.rows[2][k]
+                    + twist_moment * self.rows[4][k];
             }
         }
         f
@@ -536,12 +709,10 @@ impl BladeGeometry {
         Ok((e, (z - nodes[e]) / h, h))
     }
 
-    fn station_map(&self, element: usize, rows: [[f64; 10]; NODE_DOFS]) -> StationMap {
-        let mut dofs = [None; 2 * NODE_DOFS];
-        for (i, d) in dofs.iter_mut().enumerate() {
-            let node = element + i / NODE_DOFS;
-            *d = (node > 0).then(|| (node - 1) * NODE_DOFS + i % NODE_DOFS);
+    fn station_map(&self, element: usize, rows: [Row; 5]) -> StationMap {
+        StationMap {
+            dofs: Beam::of(&self.table).element_dofs(element),
+            rows,
         }
-        StationMap { dofs, rows }
     }
 }

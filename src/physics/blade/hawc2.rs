@@ -180,7 +180,8 @@ fn mass_section(c: &MassColumns, place: &Place) -> Result<([f64; 2], [f64; 3])> 
 }
 
 /// docs/model.md §11.6: a classic (isotropic) row: `E I_x`, `E I_y` along the principal axes at
-/// the elastic centre, `G I_p` about the shear centre, no bend–twist coupling.
+/// the elastic centre, `G I_p` about the shear centre, the shear stiffnesses `k_x G A`, `k_y G A`
+/// along the principal axes at the shear centre, no bend–twist coupling.
 fn classic_section(r: &ClassicRow, twist: &ChordTwist, place: &Place) -> Result<BeamSection> {
     place.positive(
         r.line,
@@ -190,6 +191,9 @@ fn classic_section(r: &ClassicRow, twist: &ChordTwist, place: &Place) -> Result<
             ("I_x", "area moment about the principal x_e axis", r.i_x),
             ("I_y", "area moment about the principal y_e axis", r.i_y),
             ("I_p", "torsional stiffness constant", r.i_p),
+            ("k_x", "shear factor along the principal x_e axis", r.k_x),
+            ("k_y", "shear factor along the principal y_e axis", r.k_y),
+            ("A", "cross-sectional area", r.a),
         ],
     )?;
     let (cg, inertia) = mass_section(
@@ -220,6 +224,7 @@ fn classic_section(r: &ClassicRow, twist: &ChordTwist, place: &Place) -> Result<
         edge_twist,
         shear_centre: frame.position([r.x_sh, r.y_sh]),
         tension_centre: frame.position([r.x_e, r.y_e]),
+        shear: principal.shear_stiffness([r.k_x * r.g * r.a, r.k_y * r.g * r.a]),
     };
     Ok(section.at_station(r.r, twist.at(r.r), r.m, cg, inertia))
 }

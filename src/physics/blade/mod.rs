@@ -19,6 +19,7 @@ pub mod pitch_range;
 pub mod source;
 
 use crate::error::{Error, Result};
+use nalgebra::{Matrix2, Matrix2x3, Matrix3, Matrix5};
 
 /// One input station, in its section frame `(ξ, η)` about the reference (pitch) axis.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -53,6 +54,36 @@ pub struct BeamSection {
     /// Elastic (tension) centre from the reference axis (m): `[ξ, η]`. The centrifugal tension
     /// acts along it (docs/model.md §11.2).
     pub tension_centre: [f64; 2],
+    /// What the section's transverse shear adds to its flexibility (docs/model.md §11.2); zero
+    /// for a section rigid in shear (the Euler–Bernoulli beam).
+    pub shear: ShearFlexibility,
+}
+
+/// A section's transverse-shear flexibility about its shear centre, in the section frame: with
+/// the bending–torsion stiffness `C` of [`BeamSection`] (whose inverse is the flexibility of the
+/// curvatures `κ_ξ, κ_η, φ'` under moments), the whole flexibility of the strains
+/// `(γ_ξ, γ_η, κ_ξ, κ_η, φ')` under `(V_ξ, V_η, M_ξ, M_η, M_φ)` is `[[S_γγ, S_γκ], [S_γκᵀ, C⁻¹]]`
+/// (docs/model.md §11.2). The axial force is taken zero (no axial degree of freedom).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ShearFlexibility {
+    /// `S_γγ`: `[S_ξξ, S_ηη, S_ξη]` (1/N), shear strain per shear force.
+    pub strain: [f64; 3],
+    /// `S_γκ` row by row: `γ_ξ` then `γ_η` per unit moment about `(κ_ξ, κ_η, φ')` (1/(N·m)),
+    /// the shear–bending and shear–twist couplings left at the shear centre.
+    pub coupling: [f64; 6],
+}
+
+impl ShearFlexibility {
+    /// A section rigid in shear.
+    pub const RIGID: ShearFlexibility = ShearFlexibility {
+        strain: [0.0; 3],
+        coupling: [0.0; 6],
+    };
+
+    /// Whether the section deforms in shear at all.
+    pub fn is_rigid(&self) -> bool {
+        self.strain.iter().chain(&self.coupling).all(|v| *v == 0.0)
+    }
 }
 
 impl BeamSection {
@@ -92,6 +123,10 @@ impl BeamSection {
             twist: f(a.twist, b.twist),
             shear_centre: pair(a.shear_centre, b.shear_centre),
             tension_centre: pair(a.tension_centre, b.tension_centre),
+            shear: ShearFlexibility {
+                strain: std::array::from_fn(|k| f(a.shear.strain[k], b.shear.strain[k])),
+                coupling: std::array::from_fn(|k| f(a.shear.coupling[k], b.shear.coupling[k])),
+            },
         }
     }
 
@@ -135,6 +170,21 @@ impl BeamSection {
         if let Some((name, v)) = finite.iter().find(|(_, v)| !v.is_finite()) {
             return Some(format!("{name} = {v} is not finite"));
         }
+        if let Some(v) = self
+            .shear
+            .strain
+            .iter()
+            .chain(&self.shear.coupling)
+            .find(|v| !v.is_finite())
+        {
+            return Some(format!("shear flexibility {v} is not finite"));
+        }
+        if !self.shear.is_rigid() && self.timoshenko_stiffness().is_none() {
+            return Some(format!(
+                "the shear flexibility {:?} (coupling {:?}) with the bending–torsion stiffness is not positive definite",
+                self.shear.strain, self.shear.coupling
+            ));
+        }
         if self.inertia[0] < 0.0 || self.inertia[1] < 0.0 {
             return Some(format!(
                 "mass moments ∫ρξ² = {}, ∫ρη² = {} must not be negative",
@@ -142,6 +192,50 @@ impl BeamSection {
             ));
         }
         None
+    }
+}
+
+impl BeamSection {
+    /// The bending–torsion stiffness `C` over `(κ_ξ, κ_η, φ')` (docs/model.md §11.2).
+    pub fn bending_torsion(&self) -> Matrix3<f64> {
+        Matrix3::new(
+            self.ei_flap,
+            self.ei_cross,
+            -self.flap_twist,
+            self.ei_cross,
+            self.ei_edge,
+            -self.edge_twist,
+            -self.flap_twist,
+            -self.edge_twist,
+            self.gj,
+        )
+    }
+
+    /// The shear-deformable section's stiffness over `(γ_ξ, γ_η, κ_ξ, κ_η, φ')` about the shear
+    /// centre (docs/model.md §11.2): the inverse of `[[S_γγ, S_γκ], [S_γκᵀ, C⁻¹]]`, formed without
+    /// inverting `C` as `[[P, −P S_γκ C], [·, C + C S_γκᵀ P S_γκ C]]` with
+    /// `P = (S_γγ − S_γκ C S_γκᵀ)⁻¹`. `None` when that is not positive definite (or the section is
+    /// rigid in shear, where `P` is infinite).
+    pub fn timoshenko_stiffness(&self) -> Option<Matrix5<f64>> {
+        let [sxx, syy, sxy] = self.shear.strain;
+        let a = Matrix2::new(sxx, sxy, sxy, syy);
+        let b = Matrix2x3::from_row_slice(&self.shear.coupling);
+        let c = self.bending_torsion();
+        let schur = a - b * c * b.transpose();
+        let det = schur.determinant();
+        if !(schur[(0, 0)] > 0.0 && det > 0.0 && det.is_finite()) {
+            return None;
+        }
+        let p = schur.try_inverse()?;
+        let pbc = p * b * c;
+        let mut k = Matrix5::zeros();
+        k.fixed_view_mut::<2, 2>(0, 0).copy_from(&p);
+        k.fixed_view_mut::<2, 3>(0, 2).copy_from(&(-pbc));
+        k.fixed_view_mut::<3, 2>(2, 0)
+            .copy_from(&(-pbc.transpose()));
+        k.fixed_view_mut::<3, 3>(2, 2)
+            .copy_from(&(c + c * b.transpose() * p * b * c));
+        Some(k)
     }
 }
 
@@ -217,6 +311,15 @@ impl BladeTable {
         for (k, s) in sections.iter().enumerate() {
             s.check(origin, k)?;
         }
+        let shear_rigid = sections.iter().position(|s| s.shear.is_rigid());
+        if let (Some(k), true) = (shear_rigid, sections.iter().any(|s| !s.shear.is_rigid())) {
+            return Err(invalid(format!(
+                "station {} (z = {} m) has no shear flexibility where others have: a blade is \
+                 shear-deformable at every station or at none",
+                k + 1,
+                sections[k].z
+            )));
+        }
         Ok(BladeTable {
             origin: origin.to_string(),
             hub_radius,
@@ -239,6 +342,21 @@ impl BladeTable {
         }
         self.matrices = matrices;
         Ok(self)
+    }
+
+    /// Whether the sections deform in shear (docs/model.md §11.2): then the elements are
+    /// Timoshenko beams, else Euler–Bernoulli ones.
+    pub fn is_shear_deformable(&self) -> bool {
+        self.sections.iter().any(|s| !s.shear.is_rigid())
+    }
+
+    /// The same blade rigid in shear: the Euler–Bernoulli limit (`structure.shear = false`).
+    pub fn rigid_in_shear(&self) -> BladeTable {
+        let mut out = self.clone();
+        for s in &mut out.sections {
+            s.shear = ShearFlexibility::RIGID;
+        }
+        out
     }
 
     /// Blade length (m): the span of the last station.

@@ -5,8 +5,8 @@
 //! modal damping ratio (docs/model.md §11.4) and its shape on the element dofs, which
 //! [`BladeMatrices::reference_axis_at`] evaluates at any span position.
 
-use super::fem::{assemble, BladeGeometry, BladeMatrices, Mesh, NodeLayout};
-use super::{BeamSection, BladeTable};
+use super::fem::{scaled_stiffness, BladeGeometry, BladeMatrices, Mesh, NodeLayout};
+use super::BladeTable;
 use crate::error::{Error, Result};
 use crate::numeric::banded::{half_bandwidth, SymmetricBand};
 use crate::numeric::cholesky::symmetrised;
@@ -54,6 +54,9 @@ impl BladeMode {
 /// docs/model.md §11.4).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct StiffnessFactors {
+    /// On the shear stiffnesses along ξ and η (BeamDyn `mu1`, `mu2`), for a shear-deformable
+    /// blade.
+    pub shear: [f64; 2],
     /// On the flap bending stiffness `EI_ξ` (BeamDyn `mu5`).
     pub flap: f64,
     /// On the edge bending stiffness `EI_η` (BeamDyn `mu4`).
@@ -66,37 +69,19 @@ pub struct StiffnessFactors {
 /// with every stiffness scaled by its factor, a coupling term by the mean of its two strains'
 /// factors (the symmetric part of BeamDyn's `μK`, which is what a mode's `φᵀCφ` sees). The
 /// centrifugal stiffness `K_Ω` is not damped: it is a load, not a material.
-///
-/// Built by assembling a copy of the table with scaled stiffnesses, so the damping follows the
-/// elements' stiffness term by term (whatever `fem::assemble` includes) without a second
-/// assembly routine; the copy skips [`BladeTable::new`]'s checks because a zero factor
-/// legitimately zeroes a stiffness.
 pub fn stiffness_damping(
     table: &BladeTable,
     mesh: &Mesh,
     pitch: f64,
     f: StiffnessFactors,
 ) -> Result<DMatrix<f64>> {
-    let mean = |a: f64, b: f64| 0.5 * (a + b);
-    let scaled = BladeTable {
-        origin: table.origin.clone(),
-        hub_radius: table.hub_radius,
-        matrices: table.matrices.clone(),
-        sections: table
-            .sections
-            .iter()
-            .map(|s| BeamSection {
-                ei_flap: f.flap * s.ei_flap,
-                ei_edge: f.edge * s.ei_edge,
-                ei_cross: mean(f.flap, f.edge) * s.ei_cross,
-                gj: f.torsion * s.gj,
-                flap_twist: mean(f.flap, f.torsion) * s.flap_twist,
-                edge_twist: mean(f.edge, f.torsion) * s.edge_twist,
-                ..*s
-            })
-            .collect(),
-    };
-    Ok(assemble(&scaled, mesh, pitch)?.k0)
+    let [shear_xi, shear_eta] = f.shear;
+    scaled_stiffness(
+        table,
+        mesh,
+        pitch,
+        [shear_xi, shear_eta, f.flap, f.edge, f.torsion],
+    )
 }
 
 /// A blade's structure reduced onto a basis of its modes.

@@ -118,11 +118,12 @@ pub fn read_beamdyn(file: &impl TextFile) -> Result<TabulatedBlade> {
     let blade_text = blade_file.read()?;
     let blade = beamdyn::parse_blade(&blade_text, &blade_name)?;
     let table = from_beamdyn(&primary, &blade, &name, 0.0)?;
-    // BeamDyn's mu follow its strain order (shear 1, shear 2, extension, bending about x1 =
-    // edge, bending about x2 = flap, torsion); the beam here has no shear or axial dofs, so
-    // mu1–mu3 have nothing to damp.
+    // BeamDyn's mu follow its strain order (shear along x1 = ξ, shear along x2 = η, extension,
+    // bending about x1 = edge, bending about x2 = flap, torsion); the beam here has no axial
+    // dof, so mu3 has nothing to damp.
     let damping = match blade.damp_type {
         1 => SourceDamping::StiffnessProportional(StiffnessFactors {
+            shear: [blade.mu[0], blade.mu[1]],
             flap: blade.mu[4],
             edge: blade.mu[3],
             torsion: blade.mu[5],
@@ -226,6 +227,9 @@ pub struct BasisSettings {
     pub hub_radius: f64,
     /// Fewest finite elements along the span.
     pub min_elements: usize,
+    /// Shear-deformable elements where the files give a shear stiffness; `false`: the
+    /// Euler–Bernoulli beam, rigid in shear.
+    pub shear: bool,
     /// K, the modes retained.
     pub count: usize,
     /// Rotor speeds (rad/s) the basis holds the modes at.
@@ -243,6 +247,11 @@ pub fn pitch_range_basis(
     let coupled = with_bend_twist_coupling(&blade.table, s.coupling);
     let table = BladeTable::new(&coupled.origin, s.hub_radius, coupled.sections)?
         .with_matrices(coupled.matrices)?;
+    let table = if s.shear {
+        table
+    } else {
+        table.rigid_in_shear()
+    };
     let mesh = Mesh::following(&table, s.min_elements);
     let (low, high) = s.pitches;
     let damping = match blade.damping {
@@ -304,6 +313,7 @@ mod tests {
             [Some(0.01), Some(0.05), Some(0.03)]
         );
         let mu = SourceDamping::StiffnessProportional(StiffnessFactors {
+            shear: [1e-3, 1e-3],
             flap: 1e-3,
             edge: 1e-3,
             torsion: 1e-3,

@@ -28,6 +28,9 @@ pub struct StructureSettings {
     /// Tabulated blade: fewest finite elements; the mesh follows the input stations, then the
     /// longest elements are halved until there are this many (docs/model.md §11.3).
     pub min_elements: usize,
+    /// Tabulated blade: shear-deformable (Timoshenko) elements with the files' shear stiffness;
+    /// `false`: rigid in shear, the Euler–Bernoulli beam (docs/model.md §11.2–§11.3).
+    pub shear: bool,
     /// Tabulated blade: modal damping ratio of every flap mode; `None`: the blade file's.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub damping_flap: Option<f64>,
@@ -46,6 +49,7 @@ impl Default for StructureSettings {
             form: Form::Weak,
             loss_factor: 0.02,
             min_elements: MIN_ELEMENTS,
+            shear: true,
             damping_flap: None,
             damping_edge: None,
             damping_torsion: None,
