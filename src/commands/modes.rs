@@ -140,9 +140,14 @@ fn heading(p: &ValidPreset, structure: &dyn Structure) -> String {
         }
         Some(blade) => {
             let count = structure.coordinates();
+            let beam = if p.structure.shear && blade.table.is_shear_deformable() {
+                "shear-deformable"
+            } else {
+                "Euler–Bernoulli"
+            };
             format!(
                 "{name}: {count} blade mode{} at {rpm} rpm, pitch {} deg; {} blade from {}, {:.3} m \
-                 from r = {} m, {} elements",
+                 from r = {} m, {} {beam} elements",
                 if count == 1 { "" } else { "s" },
                 p.operating.pitch,
                 blade.format.title(),

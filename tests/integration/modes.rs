@@ -362,7 +362,10 @@ fn shapes_text_has_a_table_per_mode() {
         "{}",
         r.stdout
     );
-    assert!(r.stdout.contains("48 elements"), "the 49 stations alone");
+    assert!(
+        r.stdout.contains("48 shear-deformable elements"),
+        "the 49 stations alone"
+    );
     for label in ["flap 1", "edge 1", "flap 2", "edge 2"] {
         assert!(
             r.stdout.contains(&format!("\n{label} at ")),
