@@ -140,11 +140,7 @@ fn heading(p: &ValidPreset, structure: &dyn Structure) -> String {
         }
         Some(blade) => {
             let count = structure.coordinates();
-            let beam = if p.structure.shear && blade.table.is_shear_deformable() {
-                "shear-deformable"
-            } else {
-                "Euler–Bernoulli"
-            };
+            let beam = crate::model::blade::beam(p).map_or("", |b| b.title());
             format!(
                 "{name}: {count} blade mode{} at {rpm} rpm, pitch {} deg; {} blade from {}, {:.3} m \
                  from r = {} m, {} {beam} elements",

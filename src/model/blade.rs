@@ -3,6 +3,7 @@
 
 use super::kept::Kept;
 use crate::error::Result;
+use crate::physics::blade::fem::Beam;
 use crate::physics::blade::pitch_range::PitchRangeBlade;
 use crate::physics::blade::source::{
     family_ratios, pitch_range_basis, BasisSettings, BladeStructure, TabulatedBlade,
@@ -29,6 +30,17 @@ pub fn blade_structure(p: &ValidPreset) -> Result<Option<Arc<BladeStructure>>> {
     BUILT_CACHE
         .get_or_build(BuildKey::of(p, blade), BUILT, || build(p, blade.clone()))
         .map(Some)
+}
+
+/// The beam a preset's tabulated blade is built as (`None` for the uniform blade): shear-deformable
+/// where its files give a shear stiffness and `structure.shear` keeps it (docs/model.md §11.3).
+pub fn beam(p: &ValidPreset) -> Option<Beam> {
+    let blade = p.tabulated_blade()?;
+    Some(if p.structure.shear {
+        Beam::of(&blade.table)
+    } else {
+        Beam::EulerBernoulli
+    })
 }
 
 /// Blades at one pitch kept: the explorer's current blade and a few it was just at (a pitch

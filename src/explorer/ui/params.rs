@@ -85,6 +85,9 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
         lines.push(row("span", format!("{:.2} m", b.length)));
         lines.push(row("hub", format!("{:.2} m", b.hub_radius)));
         lines.push(row("stations", blade.table.sections.len().to_string()));
+        if let Some(beam) = crate::model::blade::beam(&state.preset) {
+            lines.push(row("beam", beam.title().to_string()));
+        }
         frame.render_widget(Paragraph::new(lines).block(block), area);
         return;
     }

@@ -84,6 +84,14 @@ impl Beam {
         }
     }
 
+    /// The beam as reports name it.
+    pub fn title(self) -> &'static str {
+        match self {
+            Beam::EulerBernoulli => "Euler–Bernoulli",
+            Beam::Timoshenko => "shear-deformable",
+        }
+    }
+
     /// Where each family's dofs sit.
     pub fn layout(self) -> NodeLayout {
         match self {
