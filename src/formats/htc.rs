@@ -439,8 +439,16 @@ fn c2_def(c2: &Block, trail: &Trail) -> Result<Vec<C2Section>> {
                 ),
             )
         })?;
+    // Counted before anything is allocated: a mistyped nsec must not size the table.
+    let written = c2.statements("sec").count();
+    if written != n {
+        return Err(trail.error(
+            &nsec.file,
+            nsec.line,
+            format!("nsec = {n}, but {written} '{SEC}' statements follow"),
+        ));
+    }
     let mut sections: Vec<Option<C2Section>> = vec![None; n];
-    let mut written = 0;
     for s in c2.statements("sec") {
         let v = numbers(s, 5, trail, SEC)?;
         let slot = count(v[0]).filter(|&i| i <= n).ok_or_else(|| {
@@ -463,14 +471,6 @@ fn c2_def(c2: &Block, trail: &Trail) -> Result<Vec<C2Section>> {
             twist_deg: v[4],
             line: s.line,
         });
-        written += 1;
-    }
-    if written != n {
-        return Err(trail.error(
-            &nsec.file,
-            nsec.line,
-            format!("nsec = {n}, but {written} '{SEC}' statements follow"),
-        ));
     }
     Ok(sections
         .into_iter()

@@ -112,12 +112,18 @@ fn htc_keys_clash(p: &Preset) -> Option<String> {
 /// ([`super::Preset::acts`]) and the explorer does not offer it. The `section` command is apart:
 /// it evaluates the layup whatever the blade uses.
 pub fn not_acting(p: &Preset, key: &str) -> Option<String> {
-    let (source, file) = (p.blade.source, &p.blade.file);
+    let source = p.blade.source;
+    // The key that names the blade's sections: its htc model or its file.
+    let file = if p.blade.from_htc() {
+        format!("blade.htc_file = \"{}\"", p.blade.htc_file)
+    } else {
+        format!("blade.file = \"{}\"", p.blade.file)
+    };
     let tabulated = source.is_tabulated();
     let reason = match key {
         "section.ply_angle" if tabulated => format!(
-            "does not apply to blade.source = \"{}\": the sections come from blade.file = \
-             \"{file}\"; the coupling added to them is blade.bend_twist_coupling",
+            "does not apply to blade.source = \"{}\": the sections come from {file}; the \
+             coupling added to them is blade.bend_twist_coupling",
             source.name()
         ),
         "section.ply_angle" if p.section.source == SectionSource::Direct => "does not apply to \
@@ -146,12 +152,13 @@ pub fn not_acting(p: &Preset, key: &str) -> Option<String> {
         // blade's sections come from its file and its strips from its polars.
         _ if tabulated && key.starts_with("section.") => format!(
             "does not apply to blade.source = \"{}\": the sections (stiffness, mass, chord, \
-             centres) come from blade.file = \"{file}\"",
+             centres) come from {file}",
             source.name()
         ),
         "operating.twist_root" | "operating.twist_tip" if tabulated => format!(
             "does not apply to blade.source = \"{}\": a tabulated blade's twist comes from its \
-             files (the BeamDyn key points, or blade.twist_file for a HAWC2 st file), and \
+             files (the BeamDyn key points, blade.twist_file for a HAWC2 st file, or the \
+             c2_def of blade.htc_file), and \
              operating.pitch turns it",
             source.name()
         ),

@@ -63,7 +63,7 @@ fn the_htc_blade_is_the_st_file_blade_with_c2_def_twist() {
     let mut worst: f64 = 0.0;
     for (x, y) in a.table.sections.iter().zip(&b.table.sections) {
         let untwisted = |s: &flutterscope::physics::blade::BeamSection| {
-            let mut s = s.clone();
+            let mut s = *s;
             s.twist = 0.0;
             s
         };

@@ -106,7 +106,7 @@ impl C2Line {
                     + (sec.y - prev.y).powi(2)
                     + (sec.z - prev.z).powi(2))
                 .sqrt();
-                if !(step > 0.0) {
+                if step.is_nan() || step <= 0.0 {
                     return Err(Error::format(
                         origin,
                         sec.line,

@@ -1,12 +1,14 @@
 //! A tabulated blade from its files, and its structure (docs/model.md §11): the files are read
 //! and mapped to a [`BladeTable`] with the damping they state ([`read_beamdyn`],
-//! [`read_hawc2`]); [`pitch_range_basis`] builds the finite elements and the modal basis over a
-//! pitch range, and [`BladeStructure`] is the blade at one pitch with each mode's damping.
+//! [`read_hawc2`], a HAWC2 model's htc file through [`HtcFiles`]); [`pitch_range_basis`] builds
+//! the finite elements and the modal basis over a pitch range, and [`BladeStructure`] is the
+//! blade at one pitch with each mode's damping.
 //!
 //! Damping (docs/model.md §11.4): a modal damping ratio set per family (a preset's
 //! `structure.damping_flap`, `…_edge`, `…_torsion`) damps every mode of that family; a family
-//! left unset takes what the files state: BeamDyn's stiffness-proportional `mu` projected on each mode, or a ratio per
-//! family ([`SourceDamping::PerFamily`]); a file that states none leaves the mode undamped.
+//! left unset takes what the files state: BeamDyn's stiffness-proportional `mu` or an htc body's
+//! `damping_aniso` projected on each mode, or a ratio per family ([`SourceDamping::PerFamily`]); a
+//! file that states none leaves the mode undamped.
 
 use super::beamdyn::from_beamdyn;
 use super::coupling::with_bend_twist_coupling;
@@ -199,7 +201,7 @@ fn htc_damping(d: &HtcDamping) -> Result<SourceDamping> {
             ),
         ));
     }
-    if let Some(k) = d.stiffness.iter().find(|&&k| !(k >= 0.0)) {
+    if let Some(k) = d.stiffness.iter().find(|&&k| k.is_nan() || k < 0.0) {
         return Err(Error::format(
             &d.file,
             d.line,
