@@ -1,5 +1,6 @@
 //! Readers for the blade definition files engineers already have: OpenFAST BeamDyn, ElastoDyn,
-//! AeroDyn 15 and AirfoilInfo inputs, and the HAWC2 st, ae, pc and steady-operation files.
+//! AeroDyn 15 and AirfoilInfo inputs, and the HAWC2 htc (model), st, ae, pc and steady-operation
+//! files.
 //!
 //! Text in, plain tables out. A reader keeps the file's own units, axes and column meanings (each
 //! field says which); mapping them into the model's frame is the physics layer's job, so nothing
@@ -21,5 +22,6 @@ pub mod beamdyn;
 pub mod elastodyn;
 pub mod hawc2_aero;
 pub mod hawc2_st;
+pub mod htc;
 pub mod text;
 pub mod text_file;

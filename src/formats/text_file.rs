@@ -29,3 +29,38 @@ impl TextFile for DiskFile {
         DiskFile(dir.join(name))
     }
 }
+
+/// The folder a model's relative paths resolve against (a HAWC2 model's root: the folder it is
+/// run from), held as a name inside it, since a [`TextFile`] resolves names against its own
+/// directory.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ModelRoot<F> {
+    inside: F,
+}
+
+/// The name [`ModelRoot`] holds inside its folder; no file of that name is ever read.
+pub const ROOT_ANCHOR: &str = "(model root)";
+
+impl<F: TextFile> ModelRoot<F> {
+    /// The folder above the one `file` is in: a HAWC2 model's root for its `htc/` folder.
+    pub fn above_folder_of(file: &F) -> ModelRoot<F> {
+        ModelRoot {
+            inside: file.sibling(&format!("../{ROOT_ANCHOR}")),
+        }
+    }
+
+    /// The folder of `anchor`, a name [`ROOT_ANCHOR`] inside it.
+    pub fn of_anchor(anchor: F) -> ModelRoot<F> {
+        ModelRoot { inside: anchor }
+    }
+
+    /// The file `name` names, relative to the root.
+    pub fn file(&self, name: &str) -> F {
+        self.inside.sibling(name)
+    }
+
+    /// The folder, as errors name it.
+    pub fn display(&self) -> String {
+        self.inside.sibling(".").display()
+    }
+}

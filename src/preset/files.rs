@@ -84,6 +84,40 @@ pub static BUILTIN_FILES: &[(&str, &str)] = &[
         "blades/iea15mw/IEA_15MW_RWT_Onshore.opt",
         include_str!("../../presets/blades/iea15mw/IEA_15MW_RWT_Onshore.opt"),
     ),
+    // The IEA 15MW HAWC2 model in its own folders: the htc files the onshore model reads and
+    // the st, ae and pc files they name for the blade.
+    (
+        "blades/iea15mw-hawc2/IEA-15-240-RWT-Onshore/htc/IEA_15MW_RWT_Onshore.htc",
+        include_str!("../../presets/blades/iea15mw-hawc2/IEA-15-240-RWT-Onshore/htc/IEA_15MW_RWT_Onshore.htc"),
+    ),
+    (
+        "blades/iea15mw-hawc2/IEA-15-240-RWT/IEA_15MW_RWT_WTG_bodies_noFPM.htc",
+        include_str!("../../presets/blades/iea15mw-hawc2/IEA-15-240-RWT/IEA_15MW_RWT_WTG_bodies_noFPM.htc"),
+    ),
+    (
+        "blades/iea15mw-hawc2/IEA-15-240-RWT/IEA_15MW_RWT_WTG_orientation.htc",
+        include_str!("../../presets/blades/iea15mw-hawc2/IEA-15-240-RWT/IEA_15MW_RWT_WTG_orientation.htc"),
+    ),
+    (
+        "blades/iea15mw-hawc2/IEA-15-240-RWT/IEA_15MW_RWT_WTG_constraint.htc",
+        include_str!("../../presets/blades/iea15mw-hawc2/IEA-15-240-RWT/IEA_15MW_RWT_WTG_constraint.htc"),
+    ),
+    (
+        "blades/iea15mw-hawc2/IEA-15-240-RWT/IEA_15MW_RWT_WTG_aero.htc",
+        include_str!("../../presets/blades/iea15mw-hawc2/IEA-15-240-RWT/IEA_15MW_RWT_WTG_aero.htc"),
+    ),
+    (
+        "blades/iea15mw-hawc2/IEA-15-240-RWT/IEA_15MW_RWT_Blade_st_noFPM.st",
+        include_str!("../../presets/blades/iea15mw-hawc2/IEA-15-240-RWT/IEA_15MW_RWT_Blade_st_noFPM.st"),
+    ),
+    (
+        "blades/iea15mw-hawc2/IEA-15-240-RWT/IEA_15MW_RWT_ae.dat",
+        include_str!("../../presets/blades/iea15mw-hawc2/IEA-15-240-RWT/IEA_15MW_RWT_ae.dat"),
+    ),
+    (
+        "blades/iea15mw-hawc2/IEA-15-240-RWT/IEA_15MW_RWT_pc_OpenFASTpolars_3dcorr.dat",
+        include_str!("../../presets/blades/iea15mw-hawc2/IEA-15-240-RWT/IEA_15MW_RWT_pc_OpenFASTpolars_3dcorr.dat"),
+    ),
 ];
 
 /// Where a preset's relative file names resolve.

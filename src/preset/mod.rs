@@ -28,7 +28,7 @@ use crate::physics::blade::source::{
     read_twist, BeamDynFiles, BladeFiles, Hawc2Files, TabulatedBlade,
 };
 use crate::physics::rotor::bem::AeroStation;
-use crate::physics::rotor::files::{read_aerodyn, read_hawc2, read_prebend};
+use crate::physics::rotor::files::{read_aerodyn, read_hawc2, read_htc_aero, read_prebend, AePc};
 use crate::physics::rotor::schedule::Table as ScheduleTable;
 use crate::physics::rotor::stations::GaussStations;
 use crate::physics::rotor::AeroBlade;
@@ -50,6 +50,10 @@ pub static BUILTIN: &[(&str, &str)] = &[
     (
         "iea15mw-btc",
         include_str!("../../presets/iea15mw-btc.toml"),
+    ),
+    (
+        "iea15mw-htc",
+        include_str!("../../presets/iea15mw-htc.toml"),
     ),
 ];
 
@@ -222,12 +226,12 @@ impl Preset {
         }
         let file = self.base.resolve(&b.file);
         let twist = match b.source {
-            BladeSource::Hawc2 => Some(read_twist(&self.base.resolve(&b.twist_file)).map_err(
-                |e| Error::Invalid {
+            BladeSource::Hawc2 if !b.from_htc() => Some(
+                read_twist(&self.base.resolve(&b.twist_file)).map_err(|e| Error::Invalid {
                     origin: self.origin.clone(),
                     message: format!("blade.twist_file = \"{}\": {e}", b.twist_file),
-                },
-            )?),
+                })?,
+            ),
             _ => None,
         };
         let subset = match b.source {
@@ -238,6 +242,7 @@ impl Preset {
             _ => String::new(),
         };
         let files: Box<dyn BladeFiles> = match twist {
+            _ if b.from_htc() => Box::new(crate::model::htc::htc_files(b, &self.base)),
             Some(twist) => Box::new(Hawc2Files {
                 st: file,
                 twist,
@@ -246,9 +251,17 @@ impl Preset {
             }),
             None => Box::new(BeamDynFiles { primary: file }),
         };
+        let keys = if b.from_htc() {
+            format!(
+                "blade.htc_file = \"{}\" (blade.htc_body = \"{}\")",
+                b.htc_file, b.htc_body
+            )
+        } else {
+            format!("blade.file = \"{}\"{subset}", b.file)
+        };
         let blade = files.read().map_err(|e| Error::Invalid {
             origin: self.origin.clone(),
-            message: format!("blade.file = \"{}\"{subset}: {e}", b.file),
+            message: format!("{keys}: {e}"),
         })?;
         self.tabulated = Some(Tabulated {
             source: b.source,
@@ -256,6 +269,7 @@ impl Preset {
             twist_file: b.twist_file.clone(),
             st_set: b.st_set,
             st_subset: b.st_subset,
+            htc: b.htc_keys(),
             blade: Arc::new(blade),
         });
         Ok(())
@@ -319,7 +333,9 @@ impl Preset {
     /// prebend; `None` when the preset names no aerodynamic files.
     fn read_aero_blade(&self) -> Result<Option<AeroBlade>> {
         let (a, base) = (&self.aero, &self.base);
-        let blade = if !a.blade_file.is_empty() {
+        let blade = if self.blade.from_htc() {
+            self.read_htc_aero()?
+        } else if !a.blade_file.is_empty() {
             let airfoils: Vec<BladeFile> = a.airfoils.iter().map(|f| base.resolve(f)).collect();
             Some(
                 read_aerodyn(
@@ -369,6 +385,31 @@ impl Preset {
             (blade, _) => blade,
         };
         Ok(blade)
+    }
+
+    /// The aerodynamic description of an htc blade: the ae and pc files the htc's `aero` block
+    /// names, or `aero.ae_file`, `aero.ae_set` and `aero.pc_file` where the preset names them;
+    /// twist and prebend from the body's `c2_def`.
+    fn read_htc_aero(&self) -> Result<Option<AeroBlade>> {
+        let (a, b, base) = (&self.aero, &self.blade, &self.base);
+        let given = (!a.ae_file.trim().is_empty()).then(|| AePc {
+            ae: base.resolve(&a.ae_file),
+            ae_set: a.ae_set,
+            pc: base.resolve(&a.pc_file),
+        });
+        let keys = match &given {
+            Some(_) => format!(
+                "aero.ae_file = \"{}\" (aero.ae_set = {}, aero.pc_file = \"{}\"; twist and \
+                 prebend from blade.htc_file = \"{}\")",
+                a.ae_file, a.ae_set, a.pc_file, b.htc_file
+            ),
+            None => format!(
+                "blade.htc_file = \"{}\" (blade.htc_body = \"{}\", its aero block)",
+                b.htc_file, b.htc_body
+            ),
+        };
+        read_htc_aero(&crate::model::htc::htc_files(b, base), given)
+            .map_err(|e| self.file_error(&keys, e))
     }
 
     /// The aerodynamic description this checked preset holds (`None` when it names no

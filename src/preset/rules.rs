@@ -16,7 +16,10 @@ pub const MAX_SAMPLES: f64 = 2e6;
 /// coupling α (it scales a tabulated blade's stations). Checked before the file is read.
 pub fn check_blade_keys(p: &Preset) -> Result<()> {
     let b = &p.blade;
+    let clash = htc_keys_clash(p);
     let message = match (b.source, b.file.trim().is_empty()) {
+        _ if clash.is_some() => clash.unwrap_or_default(),
+        (BladeSource::Hawc2, true) if b.from_htc() => return Ok(()),
         (BladeSource::Uniform, _) if b.bend_twist_coupling != 0.0 => format!(
             "blade.bend_twist_coupling = {} {}",
             b.bend_twist_coupling,
@@ -33,7 +36,9 @@ pub fn check_blade_keys(p: &Preset) -> Result<()> {
             source.name(),
             match source {
                 BladeSource::Beamdyn => "BeamDyn primary file (it names its blade file)",
-                _ => "HAWC2 st file (blade.st_set and blade.st_subset choose the subset)",
+                _ =>
+                    "HAWC2 st file (blade.st_set and blade.st_subset choose the subset; or \
+                      give a HAWC2 model's htc file as blade.htc_file instead)",
             }
         ),
         _ => match (b.source, b.twist_file.trim().is_empty()) {
@@ -56,17 +61,69 @@ pub fn check_blade_keys(p: &Preset) -> Result<()> {
     })
 }
 
+/// How the htc keys clash with the others: an htc blade takes its st file, set, twist and
+/// prebend from the htc, so a preset that names them too describes the blade twice.
+fn htc_keys_clash(p: &Preset) -> Option<String> {
+    let b = &p.blade;
+    if !b.from_htc() {
+        return (b.htc_body != "blade1" || !b.htc_root.trim().is_empty()).then(|| {
+            format!(
+                "blade.htc_body = \"{}\" and blade.htc_root = \"{}\" apply only with \
+                 blade.htc_file (a HAWC2 model's htc file)",
+                b.htc_body, b.htc_root
+            )
+        });
+    }
+    if b.source != BladeSource::Hawc2 {
+        return Some(format!(
+            "blade.htc_file = \"{}\" is a HAWC2 model: it needs blade.source = \"hawc2\", not \
+             \"{}\"",
+            b.htc_file,
+            b.source.name()
+        ));
+    }
+    let both = |key: &str, what: &str| {
+        Some(format!(
+            "{key} and blade.htc_file both give the blade's {what}; give one of them"
+        ))
+    };
+    let given = |s: &str| !s.trim().is_empty();
+    if given(&b.file) {
+        both(
+            "blade.file",
+            "st file (the htc's timoschenko_input names it)",
+        )
+    } else if given(&b.twist_file) {
+        both("blade.twist_file", "twist (the htc's c2_def holds it)")
+    } else if (b.st_set, b.st_subset) != (1, 1) {
+        both(
+            "blade.st_set/blade.st_subset",
+            "st set and subset (the htc's timoschenko_input 'set' chooses them)",
+        )
+    } else if given(&p.aero.prebend_file) {
+        both("aero.prebend_file", "prebend (the htc's c2_def holds it)")
+    } else {
+        None
+    }
+}
+
 /// Why numeric `key` can change nothing the model computes for `p`'s blade, and what acts in its
 /// place; `None` when it acts. A `--set` or `--vary` of such a key is an error
 /// ([`super::Preset::acts`]) and the explorer does not offer it. The `section` command is apart:
 /// it evaluates the layup whatever the blade uses.
 pub fn not_acting(p: &Preset, key: &str) -> Option<String> {
-    let (source, file) = (p.blade.source, &p.blade.file);
+    let source = p.blade.source;
+    // The key that names the blade's sections: its htc model or its file.
+    let file = if p.blade.from_htc() {
+        format!("blade.htc_file = \"{}\"", p.blade.htc_file)
+    } else {
+        format!("blade.file = \"{}\"", p.blade.file)
+    };
     let tabulated = source.is_tabulated();
     let reason = match key {
         "section.ply_angle" if tabulated => format!(
-            "does not apply to blade.source = \"{}\": the sections come from blade.file = \
-             \"{file}\"; the coupling added to them is blade.bend_twist_coupling",
+            "does not apply to blade.source = \"{}\": the sections come from {file}; the \
+             coupling added to them is blade.bend_twist_coupling",
             source.name()
         ),
         "section.ply_angle" if p.section.source == SectionSource::Direct => "does not apply to \
@@ -95,12 +152,13 @@ pub fn not_acting(p: &Preset, key: &str) -> Option<String> {
         // blade's sections come from its file and its strips from its polars.
         _ if tabulated && key.starts_with("section.") => format!(
             "does not apply to blade.source = \"{}\": the sections (stiffness, mass, chord, \
-             centres) come from blade.file = \"{file}\"",
+             centres) come from {file}",
             source.name()
         ),
         "operating.twist_root" | "operating.twist_tip" if tabulated => format!(
             "does not apply to blade.source = \"{}\": a tabulated blade's twist comes from its \
-             files (the BeamDyn key points, or blade.twist_file for a HAWC2 st file), and \
+             files (the BeamDyn key points, blade.twist_file for a HAWC2 st file, or the \
+             c2_def of blade.htc_file), and \
              operating.pitch turns it",
             source.name()
         ),
@@ -129,6 +187,16 @@ pub fn not_acting(p: &Preset, key: &str) -> Option<String> {
              structure.loss_factor (the per-family damping ratios are a tabulated blade's)"
                 .to_string()
         }
+        "blade.st_set" | "blade.st_subset" if p.blade.from_htc() => format!(
+            "does not apply with blade.htc_file = \"{}\": the htc's timoschenko_input chooses \
+             the st set and subset",
+            p.blade.htc_file
+        ),
+        "aero.ae_set" if p.blade.from_htc() && p.aero.ae_file.trim().is_empty() => format!(
+            "does not apply without aero.ae_file: the ae set is the one the aero block of \
+             blade.htc_file = \"{}\" gives its blade (ae_sets)",
+            p.blade.htc_file
+        ),
         "blade.st_set" | "blade.st_subset" if source != BladeSource::Hawc2 => format!(
             "does not apply to blade.source = \"{}\": it chooses a subset of a HAWC2 st file \
              (blade.source = \"hawc2\")",

@@ -11,6 +11,7 @@ mod eigen;
 mod explorer;
 mod formats;
 mod hostile;
+mod htc;
 mod identify;
 mod laminate;
 mod modes;

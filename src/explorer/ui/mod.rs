@@ -48,7 +48,7 @@ pub fn render(state: &AppState, frame: &mut Frame) {
     let [left, right] =
         Layout::horizontal([Constraint::Length(left_w), Constraint::Min(0)]).areas(body);
     let [params_area, modes_area] = Layout::vertical([
-        Constraint::Length(params::height(&state.preset)),
+        Constraint::Length(params::height(&state.preset, left.height)),
         Constraint::Min(0),
     ])
     .areas(left);

@@ -11,11 +11,16 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::Paragraph;
 use ratatui::Frame;
 
-/// Rows for `p`: the offered parameters, a blank, the section header and three stiffnesses (or
-/// the blade's source, span, hub and stations), plus borders.
-pub fn height(p: &ValidPreset) -> u16 {
-    offered_rows(p).len() as u16 + 5 + 2
+/// Rows for `p` in a column `available` rows high: the offered parameters, a blank, the section
+/// header and three stiffnesses (or the blade's source, span, hub and stations, and its beam
+/// where the column is tall enough to keep the modes pane's rows: 30 rows and up), plus borders.
+pub fn height(p: &ValidPreset, available: u16) -> u16 {
+    let beam = u16::from(p.tabulated_blade().is_some() && available >= BEAM_ROW_FROM);
+    offered_rows(p).len() as u16 + 5 + beam + 2
 }
+
+/// Column height from which a tabulated blade's pane also shows its beam.
+const BEAM_ROW_FROM: u16 = 30;
 
 /// Whether an offered parameter changes nothing until another setting changes, so the pane dims
 /// it: wind and tunnel speed without aerodynamics (`a` turns them on). Knobs that can change

@@ -13,8 +13,9 @@
 //! reduced to the Euler–Bernoulli section by [`classical::reduce`](super::classical::reduce),
 //! which also finds the shear centre from its couplings.
 //!
-//! The st file has no twist: the chord's twist lives in the htc file's `c2_def`. It comes here
-//! from another source ([`ChordTwist`], e.g. the AeroDyn 15 blade file of the same blade), and the
+//! The st file has no twist: the chord's twist lives in the htc file's `c2_def` ([`C2Line`],
+//! [`ChordTwist::from_c2_def`]), or comes from another source (the AeroDyn 15 blade file of the
+//! same blade, [`ChordTwist::from_aerodyn`]), and the
 //! section frames are the chord frames; the structural pitch enters through the stiffness's
 //! cross terms. The reference axis is the half-chord line, taken straight (its prebend and its
 //! in-plane offsets from the pitch bearing's axis, in `c2_def`, are neglected as §11.2 says).
@@ -24,6 +25,7 @@ use super::{BeamSection, BladeTable, SectionMatrices};
 use crate::error::{Error, Result};
 use crate::formats::aerodyn::AeroDynBlade;
 use crate::formats::hawc2_st::{ClassicRow, FpmRow, StFile, StRows};
+use crate::formats::htc::C2Section;
 use nalgebra::Matrix3;
 
 /// The twist of the chord along the span (toward feather, as docs/model.md §11.1), linear
@@ -55,6 +57,19 @@ impl ChordTwist {
         }
     }
 
+    /// docs/model.md §11.6: the twist of an htc `c2_def` (degrees about `z_c2`, HAWC2's sense:
+    /// negative toward feather, so ours is its negative) at each section's curved length along
+    /// the half-chord line, where the st and ae files' `r` count from.
+    pub fn from_c2_def(line: &C2Line) -> ChordTwist {
+        ChordTwist {
+            points: line
+                .points
+                .iter()
+                .map(|(s, sec)| (*s, -sec.twist_deg.to_radians()))
+                .collect(),
+        }
+    }
+
     /// The twist at span `z` (rad).
     pub fn at(&self, z: f64) -> f64 {
         let p = &self.points;
@@ -67,6 +82,53 @@ impl ChordTwist {
         }
         let ((za, ta), (zb, tb)) = (p[k - 1], p[k]);
         ta + (tb - ta) * (z - za) / (zb - za)
+    }
+}
+
+/// The half-chord line of an htc `c2_def`: each section with its curved length from the first
+/// (m), as HAWC2 measures a main body's `r`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct C2Line {
+    /// `(curved length, section)`, the length strictly increasing.
+    pub points: Vec<(f64, C2Section)>,
+}
+
+impl C2Line {
+    /// The sections of `c2_def` (written in the file `origin`) joined by straight segments;
+    /// two sections at one point are an error naming the second's line (the length along the
+    /// line would stand still there, and nothing can be interpolated on it).
+    pub fn new(c2_def: &[C2Section], origin: &str) -> Result<C2Line> {
+        let mut s = 0.0;
+        let mut points = Vec::with_capacity(c2_def.len());
+        for (k, sec) in c2_def.iter().enumerate() {
+            if let Some(prev) = k.checked_sub(1).map(|j| &c2_def[j]) {
+                let step = ((sec.x - prev.x).powi(2)
+                    + (sec.y - prev.y).powi(2)
+                    + (sec.z - prev.z).powi(2))
+                .sqrt();
+                if step.is_nan() || step <= 0.0 {
+                    return Err(Error::format(
+                        origin,
+                        sec.line,
+                        format!(
+                            "c2_def: section {} is where section {k} is; the half-chord line \
+                             must advance from section to section",
+                            k + 1
+                        ),
+                    ));
+                }
+                s += step;
+            }
+            points.push((s, *sec));
+        }
+        Ok(C2Line { points })
+    }
+
+    /// The out-of-plane offset `y` of the line (m, downwind positive: HAWC2's blade `y` points
+    /// downwind, the IEA 15MW tip sits at `y = −4.0`) at each section's curved length: the
+    /// blade's prebend.
+    pub fn prebend(&self) -> Vec<(f64, f64)> {
+        self.points.iter().map(|(s, sec)| (*s, sec.y)).collect()
     }
 }
 

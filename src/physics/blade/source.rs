@@ -1,22 +1,25 @@
 //! A tabulated blade from its files, and its structure (docs/model.md §11): the files are read
 //! and mapped to a [`BladeTable`] with the damping they state ([`read_beamdyn`],
-//! [`read_hawc2`]); [`pitch_range_basis`] builds the finite elements and the modal basis over a
-//! pitch range, and [`BladeStructure`] is the blade at one pitch with each mode's damping.
+//! [`read_hawc2`], a HAWC2 model's htc file through [`HtcFiles`]); [`pitch_range_basis`] builds
+//! the finite elements and the modal basis over a pitch range, and [`BladeStructure`] is the
+//! blade at one pitch with each mode's damping.
 //!
 //! Damping (docs/model.md §11.4): a modal damping ratio set per family (a preset's
 //! `structure.damping_flap`, `…_edge`, `…_torsion`) damps every mode of that family; a family
-//! left unset takes what the files state: BeamDyn's stiffness-proportional `mu` projected on each mode, or a ratio per
-//! family ([`SourceDamping::PerFamily`]); a file that states none leaves the mode undamped.
+//! left unset takes what the files state: BeamDyn's stiffness-proportional `mu` or an htc body's
+//! `damping_aniso` projected on each mode, or a ratio per family ([`SourceDamping::PerFamily`]); a
+//! file that states none leaves the mode undamped.
 
 use super::beamdyn::from_beamdyn;
 use super::coupling::with_bend_twist_coupling;
 use super::fem::Mesh;
-use super::hawc2::{from_hawc2_st, ChordTwist};
+use super::hawc2::{from_hawc2_st, C2Line, ChordTwist};
 use super::modal::{BladeMode, ModalBlade, StiffnessFactors};
 use super::pitch_range::{snapshot_pitches, PitchRangeBlade};
 use super::BladeTable;
 use crate::error::{Error, Result};
-use crate::formats::text_file::TextFile;
+use crate::formats::htc::{self, HtcBlade, HtcDamping, Named};
+use crate::formats::text_file::{ModelRoot, TextFile};
 use crate::formats::{aerodyn, beamdyn, elastodyn, hawc2_st};
 use std::sync::Arc;
 
@@ -103,6 +106,120 @@ impl<F: TextFile> BladeFiles for Hawc2Files<F> {
     fn read(&self) -> Result<TabulatedBlade> {
         read_hawc2(&self.st, &self.twist, self.set, self.subset)
     }
+}
+
+/// A HAWC2 blade from its model's htc file (docs/model.md §11.6): main body `body`'s `c2_def`
+/// (the twist), its `timoschenko_input` (st file, set, subset, FPM flag) and its damping
+/// statement; the files it names, included htc files too, resolve against `root`, as HAWC2
+/// resolves them against the folder it is run from.
+pub struct HtcFiles<F> {
+    pub htc: F,
+    pub root: ModelRoot<F>,
+    pub body: String,
+}
+
+impl<F: TextFile> HtcFiles<F> {
+    /// The blade as the htc describes it, its `continue_in_file`s read from the root.
+    pub fn model(&self) -> Result<HtcBlade> {
+        let name = self.htc.display();
+        let text = self.htc.read()?;
+        let mut include = |path: &str| {
+            let file = self.root.file(path);
+            Ok((file.display(), file.read()?))
+        };
+        let model = htc::parse_htc(&text, &name, &mut include)?;
+        htc::blade(&model, &self.body)
+    }
+
+    /// The file a statement of the htc names, relative to the root.
+    pub fn named(&self, n: &Named) -> F {
+        self.root.file(&n.value)
+    }
+}
+
+/// The half-chord line of a blade's `c2_def`.
+pub fn c2_line(blade: &HtcBlade) -> Result<C2Line> {
+    C2Line::new(&blade.body.c2_def, &blade.body.c2_file)
+}
+
+impl<F: TextFile> BladeFiles for HtcFiles<F> {
+    fn read(&self) -> Result<TabulatedBlade> {
+        let model = self.model()?;
+        let t = &model.body.timoshenko;
+        let at_input = |e: Error| {
+            Error::format(
+                &t.file,
+                t.line,
+                format!(
+                    "timoschenko_input of {}: filename {}: {e}",
+                    model.body.name, t.filename
+                ),
+            )
+        };
+        let twist = ChordTwist::from_c2_def(&c2_line(&model)?);
+        let st = self.root.file(&t.filename);
+        let mut blade = read_hawc2(&st, &twist, t.set, t.subset).map_err(at_input)?;
+        let fpm_rows = !blade.table.matrices.is_empty();
+        if fpm_rows != t.fpm {
+            return Err(at_input(Error::format(
+                st.display(),
+                0,
+                format!(
+                    "the timoshenko_input says FPM {}, but set {} subset {} holds {} rows",
+                    u8::from(t.fpm),
+                    t.set,
+                    t.subset,
+                    if fpm_rows {
+                        "fully populated (30-column)"
+                    } else {
+                        "classic (19-column)"
+                    }
+                ),
+            )));
+        }
+        if let Some(d) = &model.body.damping {
+            blade.damping = htc_damping(d)?;
+        }
+        blade.files = vec![self.htc.display(), st.display()];
+        Ok(blade)
+    }
+}
+
+/// docs/model.md §11.6: a body's `damping_aniso` or `damping_posdef` as stiffness-proportional
+/// damping, `kx` on the bending about `x_c2` (flap, as `E I_x`) and the flapwise shear, `ky` on
+/// the edge bending and shear, `kz` on torsion. Mass-proportional terms are not modelled: a body that states them is refused
+/// rather than damped otherwise than its file says.
+fn htc_damping(d: &HtcDamping) -> Result<SourceDamping> {
+    if d.mass.iter().any(|&m| m != 0.0) {
+        return Err(Error::format(
+            &d.file,
+            d.line,
+            format!(
+                "{}: mass-proportional damping (mx my mz = {} {} {}) is not modelled; only the \
+                 stiffness-proportional kx ky kz are",
+                d.keyword, d.mass[0], d.mass[1], d.mass[2]
+            ),
+        ));
+    }
+    if let Some(k) = d.stiffness.iter().find(|&&k| k.is_nan() || k < 0.0) {
+        return Err(Error::format(
+            &d.file,
+            d.line,
+            format!(
+                "{}: expected stiffness factors kx ky kz ≥ 0, found {k}",
+                d.keyword
+            ),
+        ));
+    }
+    let [kx, ky, kz] = d.stiffness;
+    // The flap bending's factor also damps the flap-direction shear strain that goes with it,
+    // the edge's the edgewise shear.
+    Ok(SourceDamping::StiffnessProportional(StiffnessFactors {
+        shear: [kx, ky],
+        flap: kx,
+        edge: ky,
+        torsion: kz,
+    }))
 }
 
 /// The BeamDyn primary file, then the blade file its `BldFile` names (relative to it, as

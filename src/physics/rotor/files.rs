@@ -20,6 +20,7 @@ use crate::formats::hawc2_aero::{self, AeFile, PcFile, PcProfile, PcSet};
 use crate::formats::text_file::TextFile;
 use crate::physics::aero::polar::Polar;
 use crate::physics::blade::hawc2::ChordTwist;
+use crate::physics::blade::source::{c2_line, HtcFiles};
 use std::sync::Arc;
 
 /// The aerodynamic blade an AeroDyn 15 blade file describes, its airfoil ids (`BlAFID`, 1-based)
@@ -192,13 +193,63 @@ fn pitch_axis_at(axis: &ElastoDynBlade, f: f64) -> f64 {
 /// as the AeroDyn 15 blade file `twist` says (HAWC2 keeps the twist in the htc's `c2_def`, which
 /// the same twist turns for the structure, docs/model.md §11.6).
 pub fn read_hawc2<F: TextFile>(ae: &F, ae_set: usize, pc: &F, twist: &F) -> Result<AeroBlade> {
+    let twist_name = twist.display();
+    let twist = ChordTwist::from_aerodyn(&aerodyn::parse_blade(&twist.read()?, &twist_name)?);
+    read_hawc2_twisted(ae, ae_set, pc, &twist)
+}
+
+/// The ae and pc files of a HAWC2 aerodynamic description, with the ae set.
+pub struct AePc<F> {
+    pub ae: F,
+    pub ae_set: usize,
+    pub pc: F,
+}
+
+/// The aerodynamic blade of a HAWC2 model's blade (docs/model.md §12.1–§12.2): the ae set and
+/// pc file its htc's `aero` block names for it (or `given` instead), twisted and prebent as its
+/// `c2_def` says. `None` when the model has no `aero` block and nothing is given.
+pub fn read_htc_aero<F: TextFile>(
+    htc: &HtcFiles<F>,
+    given: Option<AePc<F>>,
+) -> Result<Option<AeroBlade>> {
+    let model = htc.model()?;
+    let line = c2_line(&model)?;
+    let twist = ChordTwist::from_c2_def(&line);
+    let blade = match (given, &model.aero) {
+        (Some(f), _) => read_hawc2_twisted(&f.ae, f.ae_set, &f.pc, &twist)?,
+        (None, Some(a)) => {
+            let (ae, pc) = (htc.named(&a.ae_filename), htc.named(&a.pc_filename));
+            read_hawc2_twisted(&ae, a.ae_set, &pc, &twist).map_err(|e| {
+                Error::format(
+                    &a.ae_filename.file,
+                    a.ae_filename.line,
+                    format!(
+                        "in aero: ae_filename {} (ae set {} of blade {}), pc_filename {}: {e}",
+                        a.ae_filename.value, a.ae_set, a.blade, a.pc_filename.value
+                    ),
+                )
+            })?
+        }
+        (None, None) => return Ok(None),
+    };
+    Ok(Some(AeroBlade {
+        prebend: line.prebend(),
+        ..blade
+    }))
+}
+
+/// [`from_hawc2`] on set `ae_set` of the ae file `ae` and the pc file `pc`.
+fn read_hawc2_twisted<F: TextFile>(
+    ae: &F,
+    ae_set: usize,
+    pc: &F,
+    twist: &ChordTwist,
+) -> Result<AeroBlade> {
     let ae_name = ae.display();
     let ae_file = hawc2_aero::parse_ae(&ae.read()?, &ae_name)?;
     let pc_name = pc.display();
     let pc_file = hawc2_aero::parse_pc(&pc.read()?, &pc_name)?;
-    let twist_name = twist.display();
-    let twist = ChordTwist::from_aerodyn(&aerodyn::parse_blade(&twist.read()?, &twist_name)?);
-    from_hawc2(&ae_file, &ae_name, ae_set, &pc_file, &pc_name, &twist)
+    from_hawc2(&ae_file, &ae_name, ae_set, &pc_file, &pc_name, twist)
 }
 
 /// [`read_hawc2`] on parsed files; the origins name them in errors.

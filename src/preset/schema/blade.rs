@@ -14,7 +14,8 @@ pub enum BladeSource {
     /// A BeamDyn primary file (key points, initial twist) and the blade file it names (6×6
     /// stiffness and mass per station), docs/model.md §11.5.
     Beamdyn,
-    /// A HAWC2 st file, subset `blade.st_subset` of set `blade.st_set`.
+    /// A HAWC2 blade: a model's htc file (`blade.htc_file`, body `blade.htc_body`), or an st
+    /// file, subset `blade.st_subset` of set `blade.st_set`, twisted by `blade.twist_file`.
     Hawc2,
 }
 
@@ -53,6 +54,17 @@ pub struct Blade {
     /// carries no twist; HAWC2 takes it from the htc's c2_def), relative to the preset's
     /// directory (hawc2 source only).
     pub twist_file: String,
+    /// A HAWC2 model's htc file, relative to the preset's directory: its main body
+    /// `blade.htc_body` gives the st file, set and subset, the twist, the prebend and the
+    /// damping, its `aero` block the ae and pc files (hawc2 source only; instead of `file`,
+    /// `twist_file`, `st_set`, `st_subset` and `aero.prebend_file`).
+    pub htc_file: String,
+    /// The main body of `htc_file` that is the blade.
+    pub htc_body: String,
+    /// The model's root folder, against which the htc's own paths resolve (HAWC2 resolves them
+    /// against the folder it is run from), relative to the preset's directory; empty: the
+    /// folder above the one `htc_file` is in (a model's `htc/` folder).
+    pub htc_root: String,
     /// Span L (m). A tabulated blade's is its file's.
     pub length: f64,
     /// Hub radius r_hub (m); r = r_hub + x.
@@ -76,6 +88,8 @@ pub struct Tabulated {
     pub twist_file: String,
     pub st_set: usize,
     pub st_subset: usize,
+    /// `htc_file`, `htc_body`, `htc_root`.
+    pub htc: [String; 3],
     pub blade: Arc<TabulatedBlade>,
 }
 
@@ -84,9 +98,26 @@ impl Tabulated {
     pub fn read_from(&self, blade: &Blade) -> bool {
         self.source == blade.source
             && self.file == blade.file
+            && self.htc == blade.htc_keys()
             && (self.source != BladeSource::Hawc2
                 || (self.st_set, self.st_subset, &self.twist_file)
                     == (blade.st_set, blade.st_subset, &blade.twist_file))
+    }
+}
+
+impl Blade {
+    /// `htc_file`, `htc_body`, `htc_root`: what an htc blade is read from.
+    pub fn htc_keys(&self) -> [String; 3] {
+        [
+            self.htc_file.clone(),
+            self.htc_body.clone(),
+            self.htc_root.clone(),
+        ]
+    }
+
+    /// Whether the blade is read from a HAWC2 model's htc file.
+    pub fn from_htc(&self) -> bool {
+        !self.htc_file.trim().is_empty()
     }
 }
 
@@ -96,6 +127,9 @@ impl Default for Blade {
             source: BladeSource::Uniform,
             file: String::new(),
             twist_file: String::new(),
+            htc_file: String::new(),
+            htc_body: "blade1".into(),
+            htc_root: String::new(),
             length: 8.4455,
             hub_radius: 0.0,
             st_set: 1,

@@ -97,6 +97,7 @@ impl RotorFiles {
             a.prebend_file.clone(),
         ];
         aero.extend(a.airfoils.iter().cloned());
+        aero.extend(p.blade.htc_keys());
         let table = match p.operating.schedule {
             Schedule::Table => p.operating.schedule_file.clone(),
             _ => String::new(),
