@@ -175,37 +175,45 @@ fn into_blocks(stream: Vec<Statement>, origin: &str) -> Result<Block> {
     Ok(open.pop().expect("the root block"))
 }
 
+impl Item {
+    /// This item if it is a block called `name`.
+    fn block_named(&self, name: &str) -> Option<&Block> {
+        match self {
+            Item::Block(b) if b.name == name => Some(b),
+            _ => None,
+        }
+    }
+
+    /// This item if it is a statement with `keyword`.
+    fn statement_with(&self, keyword: &str) -> Option<&Statement> {
+        match self {
+            Item::Statement(s) if s.keyword == keyword => Some(s),
+            _ => None,
+        }
+    }
+}
+
 impl Block {
     /// The blocks called `name` directly inside this one.
     pub fn blocks<'a>(&'a self, name: &'a str) -> impl Iterator<Item = &'a Block> + 'a {
-        self.items.iter().filter_map(move |i| match i {
-            Item::Block(b) if b.name == name => Some(b),
-            _ => None,
-        })
+        self.items.iter().filter_map(move |i| i.block_named(name))
     }
 
     /// The first block called `name` directly inside this one.
     pub fn block(&self, name: &str) -> Option<&Block> {
-        self.items.iter().find_map(|i| match i {
-            Item::Block(b) if b.name == name => Some(b),
-            _ => None,
-        })
+        self.items.iter().find_map(|i| i.block_named(name))
     }
 
     /// The statements with `keyword` directly inside this block.
     pub fn statements<'a>(&'a self, keyword: &'a str) -> impl Iterator<Item = &'a Statement> + 'a {
-        self.items.iter().filter_map(move |i| match i {
-            Item::Statement(s) if s.keyword == keyword => Some(s),
-            _ => None,
-        })
+        self.items
+            .iter()
+            .filter_map(move |i| i.statement_with(keyword))
     }
 
     /// The first statement with `keyword` directly inside this block.
     pub fn statement(&self, keyword: &str) -> Option<&Statement> {
-        self.items.iter().find_map(|i| match i {
-            Item::Statement(s) if s.keyword == keyword => Some(s),
-            _ => None,
-        })
+        self.items.iter().find_map(|i| i.statement_with(keyword))
     }
 
     /// The block as errors name it: `main_body blade1` for a block with a `name` statement.

@@ -392,20 +392,20 @@ impl Preset {
     /// twist and prebend from the body's `c2_def`.
     fn read_htc_aero(&self) -> Result<Option<AeroBlade>> {
         let (a, b, base) = (&self.aero, &self.blade, &self.base);
-        let given = (!a.ae_file.trim().is_empty()).then(|| AePc {
-            ae: base.resolve(&a.ae_file),
-            ae_set: a.ae_set,
-            pc: base.resolve(&a.pc_file),
-        });
-        let keys = match &given {
-            Some(_) => format!(
-                "aero.ae_file = \"{}\" (aero.ae_set = {}, aero.pc_file = \"{}\"; twist and \
-                 prebend from blade.htc_file = \"{}\")",
-                a.ae_file, a.ae_set, a.pc_file, b.htc_file
-            ),
-            None => format!(
+        let named = |s: &str| !s.trim().is_empty();
+        let given = AePc {
+            ae: named(&a.ae_file).then(|| (base.resolve(&a.ae_file), a.ae_set)),
+            pc: named(&a.pc_file).then(|| base.resolve(&a.pc_file)),
+        };
+        let keys = match (named(&a.ae_file), named(&a.pc_file)) {
+            (false, false) => format!(
                 "blade.htc_file = \"{}\" (blade.htc_body = \"{}\", its aero block)",
                 b.htc_file, b.htc_body
+            ),
+            _ => format!(
+                "aero.ae_file = \"{}\" (aero.ae_set = {}), aero.pc_file = \"{}\" (either empty: \
+                 the aero block's; twist and prebend from blade.htc_file = \"{}\")",
+                a.ae_file, a.ae_set, a.pc_file, b.htc_file
             ),
         };
         read_htc_aero(&crate::model::htc::htc_files(b, base), given)

@@ -271,7 +271,7 @@ pub fn check_rotor_keys(p: &Preset) -> Result<()> {
             a.airfoils.len(),
             a.pitch_axis_file
         )
-    } else if hawc2 && !(given(&a.ae_file) && given(&a.pc_file)) {
+    } else if hawc2 && !(given(&a.ae_file) && given(&a.pc_file)) && !p.blade.from_htc() {
         format!(
             "a HAWC2 aerodynamic description needs both aero.ae_file (now \"{}\") and \
              aero.pc_file (now \"{}\")",

@@ -334,3 +334,30 @@ fn keys_given_both_ways_name_both_keys() {
         .zip(&b.nodes)
         .any(|(x, y)| x.polar != y.polar));
 }
+
+/// A preset may replace one of the htc's aerodynamic files and keep the other: the 8-profile pc
+/// file alone gives the same operating point as naming it with the aero block's own ae file
+/// (15824.2 kW against the 3-D corrected polars' 15901.2 kW), and a missing replacement is
+/// named by its key, not as the aero block's file.
+#[test]
+fn one_aerodynamic_file_of_the_htc_can_be_replaced() {
+    use flutterscope::model::operating::{steady, unsteadiness};
+    let power = |overrides: &[&str]| {
+        let p = load("iea15mw-htc", overrides).unwrap();
+        steady(&p, unsteadiness(&p)).unwrap().1.flow.power
+    };
+    let pc = "aero.pc_file=blades/iea15mw/IEA_15MW_RWT_pc.dat";
+    let ae = "aero.ae_file=blades/iea15mw-hawc2/IEA-15-240-RWT/IEA_15MW_RWT_ae.dat";
+    let (alone, both, own) = (power(&[pc]), power(&[pc, ae]), power(&[]));
+    assert_eq!(alone, both);
+    assert!((own / alone - 1.0).abs() > 1e-3, "{own} against {alone}");
+    let e = load("iea15mw-htc", &["aero.pc_file=no-such.pc"])
+        .and_then(|p| steady(&p, unsteadiness(&p)).map(|_| ()))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("aero.pc_file = \"no-such.pc\"") && e.contains("no-such.pc: cannot read"),
+        "{e}"
+    );
+    assert!(!e.contains("in aero: ae_filename"), "{e}");
+}

@@ -8,13 +8,22 @@
 use super::blade::{iea_15mw_beamdyn, iea_15mw_hawc2, modes_at, nrel_5mw, IEA_FPM, IEA_RATED_RPM};
 use flutterscope::model::blade::blade_structure;
 use flutterscope::physics::blade::fem::{assemble, Beam, Mesh};
-use flutterscope::physics::blade::modal::{Family, ModalBlade};
+use flutterscope::physics::blade::modal::{BladeMode, Family, ModalBlade};
 use flutterscope::physics::blade::{BeamSection, BladeTable, ShearFlexibility};
 use flutterscope::preset::Preset;
 use nalgebra::Matrix4;
 
 fn rel(a: f64, b: f64) -> f64 {
     (a - b).abs() / b.abs()
+}
+
+/// A tabulated preset's blade modes at its rotor speed, as `modes` lists them.
+fn preset_modes(p: &flutterscope::preset::ValidPreset) -> Vec<BladeMode> {
+    blade_structure(p)
+        .unwrap()
+        .unwrap()
+        .modes(p.omega())
+        .unwrap()
 }
 
 /// A uniform beam: mass `m`, bending stiffness `ei` and shear stiffness `ga` in flap and edge
@@ -216,17 +225,13 @@ fn the_shear_deformable_blade_converges_without_locking() {
     }
 }
 
-/// `structure.shear = false` is the Euler–Bernoulli blade as it was before shear entered:
-/// the NREL 5MW preset's first six modes at 12.1 rpm, frequency and projected damping, as the
-/// Euler–Bernoulli element gave them (`flutterscope modes --preset nrel5mw --json`), to 1e-6.
+/// `structure.shear = false` is the Euler–Bernoulli beam: the NREL 5MW preset's first six modes
+/// at 12.1 rpm, frequency and projected damping, as the Euler–Bernoulli element computes them
+/// (`flutterscope modes --preset nrel5mw --json` on it, the element rigid in shear), to 1e-6.
 #[test]
 fn without_shear_the_blade_is_the_euler_bernoulli_one() {
     let p = Preset::load("nrel5mw", &["structure.shear=false".into()]).unwrap();
-    let modes = blade_structure(&p)
-        .unwrap()
-        .unwrap()
-        .modes(p.omega())
-        .unwrap();
+    let modes = preset_modes(&p);
     let before = [
         (0.7435756526045657, 0.004467869579492214),
         (1.1193495061833119, 0.004887248704015767),
@@ -248,12 +253,7 @@ fn without_shear_the_blade_is_the_euler_bernoulli_one() {
         );
     }
     let shear = Preset::load("nrel5mw", &[]).unwrap();
-    let edge_2 = blade_structure(&shear)
-        .unwrap()
-        .unwrap()
-        .modes(shear.omega())
-        .unwrap()[3]
-        .frequency_hz;
+    let edge_2 = preset_modes(&shear)[3].frequency_hz;
     assert!(
         edge_2 < 0.93 * before[3].0,
         "edge 2 with shear: {edge_2} Hz"
@@ -309,11 +309,7 @@ fn a_vanishing_shear_flexibility_gives_the_euler_bernoulli_blade() {
 #[test]
 fn nrel_5mw_matches_a_converged_shear_deformable_model_and_beamdyn() {
     let p = Preset::load("nrel5mw", &["structure.modes=5".into()]).unwrap();
-    let modes = blade_structure(&p)
-        .unwrap()
-        .unwrap()
-        .modes(p.omega())
-        .unwrap();
+    let modes = preset_modes(&p);
     let f: Vec<f64> = modes.iter().map(|m| m.frequency_hz).collect();
     let emulation = [0.7366, 1.0891, 2.0055, 3.761, 4.441];
     for k in 0..5 {

@@ -198,26 +198,38 @@ pub fn read_hawc2<F: TextFile>(ae: &F, ae_set: usize, pc: &F, twist: &F) -> Resu
     read_hawc2_twisted(ae, ae_set, pc, &twist)
 }
 
-/// The ae and pc files of a HAWC2 aerodynamic description, with the ae set.
+/// The ae and pc files a preset names in place of an htc's (each `None`: the htc's own), the ae
+/// file with its set.
 pub struct AePc<F> {
-    pub ae: F,
-    pub ae_set: usize,
-    pub pc: F,
+    pub ae: Option<(F, usize)>,
+    pub pc: Option<F>,
 }
 
 /// The aerodynamic blade of a HAWC2 model's blade (docs/model.md §12.1–§12.2): the ae set and
-/// pc file its htc's `aero` block names for it (or `given` instead), twisted and prebent as its
-/// `c2_def` says. `None` when the model has no `aero` block and nothing is given.
-pub fn read_htc_aero<F: TextFile>(
-    htc: &HtcFiles<F>,
-    given: Option<AePc<F>>,
-) -> Result<Option<AeroBlade>> {
+/// pc file its htc's `aero` block names for it (either replaced by `given`'s), twisted and
+/// prebent as its `c2_def` says. `None` when the model has no `aero` block and nothing is given.
+pub fn read_htc_aero<F: TextFile>(htc: &HtcFiles<F>, given: AePc<F>) -> Result<Option<AeroBlade>> {
     let model = htc.model()?;
     let line = c2_line(&model)?;
     let twist = ChordTwist::from_c2_def(&line);
     let blade = match (given, &model.aero) {
-        (Some(f), _) => read_hawc2_twisted(&f.ae, f.ae_set, &f.pc, &twist)?,
-        (None, Some(a)) => {
+        (
+            AePc {
+                ae: Some((ae, set)),
+                pc: Some(pc),
+            },
+            _,
+        ) => read_hawc2_twisted(&ae, set, &pc, &twist)?,
+        (AePc { ae: None, pc: None }, None) => return Ok(None),
+        (_, None) => {
+            return Err(Error::Invalid {
+                origin: htc.htc.display(),
+                message: "the model has no aero block to take the other of its ae and pc files \
+                          from: give both aero.ae_file and aero.pc_file"
+                    .to_string(),
+            })
+        }
+        (AePc { ae: None, pc: None }, Some(a)) => {
             let (ae, pc) = (htc.named(&a.ae_filename), htc.named(&a.pc_filename));
             read_hawc2_twisted(&ae, a.ae_set, &pc, &twist).map_err(|e| {
                 Error::format(
@@ -230,7 +242,14 @@ pub fn read_htc_aero<F: TextFile>(
                 )
             })?
         }
-        (None, None) => return Ok(None),
+        // One file the preset's, the other the aero block's: errors name the preset's keys.
+        (given, Some(a)) => {
+            let (ae, ae_set) = given
+                .ae
+                .unwrap_or_else(|| (htc.named(&a.ae_filename), a.ae_set));
+            let pc = given.pc.unwrap_or_else(|| htc.named(&a.pc_filename));
+            read_hawc2_twisted(&ae, ae_set, &pc, &twist)?
+        }
     };
     Ok(Some(AeroBlade {
         prebend: line.prebend(),
