@@ -846,7 +846,8 @@ fn dense_lowest_by_k(k: &DMatrix<f64>, m: &DMatrix<f64>, count: usize) -> Vec<f6
 /// (its stiffness' condition grows as the fourth power of the element count, and the
 /// shear-deformable beam's light shear-strain dofs add to it): the three solutions differ from
 /// each other by up to 3.5e-8 on the Euler–Bernoulli beam and 1.2e-7 on the shear-deformable one
-/// there (NREL 5MW edge 1 at 20 rpm), so 3e-7 is what is asked of it.
+/// there (NREL 5MW edge 1 at 20 rpm), so 3e-7 is what is asked of it (on the NREL 5MW only: each
+/// dense decomposition of its 2,800 dofs costs seconds).
 #[test]
 fn banded_modes_equal_a_dense_decomposition() {
     use flutterscope::preset::Preset;
@@ -854,7 +855,7 @@ fn banded_modes_equal_a_dense_decomposition() {
     let hz = |lambda: f64| lambda.sqrt() / std::f64::consts::TAU;
     for (preset, meshes) in [
         ("nrel5mw", &[60, 120, 400][..]),
-        ("iea15mw", &[60, 120, 400][..]),
+        ("iea15mw", &[60, 120][..]),
         ("iea15mw-btc", &[120][..]),
     ] {
         let p = Preset::load(preset, &[]).unwrap();
