@@ -25,7 +25,7 @@ use nalgebra::{DMatrix, DVector};
 
 /// Where each family's degrees of freedom sit among the free dofs: the element's own layout,
 /// which what groups the dofs (the family shares of a mode) reads from the assembled matrices
-/// ([`BladeMatrices::layout`]) rather than assuming.
+/// ([`Beam::layout`] of [`BladeMatrices::beam`]) rather than assuming.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct NodeLayout {
     /// The family (flap 0, edge 1, twist 2) of each dof of a node's block, in block order.
@@ -177,9 +177,8 @@ pub struct BladeMatrices {
     pub k0: DMatrix<f64>,
     /// Per Ω² (rad/s)⁻²: `K(Ω) = K₀ + Ω² K_Ω`.
     pub k_omega: DMatrix<f64>,
-    /// Where each family's dofs sit in a node's block.
-    pub layout: NodeLayout,
-    /// The beam the elements model.
+    /// The beam the elements model; where each family's dofs sit is its
+    /// [`layout`](Beam::layout).
     pub beam: Beam,
 }
 
@@ -532,7 +531,6 @@ fn assemble_with(
         mass,
         k0,
         k_omega,
-        layout: beam.layout(),
         beam,
     })
 }
@@ -647,6 +645,8 @@ pub struct BladeGeometry {
     pub mesh: Mesh,
     /// Pitch the section frames are turned by (rad).
     pub pitch: f64,
+    /// The beam the elements model: how the element's dofs number among the free ones.
+    pub beam: Beam,
 }
 
 impl BladeMatrices {
@@ -656,6 +656,7 @@ impl BladeMatrices {
             table: self.table.clone(),
             mesh: self.mesh.clone(),
             pitch: self.pitch,
+            beam: self.beam,
         }
     }
 
@@ -719,7 +720,7 @@ impl BladeGeometry {
 
     fn station_map(&self, element: usize, rows: [Row; 5]) -> StationMap {
         StationMap {
-            dofs: Beam::of(&self.table).element_dofs(element),
+            dofs: self.beam.element_dofs(element),
             rows,
         }
     }

@@ -146,7 +146,7 @@ impl ModalBlade {
         }
         let reduced_k0 = symmetrised(basis.tr_mul(&k0.mul(&basis)));
         let reduced_k_omega = symmetrised(basis.tr_mul(&k_omega.mul(&basis)));
-        let reduced_family = reduced_family_mass(&mass, &basis, &matrices.layout);
+        let reduced_family = reduced_family_mass(&mass, &basis, &matrices.beam.layout());
         Ok(ModalBlade {
             geometry: matrices.geometry(),
             basis: Arc::new(basis),

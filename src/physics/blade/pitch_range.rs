@@ -14,7 +14,7 @@
 //! decomposition that drops the directions the snapshots hardly use. The tests bound what it
 //! costs against a full rebuild at each pitch.
 
-use super::fem::{assemble, BladeGeometry, BladeMatrices, Mesh};
+use super::fem::{assemble, Beam, BladeGeometry, BladeMatrices, Mesh};
 use super::modal::{
     m_orthonormal, reduced_family_mass, stiffness_damping, ModalBlade, Projections,
     StiffnessFactors,
@@ -102,6 +102,7 @@ pub fn snapshot_pitches(low: f64, high: f64) -> Vec<f64> {
 pub struct PitchRangeBlade {
     table: BladeTable,
     mesh: Mesh,
+    beam: Beam,
     basis: Arc<DMatrix<f64>>,
     mass: Harmonics,
     k0: Harmonics,
@@ -155,7 +156,7 @@ impl PitchRangeBlade {
             .transpose()?;
         let families: Vec<[DMatrix<f64>; 3]> = samples
             .iter()
-            .map(|s| reduced_family_mass(&band_of(&s.mass), &basis, &s.layout))
+            .map(|s| reduced_family_mass(&band_of(&s.mass), &basis, &s.beam.layout()))
             .collect();
         let family = [0, 1, 2].map(|g| {
             Harmonics::from_samples(&families.iter().map(|f| f[g].clone()).collect::<Vec<_>>())
@@ -163,6 +164,7 @@ impl PitchRangeBlade {
         Ok(PitchRangeBlade {
             table: table.clone(),
             mesh: mesh.clone(),
+            beam: Beam::of(table),
             mass: harmonics(&|s| &s.mass),
             k0: harmonics(&|s| &s.k0),
             k_omega: harmonics(&|s| &s.k_omega),
@@ -191,6 +193,7 @@ impl PitchRangeBlade {
             table: self.table.clone(),
             mesh: self.mesh.clone(),
             pitch,
+            beam: self.beam,
         };
         ModalBlade::from_projections(geometry, Arc::clone(&self.basis), &projections)
     }
