@@ -3,6 +3,7 @@
 
 use super::kept::Kept;
 use crate::error::Result;
+use crate::physics::blade::axis::CurvedAxis;
 use crate::physics::blade::fem::Beam;
 use crate::physics::blade::pitch_range::PitchRangeBlade;
 use crate::physics::blade::source::{
@@ -28,7 +29,7 @@ pub fn blade_structure(p: &ValidPreset) -> Result<Option<Arc<BladeStructure>>> {
     };
     static BUILT_CACHE: Kept<BuildKey, BladeStructure> = Kept::new();
     BUILT_CACHE
-        .get_or_build(BuildKey::of(p, blade), BUILT, || build(p, blade.clone()))
+        .get_or_build(BuildKey::of(p, blade)?, BUILT, || build(p, blade.clone()))
         .map(Some)
 }
 
@@ -67,8 +68,8 @@ struct RangeKey {
 }
 
 impl BuildKey {
-    fn of(p: &ValidPreset, blade: &Arc<TabulatedBlade>) -> BuildKey {
-        BuildKey {
+    fn of(p: &ValidPreset, blade: &Arc<TabulatedBlade>) -> Result<BuildKey> {
+        Ok(BuildKey {
             range: RangeKey {
                 blade: blade.clone(),
                 settings: BasisSettings {
@@ -76,6 +77,7 @@ impl BuildKey {
                     hub_radius: p.blade.hub_radius,
                     min_elements: p.structure.min_elements,
                     shear: p.structure.shear,
+                    axis: axis(p)?,
                     count: p.structure.modes,
                     speeds: reference_speeds(p),
                     pitches: pitch_range(p),
@@ -83,7 +85,21 @@ impl BuildKey {
             },
             pitch: p.pitch_rad(),
             ratios: ratios(p, blade),
+        })
+    }
+}
+
+/// The reference axis the beam follows (docs/model.md §11.9): the prebend the aerodynamics
+/// see (`aero.prebend_file` or the htc's `c2_def`), unless `structure.curved` is off or the
+/// preset describes no aerodynamics.
+fn axis(p: &ValidPreset) -> Result<CurvedAxis> {
+    match p.aero_blade() {
+        Some(aero) if p.structure.curved && !aero.prebend.is_empty() => {
+            let points: Vec<(f64, [f64; 2])> =
+                aero.prebend.iter().map(|&(s, x)| (s, [x, 0.0])).collect();
+            CurvedAxis::new(&aero.origin, &points)
         }
+        _ => Ok(CurvedAxis::straight()),
     }
 }
 
@@ -96,7 +112,7 @@ fn pitch_range(p: &ValidPreset) -> (f64, f64) {
 }
 
 fn build(p: &ValidPreset, blade: Arc<TabulatedBlade>) -> Result<BladeStructure> {
-    let key = BuildKey::of(p, &blade).range;
+    let key = BuildKey::of(p, &blade)?.range;
     static RANGE_CACHE: Kept<RangeKey, (BladeTable, PitchRangeBlade)> = Kept::new();
     let range = RANGE_CACHE.get_or_build(key.clone(), RANGES, || {
         pitch_range_basis(&blade, &key.settings)

@@ -38,7 +38,7 @@ pub fn for_preset(p: &ValidPreset) -> Result<Arc<dyn Structure>> {
             let omega = p.omega();
             let key = (Same(built.clone()), omega.to_bits());
             let structure = KEPT.get_or_build(key, AT_SPEED, || {
-                TabulatedStructure::new(built.modal.clone(), built.modes(omega)?)
+                TabulatedStructure::new(built.modal.clone(), built.modes(omega)?, omega)
             })?;
             Ok(structure)
         }

@@ -49,7 +49,9 @@ fn interpolate(table: &[(f64, f64)], x: f64) -> f64 {
 /// The htc blade is the st file's blade: the same st file and set, station for station, the
 /// same mass and stiffness; only the twist differs (c2_def's against BlTwist), and by at most
 /// 0.011° (measured 0.0101°, at 10.5 m: BlTwist and c2_def are sampled at different stations
-/// and each is read linearly between them). The htc's tuned damping_aniso gives the first flap
+/// and each is read linearly between them). On the prebent axis the modes agree within 0.4 %
+/// (measured 0.37 %, torsion 1): the htc's prebend is the half-chord line's, not the pitch
+/// axis's. The htc's tuned damping_aniso gives the first flap
 /// and edge modes 3 % logarithmic decrement (measured 2.9 % and 3.0 % at 7.56 rpm).
 #[test]
 fn the_htc_blade_is_the_st_file_blade_with_c2_def_twist() {
@@ -75,18 +77,31 @@ fn the_htc_blade_is_the_st_file_blade_with_c2_def_twist() {
 
     let omega = htc.omega();
     let modes = |p: &ValidPreset| blade_structure(p).unwrap().unwrap().modes(omega).unwrap();
-    let (ma, mb) = (modes(&htc), modes(&st));
-    for (k, (x, y)) in ma.iter().zip(&mb).enumerate() {
-        let d = (x.frequency_hz - y.frequency_hz) / y.frequency_hz;
-        eprintln!(
-            "mode {}: htc {:.6} Hz, st + BlTwist {:.6} Hz ({:+.2e})",
-            k + 1,
-            x.frequency_hz,
-            y.frequency_hz,
-            d
-        );
-        assert!(d.abs() < 2e-5, "mode {}: {d:e}", k + 1);
+    let straight = |p: &ValidPreset| p.edited(|e| e.structure.curved = false).unwrap();
+    // Straight, only the twist differs; curved, the prebend too: c2_def's half-chord line sits
+    // up to 0.20 m downwind of BlCrvAC's pitch axis inboard ([`prebend_from_c2_def_is_blcrvac`]),
+    // which the edge modes, coupled to the twist by the curve, feel most.
+    for (what, (ma, mb), bound) in [
+        (
+            "straight",
+            (modes(&straight(&htc)), modes(&straight(&st))),
+            2e-5,
+        ),
+        ("curved", (modes(&htc), modes(&st)), 5e-3),
+    ] {
+        for (k, (x, y)) in ma.iter().zip(&mb).enumerate() {
+            let d = (x.frequency_hz - y.frequency_hz) / y.frequency_hz;
+            eprintln!(
+                "{what} mode {}: htc {:.6} Hz, st + BlTwist {:.6} Hz ({:+.2e})",
+                k + 1,
+                x.frequency_hz,
+                y.frequency_hz,
+                d
+            );
+            assert!(d.abs() < bound, "{what} mode {}: {d:e}", k + 1);
+        }
     }
+    let ma = modes(&htc);
     let log_decrement = |k: usize| {
         let z = ma[k].damping_ratio;
         std::f64::consts::TAU * z / (1.0 - z * z).sqrt()

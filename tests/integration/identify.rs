@@ -147,8 +147,8 @@ fn demo_blade_names_agree_and_tracks_are_continuous() {
 }
 
 /// When the families do not add up, the root that fits worst takes the other family's name
-/// (docs/model.md §6.2, which kind names first). The IEA 15MW at 11.6 rpm, past its overspeed
-/// flutter point (11.34 rpm): flap 1 is an
+/// (docs/model.md §6.2, which kind names first). The IEA 15MW at 12.4 rpm, past its overspeed
+/// flutter point (12.08 rpm): flap 1 is an
 /// overdamped pair, almost pure flap, and must be called flap 1; the growing 3.0 Hz root, the
 /// torsion-1 branch coalescing with flap 3, is then 94 % flap and takes torsion 1 (named first,
 /// the oscillating roots used to take flap 1 and leave the pair `torsion 1`, two roots of the
@@ -157,7 +157,7 @@ fn demo_blade_names_agree_and_tracks_are_continuous() {
 #[test]
 fn an_overdamped_flap_mode_keeps_its_family() {
     for set in [
-        vec!["operating.rotor_speed=11.6".to_string()],
+        vec!["operating.rotor_speed=12.4".to_string()],
         vec!["aero.model=quasi-steady".to_string()],
     ] {
         let p = Preset::load("iea15mw", &set).unwrap();

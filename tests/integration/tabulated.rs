@@ -125,7 +125,7 @@ fn a_tabulated_blade_in_the_system_has_its_modes_as_roots() {
     for (m, r) in modes.iter_mut().zip(&ratios) {
         m.damping_ratio = *r;
     }
-    let structure = TabulatedStructure::new(blade, modes.clone()).unwrap();
+    let structure = TabulatedStructure::new(blade, modes.clone(), omega).unwrap();
     let op = OperatingPoint {
         wind: 0.0,
         induction: 0.0,
@@ -177,7 +177,7 @@ fn tip_rows_of_a_tabulated_blade_read_its_mode_shapes_at_the_tip() {
     let matrices = assemble_blade(&table, &Mesh::following(&table, 40), 0.0).unwrap();
     let blade = Arc::new(ModalBlade::new(matrices, &[0.0], 12).unwrap());
     let modes = blade.modes(0.0, 6).unwrap();
-    let structure = TabulatedStructure::new(blade.clone(), modes.clone()).unwrap();
+    let structure = TabulatedStructure::new(blade.clone(), modes.clone(), 0.0).unwrap();
     let tip = structure.motion_rows(structure.length());
     let map = blade
         .geometry

@@ -12,8 +12,9 @@
 //! NREL 5MW file K55 equals ElastoDyn's FlpStff and K44 its EdgStff). Mass matrix
 //! `[[m I, −m c̃], [m c̃, J]]`: centre of mass `(x1, x2) = (M26, −M16)/m`, second moments
 //! `∫ρx2² = M44`, `∫ρx1² = M55`, `∫ρx1x2 = −M45`, then reflected. The initial twist, positive
-//! toward feather as AeroDyn's twist, is linear between key points. The reference axis is taken
-//! straight along `kp_zr` (prebend and sweep in `kp_xr`, `kp_yr` are neglected, §11.2).
+//! toward feather as AeroDyn's twist, is linear between key points. The span is `kp_zr`; the
+//! curve the beam follows is the rotor's prebend (`aero.prebend_file`, §11.9), not `kp_xr`,
+//! `kp_yr`.
 
 use super::classical::{reduce, FileFrame};
 use super::{BeamSection, BladeTable, SectionMatrices};

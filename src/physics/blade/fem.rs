@@ -1,5 +1,5 @@
-//! Finite elements of a tabulated blade (docs/model.md §11.2–§11.3): a linear beam on the
-//! straight pitch axis, clamped at the root, with flap `u` (along x) and edge `v` (along y) on
+//! Finite elements of a tabulated blade (docs/model.md §11.2–§11.3): a linear beam along the
+//! pitch axis (curved by its prebend and sweep, §11.9), clamped at the root, with flap `u` (along x) and edge `v` (along y) on
 //! cubic Hermite elements and elastic twist `φ` on linear ones. Per node `[u, u', v, v', φ]`,
 //! where `u`, `v` are the displacements of the shear centre (the elastic axis) and `φ` the
 //! rotation of the section about it.
@@ -180,6 +180,10 @@ pub struct BladeMatrices {
     /// The beam the elements model; where each family's dofs sit is its
     /// [`layout`](Beam::layout).
     pub beam: Beam,
+    /// Per Ω², the load rotation puts on the curved blade with its curve turned by 0 and by 90°
+    /// instead of by the pitch (zero for a straight blade): the load at any pitch of the curve
+    /// is `cos p · [0] + sin p · [1]` ([`BladeMatrices::centrifugal_load`]).
+    pub curve_loads: [DVector<f64>; 2],
 }
 
 /// Shape functions of one element at local `s ∈ [0, 1]` as rows over its local dofs
@@ -409,6 +413,8 @@ fn assemble_with(
     let mut mass = DMatrix::zeros(n, n);
     let mut k0 = DMatrix::zeros(n, n);
     let mut k_omega = DMatrix::zeros(n, n);
+    let mut curve_loads = [DVector::zeros(n), DVector::zeros(n)];
+    let curved = !table.axis.is_straight();
     let (gauss_s, gauss_w) = gauss_legendre(GAUSS_POINTS);
     let tension = tension_at_nodes(table, &mesh.nodes);
     let scale = |i: usize, j: usize| factors.map_or(1.0, |f| 0.5 * (f[i] + f[j]));
@@ -417,21 +423,29 @@ fn assemble_with(
         let h = zb - za;
         let zero = [[0.0; ELEMENT]; ELEMENT];
         let (mut me, mut ke, mut kw) = (zero, zero, zero);
+        let mut le = [[0.0; ELEMENT]; 2];
+        let axis = [za, zb].map(|z| axis_in_rotor(table, z, pitch));
+        let blade_axis = [za, zb].map(|z| axis_in_rotor(table, z, 0.0));
         for (&xi, &wq) in gauss_s.iter().zip(&gauss_w) {
             let s = 0.5 * (xi + 1.0);
             let w = 0.5 * wq * h;
             let z = za + s * h;
             let sec = table.at(z);
             let sh = Shapes::at(s, h);
+            let curvature = axis_curvature(&axis, s, h);
             let theta = sec.twist + pitch;
             let (sn, cs) = theta.sin_cos();
             let to_section = |x: &Row, y: &Row| (mix(x, cs, y, sn), mix(x, -sn, y, cs));
             match beam {
                 Beam::EulerBernoulli => {
                     // Curvatures of the shear-centre line in the section frame.
-                    let (k_xi, k_eta) = to_section(&sh.ddu, &sh.ddv);
+                    let (k_xi, k_eta) = to_section(
+                        &mix(&sh.ddu, 1.0, &sh.phi, curvature[1]),
+                        &mix(&sh.ddv, 1.0, &sh.phi, -curvature[0]),
+                    );
+                    let twist_rate = curved_twist_rate(&sh, &sh.du, &sh.dv, curvature);
                     let c = sec.bending_torsion();
-                    let strains = [&k_xi, &k_eta, &sh.dphi];
+                    let strains = [&k_xi, &k_eta, &twist_rate];
                     // Diagonal terms first, then the couplings (flap–edge, then with the twist).
                     for (i, j) in [(0, 0), (1, 1), (0, 1), (2, 2), (0, 2), (1, 2)] {
                         let k = w * (scale(i + 2, j + 2) * c[(i, j)]);
@@ -452,11 +466,27 @@ fn assemble_with(
                     })?;
                     // Section rotations `u' − γ`: their rates are the curvatures.
                     let (k_xi, k_eta) = to_section(
-                        &mix(&sh.ddu, 1.0, &sh.dgu, -1.0),
-                        &mix(&sh.ddv, 1.0, &sh.dgv, -1.0),
+                        &mix(
+                            &mix(&sh.ddu, 1.0, &sh.dgu, -1.0),
+                            1.0,
+                            &sh.phi,
+                            curvature[1],
+                        ),
+                        &mix(
+                            &mix(&sh.ddv, 1.0, &sh.dgv, -1.0),
+                            1.0,
+                            &sh.phi,
+                            -curvature[0],
+                        ),
+                    );
+                    let twist_rate = curved_twist_rate(
+                        &sh,
+                        &mix(&sh.du, 1.0, &sh.gu, -1.0),
+                        &mix(&sh.dv, 1.0, &sh.gv, -1.0),
+                        curvature,
                     );
                     let (g_xi, g_eta) = to_section(&sh.gu, &sh.gv);
-                    let strains = [&g_xi, &g_eta, &k_xi, &k_eta, &sh.dphi];
+                    let strains = [&g_xi, &g_eta, &k_xi, &k_eta, &twist_rate];
                     for i in 0..5 {
                         add_outer(&mut ke, w * (scale(i, i) * k5[(i, i)]), strains[i]);
                         for j in i + 1..5 {
@@ -506,11 +536,36 @@ fn assemble_with(
                 w * propeller(sec.inertia, m, at.cg, at.shear, theta),
                 &sh.phi,
             );
+            if curved {
+                // The centrifugal pull on the curve (the curve turned by 0 and by 90°): the
+                // tension on the curve's slopes against the radial pitch axis, and the in-plane
+                // pull on its offset in the rotor plane, at the mass and its arm about the shear
+                // centre (the terms of K_Ω with the curve in place of the motion).
+                let ([x, y], [dx0, dy0]) = axis_along(&blade_axis, s, h);
+                for (turn, (y0, slopes)) in [(y, [dx0, dy0]), (x, [-dy0, dx0])].iter().enumerate() {
+                    let load = mix(
+                        &mix(&slope_u, -w * t * slopes[0], &slope_v, -w * t * slopes[1]),
+                        1.0,
+                        &mix(&sh.v, w * m * y0, &sh.phi, w * m * (x_c - x_s) * y0),
+                        1.0,
+                    );
+                    for (acc, v) in le[turn].iter_mut().zip(load) {
+                        *acc += v;
+                    }
+                }
+            }
         }
         let dofs = beam.element_dofs(e);
         scatter(&mut mass, &me, &dofs);
         scatter(&mut k0, &ke, &dofs);
         scatter(&mut k_omega, &kw, &dofs);
+        for (global, local) in curve_loads.iter_mut().zip(&le) {
+            for (value, d) in local.iter().zip(&dofs) {
+                if let Some(i) = d {
+                    global[*i] += value;
+                }
+            }
+        }
     }
     for (name, a) in [
         ("mass", &mass),
@@ -525,6 +580,7 @@ fn assemble_with(
         }
     }
     Ok(BladeMatrices {
+        curve_loads,
         table: table.clone(),
         mesh: mesh.clone(),
         pitch,
@@ -533,6 +589,44 @@ fn assemble_with(
         k_omega,
         beam,
     })
+}
+
+/// The reference axis's offset and slope `[x, y]` at span `z` in the rotor frame at `pitch`:
+/// the curve is the blade's, so it turns with the pitch (docs/model.md §11.9).
+fn axis_in_rotor(table: &BladeTable, z: f64, pitch: f64) -> ([f64; 2], [f64; 2]) {
+    let p = table.axis.at(z);
+    (to_rotor(p.offset, pitch), to_rotor(p.slope, pitch))
+}
+
+/// The curvature `[x₀'', y₀'']` of the reference axis at local `s` of an element of length `h`
+/// whose nodes hold `axis` (offset, slope): the second derivative of the Hermite cubic through
+/// the nodes' offsets and slopes, the interpolation the displacements use.
+fn axis_curvature(axis: &[([f64; 2], [f64; 2]); 2], s: f64, h: f64) -> [f64; 2] {
+    let (_, _, ddn) = hermite(s, h);
+    let [(xa, sa), (xb, sb)] = axis;
+    [0, 1].map(|c| ddn[0] * xa[c] + ddn[1] * sa[c] + ddn[2] * xb[c] + ddn[3] * sb[c])
+}
+
+/// The rate of twist of a curved beam (docs/model.md §11.9): `φ' − y₀'' θ_u + x₀'' θ_v`, with
+/// `θ_u`, `θ_v` the section rotations (the slopes, less the shear strains) and `[x₀'', y₀'']`
+/// the axis's curvature: bending a curved axis about one direction turns its sections about
+/// the tangent.
+fn curved_twist_rate(sh: &Shapes, rot_u: &Row, rot_v: &Row, curvature: [f64; 2]) -> Row {
+    mix(
+        &mix(&sh.dphi, 1.0, rot_u, -curvature[1]),
+        1.0,
+        rot_v,
+        curvature[0],
+    )
+}
+
+/// The reference axis's offset `[x₀, y₀]` and slope at local `s` of an element of length `h`
+/// whose nodes hold `axis` (offset, slope): the same Hermite cubic as [`axis_curvature`].
+fn axis_along(axis: &[([f64; 2], [f64; 2]); 2], s: f64, h: f64) -> ([f64; 2], [f64; 2]) {
+    let (n, dn, _) = hermite(s, h);
+    let [(xa, sa), (xb, sb)] = axis;
+    let at = |w: &[f64; 4], c: usize| w[0] * xa[c] + w[1] * sa[c] + w[2] * xb[c] + w[3] * sb[c];
+    ([at(&n, 0), at(&n, 1)], [at(&dn, 0), at(&dn, 1)])
 }
 
 /// The section's second moments of mass about its tension centre in the rotor frame,
@@ -650,6 +744,14 @@ pub struct BladeGeometry {
 }
 
 impl BladeMatrices {
+    /// The load per Ω² that rotation puts on the curved blade (docs/model.md §11.9): the
+    /// centrifugal tension on the slopes of the curve (pulling a prebent blade toward the rotor
+    /// plane) and the in-plane pull on a swept one, as a generalised force.
+    pub fn centrifugal_load(&self) -> DVector<f64> {
+        let [a, b] = &self.curve_loads;
+        a * self.pitch.cos() + b * self.pitch.sin()
+    }
+
     /// The table, mesh and pitch of these matrices.
     pub fn geometry(&self) -> BladeGeometry {
         BladeGeometry {

@@ -17,8 +17,9 @@
 //! [`ChordTwist::from_c2_def`]), or comes from another source (the AeroDyn 15 blade file of the
 //! same blade, [`ChordTwist::from_aerodyn`]), and the
 //! section frames are the chord frames; the structural pitch enters through the stiffness's
-//! cross terms. The reference axis is the half-chord line, taken straight (its prebend and its
-//! in-plane offsets from the pitch bearing's axis, in `c2_def`, are neglected as §11.2 says).
+//! cross terms. The reference axis is the half-chord line along the pitch axis, curved by the
+//! prebend of the rotor's description (§11.9); its in-plane offsets from the pitch bearing's
+//! axis, in `c2_def`, are neglected.
 
 use super::classical::{reduce, ClassicalSection, FileFrame};
 use super::{BeamSection, BladeTable, SectionMatrices};

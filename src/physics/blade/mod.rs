@@ -9,6 +9,7 @@
 //! by its structural twist plus the pitch: `ξ` normal to the chord (flap direction) and `η` along
 //! the chord toward the leading edge.
 
+pub mod axis;
 pub mod beamdyn;
 pub mod classical;
 pub mod coupling;
@@ -19,6 +20,7 @@ pub mod pitch_range;
 pub mod source;
 
 use crate::error::{Error, Result};
+use axis::CurvedAxis;
 use nalgebra::{Matrix2, Matrix2x3, Matrix3, Matrix5};
 
 /// One input station, in its section frame `(ξ, η)` about the reference (pitch) axis.
@@ -270,6 +272,9 @@ pub struct BladeTable {
     /// whose columns the sections hold. The file's, before any coupling a preset adds
     /// ([`coupling::with_bend_twist_coupling`]).
     pub matrices: Vec<SectionMatrices>,
+    /// The reference axis's prebend and sweep (docs/model.md §11.9); straight unless a blade's
+    /// files give a curve and the preset keeps it.
+    pub axis: CurvedAxis,
 }
 
 impl BladeTable {
@@ -325,7 +330,14 @@ impl BladeTable {
             hub_radius,
             sections,
             matrices: Vec::new(),
+            axis: CurvedAxis::straight(),
         })
+    }
+
+    /// The table on the curved reference axis `axis`.
+    pub fn with_axis(mut self, axis: CurvedAxis) -> BladeTable {
+        self.axis = axis;
+        self
     }
 
     /// The table with the matrices its sections were reduced from, one per station.

@@ -101,6 +101,10 @@ pub struct ModalBlade {
     reduced_damping: Option<DMatrix<f64>>,
     /// `Φᵀ M_b Φ` per family ([`reduced_family_mass`]).
     reduced_family: [DMatrix<f64>; 3],
+    /// `Φᵀ f` of the centrifugal load per Ω² on a curved blade
+    /// ([`BladeMatrices::centrifugal_load`]), in the coordinates where the reduced mass is the
+    /// identity (`L⁻¹Φᵀ f`); zero for a straight blade.
+    reduced_centrifugal_load: DVector<f64>,
 }
 
 impl ModalBlade {
@@ -147,7 +151,9 @@ impl ModalBlade {
         let reduced_k0 = symmetrised(basis.tr_mul(&k0.mul(&basis)));
         let reduced_k_omega = symmetrised(basis.tr_mul(&k_omega.mul(&basis)));
         let reduced_family = reduced_family_mass(&mass, &basis, &matrices.beam.layout());
+        let reduced_centrifugal_load = basis.tr_mul(&matrices.centrifugal_load());
         Ok(ModalBlade {
+            reduced_centrifugal_load,
             geometry: matrices.geometry(),
             basis: Arc::new(basis),
             mass_factor: None,
@@ -187,6 +193,7 @@ impl ModalBlade {
         let reduced_k0 = reduce(&reduced.k0);
         let reduced_family = reduced.family.each_ref().map(reduce);
         Ok(ModalBlade {
+            reduced_centrifugal_load: &l_inv * &reduced.centrifugal_load,
             reduced_k_omega: reduce(&reduced.k_omega),
             reduced_damping: reduced.damping.as_ref().map(reduce),
             reduced_k0,
@@ -276,6 +283,17 @@ impl ModalBlade {
         );
         self.reduced_family.clone().map(|e| y.tr_mul(&(e * &y)))
     }
+
+    /// The centrifugal load per Ω² on `modes` (docs/model.md §11.9): each mode's generalised
+    /// force `φᵀ f` from the pull on the curved axis, zero for a straight blade.
+    pub fn centrifugal_load(&self, modes: &[BladeMode]) -> DVector<f64> {
+        DVector::from_iterator(
+            modes.len(),
+            modes
+                .iter()
+                .map(|m| m.coordinates.dot(&self.reduced_centrifugal_load)),
+        )
+    }
 }
 
 /// The projections `ΦᵀAΦ` of a blade's matrices on a basis Φ (b × b each).
@@ -287,6 +305,8 @@ pub struct Projections {
     pub damping: Option<DMatrix<f64>>,
     /// [`reduced_family_mass`]: flap, edge, twist.
     pub family: [DMatrix<f64>; 3],
+    /// `Φᵀ f` of [`BladeMatrices::centrifugal_load`] (b).
+    pub centrifugal_load: DVector<f64>,
 }
 
 /// `Φᵀ M_b Φ` for the flap, edge and twist blocks `b` of the mass matrix (the diagonal blocks of

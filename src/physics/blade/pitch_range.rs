@@ -109,6 +109,10 @@ pub struct PitchRangeBlade {
     k_omega: Harmonics,
     damping: Option<Harmonics>,
     family: [Harmonics; 3],
+    /// `Φᵀ` of [`BladeMatrices::curve_loads`], the centrifugal load with the curve turned by 0
+    /// and by 90° (b × 1 each): the curve turns with the pitch, so its load at pitch `p` is
+    /// `cos p · first + sin p · second`, each of those an ordinary matrix term in `p`.
+    curve_load: [Harmonics; 2],
 }
 
 impl PitchRangeBlade {
@@ -161,7 +165,19 @@ impl PitchRangeBlade {
         let family = [0, 1, 2].map(|g| {
             Harmonics::from_samples(&families.iter().map(|f| f[g].clone()).collect::<Vec<_>>())
         });
+        let curve_load = [0, 1].map(|turn| {
+            Harmonics::from_samples(
+                &samples
+                    .iter()
+                    .map(|s| {
+                        let load = basis.tr_mul(&s.curve_loads[turn]);
+                        DMatrix::from_column_slice(load.len(), 1, load.as_slice())
+                    })
+                    .collect::<Vec<_>>(),
+            )
+        });
         Ok(PitchRangeBlade {
+            curve_load,
             table: table.clone(),
             mesh: mesh.clone(),
             beam: Beam::of(table),
@@ -188,6 +204,8 @@ impl PitchRangeBlade {
             k_omega: self.k_omega.at(pitch),
             damping: self.damping.as_ref().map(|d| d.at(pitch)),
             family: [0, 1, 2].map(|g| self.family[g].at(pitch)),
+            centrifugal_load: self.curve_load[0].at(pitch).column(0) * pitch.cos()
+                + self.curve_load[1].at(pitch).column(0) * pitch.sin(),
         };
         let geometry = BladeGeometry {
             table: self.table.clone(),
@@ -240,10 +258,12 @@ fn compressed(
 mod tests {
     use super::*;
     use crate::formats::text_file::DiskFile;
+    use crate::physics::blade::axis::CurvedAxis;
     use crate::physics::blade::source::{read_beamdyn, read_hawc2, read_twist};
 
-    /// The built-in presets' two blades, as their files describe them.
-    fn blades() -> [(&'static str, BladeTable); 2] {
+    /// The built-in presets' two blades, as their files describe them, and the IEA 15MW on its
+    /// prebent axis.
+    fn blades() -> [(&'static str, BladeTable); 3] {
         let file = |name: &str| {
             DiskFile(
                 std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -260,7 +280,41 @@ mod tests {
             1,
         )
         .unwrap();
-        [("nrel5mw", nrel5mw.table), ("iea15mw", iea15mw.table)]
+        let prebend = crate::physics::rotor::files::read_prebend(&file(
+            "iea15mw/IEA-15-240-RWT_AeroDyn15_blade.dat",
+        ))
+        .unwrap();
+        let points: Vec<(f64, [f64; 2])> = prebend.iter().map(|&(s, x)| (s, [x, 0.0])).collect();
+        let curved = iea15mw
+            .table
+            .clone()
+            .with_axis(CurvedAxis::new("prebend", &points).unwrap());
+        [
+            ("nrel5mw", nrel5mw.table),
+            ("iea15mw", iea15mw.table),
+            ("iea15mw prebent", curved),
+        ]
+    }
+
+    /// The centrifugal load of the prebent blade at any pitch, from the basis's two curve
+    /// terms, is the projection of the load assembled at that pitch (docs/model.md §11.9).
+    #[test]
+    fn the_curve_load_turns_with_the_pitch() {
+        let [.., (_, table)] = blades();
+        let mesh = Mesh::following(&table, 30);
+        let blade = PitchRangeBlade::new(&table, &mesh, &[0.0, 1.2], &[0.0, 0.8], 8, None).unwrap();
+        for pitch in [0.0, 0.37, 1.1, 1.5] {
+            let exact = blade
+                .basis
+                .tr_mul(&assemble(&table, &mesh, pitch).unwrap().centrifugal_load());
+            let from_terms = blade.curve_load[0].at(pitch).column(0) * pitch.cos()
+                + blade.curve_load[1].at(pitch).column(0) * pitch.sin();
+            let error = (&from_terms - &exact).amax() / exact.amax();
+            assert!(
+                exact.amax() > 0.0 && error < 1e-10,
+                "pitch {pitch}: {error:e}"
+            );
+        }
     }
 
     /// The five Fourier terms rebuild every assembled matrix at pitches off the samples, to

@@ -10,6 +10,7 @@
 //! `damping_aniso` projected on each mode, or a ratio per family ([`SourceDamping::PerFamily`]); a
 //! file that states none leaves the mode undamped.
 
+use super::axis::CurvedAxis;
 use super::beamdyn::from_beamdyn;
 use super::coupling::with_bend_twist_coupling;
 use super::fem::Mesh;
@@ -347,6 +348,8 @@ pub struct BasisSettings {
     /// Shear-deformable elements where the files give a shear stiffness; `false`: the
     /// Euler–Bernoulli beam, rigid in shear.
     pub shear: bool,
+    /// The reference axis the beam is curved along (straight: the pitch axis).
+    pub axis: CurvedAxis,
     /// K, the modes retained.
     pub count: usize,
     /// Rotor speeds (rad/s) the basis holds the modes at.
@@ -368,7 +371,8 @@ pub fn pitch_range_basis(
         table
     } else {
         table.rigid_in_shear()
-    };
+    }
+    .with_axis(s.axis.clone());
     let mesh = Mesh::following(&table, s.min_elements);
     let (low, high) = s.pitches;
     let damping = match blade.damping {

@@ -210,4 +210,9 @@ pub trait Structure: Send + Sync {
     fn uniform_section(&self) -> Option<&SectionProps>;
     /// Span positions (m from the root) at which to show its mode shapes.
     fn span_points(&self) -> Vec<f64>;
+    /// The constant load on the coordinates at the rotor speed, with no motion and no air: the
+    /// centrifugal pull on a curved blade's axis (docs/model.md §11.9); zero for a straight one.
+    fn static_load(&self) -> DVector<f64> {
+        DVector::zeros(self.coordinates())
+    }
 }

@@ -20,15 +20,21 @@ pub struct TabulatedStructure {
     mass: DMatrix<f64>,
     stiffness: DMatrix<f64>,
     damping: DMatrix<f64>,
+    /// [`Structure::static_load`] at the rotor speed the modes are at.
+    static_load: DVector<f64>,
     /// `Φᵀ M_b Φ` for the flap, edge and twist blocks `b` of the mass matrix: the kinetic energy
     /// of each family in any combination of the modes.
     family_energy: [DMatrix<f64>; 3],
 }
 
 impl TabulatedStructure {
-    /// The blade's `modes` (from [`ModalBlade::modes`] at the rotor speed), each damped by its
-    /// own [`BladeMode::damping_ratio`].
-    pub fn new(blade: Arc<ModalBlade>, modes: Vec<BladeMode>) -> Result<TabulatedStructure> {
+    /// The blade's `modes` (from [`ModalBlade::modes`] at rotor speed `rotor_speed`, rad/s), each
+    /// damped by its own [`BladeMode::damping_ratio`].
+    pub fn new(
+        blade: Arc<ModalBlade>,
+        modes: Vec<BladeMode>,
+        rotor_speed: f64,
+    ) -> Result<TabulatedStructure> {
         if modes.is_empty() {
             return Err(Error::numerical("tabulated blade: no modes retained"));
         }
@@ -45,6 +51,7 @@ impl TabulatedStructure {
             }
         });
         let family_energy = blade.family_energy(&modes);
+        let static_load = blade.centrifugal_load(&modes) * (rotor_speed * rotor_speed);
         let natural = NaturalMode::named(
             modes
                 .iter()
@@ -67,6 +74,7 @@ impl TabulatedStructure {
             mass: DMatrix::identity(k, k),
             stiffness,
             damping,
+            static_load,
             family_energy,
         })
     }
@@ -151,6 +159,9 @@ impl Structure for TabulatedStructure {
         None
     }
     /// The mesh nodes, which follow the input stations.
+    fn static_load(&self) -> DVector<f64> {
+        self.static_load.clone()
+    }
     fn span_points(&self) -> Vec<f64> {
         self.blade.geometry.mesh.nodes.clone()
     }

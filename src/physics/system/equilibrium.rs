@@ -189,7 +189,9 @@ impl System {
         x
     }
 
-    /// `R(q) = s Q(q, 0, z*(q)) − K q` at load factor `s` (1: the full load) and, when asked,
+    /// `R(q) = s Q(q, 0, z*(q)) + f − K q` at load factor `s` (1: the full aerodynamic load; the
+    /// structure's own static load `f`, the centrifugal pull on a curved blade, is never ramped:
+    /// it is linear) and, when asked,
     /// `dR/dq` (aero states held steady).
     fn static_residual(
         &self,
@@ -206,7 +208,8 @@ impl System {
             Derivatives::None
         };
         let pr = self.project(qv, v, z, wanted);
-        let res = load * &pr.force - &self.stiffness * q;
+        let mut res = load * &pr.force - &self.stiffness * q;
+        self.add_static_load(&mut res);
         if !res.iter().all(|v| v.is_finite()) {
             return Err(Error::numerical(
                 "static equilibrium: non-finite aerodynamic load (check the operating point)",

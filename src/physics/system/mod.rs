@@ -49,6 +49,9 @@ pub struct System {
     mass_inv: DMatrix<f64>,
     stiffness: DMatrix<f64>,
     damping: DMatrix<f64>,
+    /// [`Structure::static_load`], the centrifugal pull on a curved blade; `None` where it is
+    /// zero (a straight blade), so such a blade's loads are not touched at all.
+    static_load: Option<DVector<f64>>,
     /// States per station.
     ns: usize,
 }
@@ -96,6 +99,13 @@ impl System {
         check_finite("stiffness matrix", &stiffness)?;
         let damping = structure.damping().clone();
         check_finite("damping matrix", &damping)?;
+        let static_load = structure.static_load();
+        if !static_load.iter().all(|v| v.is_finite()) {
+            return Err(Error::numerical(
+                "non-finite centrifugal load on the curved blade",
+            ));
+        }
+        let static_load = static_load.iter().any(|v| *v != 0.0).then_some(static_load);
         let mass_inv = mass_inverse(structure.as_ref(), &stations, &rows, model.as_ref())?;
         let ns = model.states_per_station();
         Ok(System {
@@ -107,6 +117,7 @@ impl System {
             mass_inv,
             stiffness,
             damping,
+            static_load,
             ns,
         })
     }
@@ -137,6 +148,7 @@ impl System {
             mass_inv,
             stiffness: self.stiffness.clone(),
             damping: self.damping.clone(),
+            static_load: self.static_load.clone(),
             ns: self.ns,
         })
     }
@@ -190,10 +202,19 @@ impl System {
         let pr = self.project(q, v, z, Derivatives::None);
         let mut out = DVector::zeros(self.dim());
         out.rows_mut(0, nq).copy_from(&v);
-        let net = &pr.force - &self.stiffness * q - &self.damping * v;
+        let mut net = &pr.force - &self.stiffness * q - &self.damping * v;
+        self.add_static_load(&mut net);
         out.rows_mut(nq, nq).copy_from(&(&self.mass_inv * net));
         out.rows_mut(2 * nq, self.n_aero()).copy_from(&pr.zdot);
         out
+    }
+
+    /// Adds the structure's own static load (the centrifugal pull on a curved blade) to a
+    /// generalised force.
+    fn add_static_load(&self, force: &mut DVector<f64>) {
+        if let Some(f) = &self.static_load {
+            *force += f;
+        }
     }
 
     /// ∂ẋ/∂x at `x`, exact.

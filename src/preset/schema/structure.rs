@@ -31,6 +31,11 @@ pub struct StructureSettings {
     /// Tabulated blade: shear-deformable (Timoshenko) elements with the files' shear stiffness;
     /// `false`: rigid in shear, the Euler–Bernoulli beam (docs/model.md §11.2–§11.3).
     pub shear: bool,
+    /// Tabulated blade: the reference axis's prebend (`aero.prebend_file`'s `BlCrvAC`, or the
+    /// htc's `c2_def`) in the structure as well as in the aerodynamics, a beam about the curved
+    /// axis; `false`: the beam straight along the pitch axis, the prebend in the aerodynamics
+    /// only (docs/model.md §11.9).
+    pub curved: bool,
     /// Tabulated blade: modal damping ratio of every flap mode; `None`: the blade file's.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub damping_flap: Option<f64>,
@@ -50,6 +55,7 @@ impl Default for StructureSettings {
             loss_factor: 0.02,
             min_elements: MIN_ELEMENTS,
             shear: true,
+            curved: true,
             damping_flap: None,
             damping_edge: None,
             damping_torsion: None,
