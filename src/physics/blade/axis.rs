@@ -7,6 +7,7 @@
 //! unlike a global spline, it puts no wiggle between points where a table is flat (the straight
 //! inboard part of a prebent blade stays straight).
 
+use super::fem::hermite;
 use crate::error::{Error, Result};
 
 /// The reference axis's offset from the straight pitch axis along the span.
@@ -86,27 +87,17 @@ impl CurvedAxis {
         self.offset.iter().all(|o| o[0] == 0.0 && o[1] == 0.0)
     }
 
-    /// The offset and slope at `z` from the pitch axis. The elements take the curvature from
-    /// it, which a root offset or slope does not change, and the centrifugal pull from the
-    /// slopes against the radial pitch axis (docs/model.md §11.9).
+    /// The offset and slope at `z` from the pitch axis, held at the end values (and zero slope)
+    /// beyond the points. The elements take the curvature from it, which a root offset or slope
+    /// does not change, and the centrifugal pull from the slopes against the radial pitch axis
+    /// (docs/model.md §11.9).
     pub fn at(&self, z: f64) -> AxisPoint {
-        self.raw(z)
-    }
-
-    /// The interpolant at `z`, held at the end values (and zero slope) beyond the points.
-    fn raw(&self, z: f64) -> AxisPoint {
         let n = self.span.len();
-        if n == 0 {
-            return AxisPoint {
-                offset: [0.0; 2],
-                slope: [0.0; 2],
-            };
-        }
         let held = |k: usize| AxisPoint {
-            offset: self.offset[k],
+            offset: self.offset.get(k).copied().unwrap_or([0.0; 2]),
             slope: [0.0; 2],
         };
-        if n == 1 || z < self.span[0] {
+        if n < 2 || z < self.span[0] {
             return held(0);
         }
         if z > self.span[n - 1] {
@@ -114,34 +105,18 @@ impl CurvedAxis {
         }
         let k = (self.span.partition_point(|&s| s <= z) - 1).min(n - 2);
         let h = self.span[k + 1] - self.span[k];
-        let t = (z - self.span[k]) / h;
-        let (t2, t3) = (t * t, t * t * t);
-        let (h00, h10, h01, h11) = (
-            2.0 * t3 - 3.0 * t2 + 1.0,
-            t3 - 2.0 * t2 + t,
-            -2.0 * t3 + 3.0 * t2,
-            t3 - t2,
-        );
-        let (d00, d10, d01, d11) = (
-            (6.0 * t2 - 6.0 * t) / h,
-            3.0 * t2 - 4.0 * t + 1.0,
-            (-6.0 * t2 + 6.0 * t) / h,
-            3.0 * t2 - 2.0 * t,
-        );
+        // The cubic through both points' offsets and slopes, as the elements interpolate.
+        let (value, rate, _) = hermite((z - self.span[k]) / h, h);
         let (a, b) = (k, k + 1);
+        let through = |w: [f64; 4], c: usize| {
+            w[0] * self.offset[a][c]
+                + w[1] * self.slope[a][c]
+                + w[2] * self.offset[b][c]
+                + w[3] * self.slope[b][c]
+        };
         AxisPoint {
-            offset: [0, 1].map(|c| {
-                h00 * self.offset[a][c]
-                    + h10 * h * self.slope[a][c]
-                    + h01 * self.offset[b][c]
-                    + h11 * h * self.slope[b][c]
-            }),
-            slope: [0, 1].map(|c| {
-                d00 * self.offset[a][c]
-                    + d10 * self.slope[a][c]
-                    + d01 * self.offset[b][c]
-                    + d11 * self.slope[b][c]
-            }),
+            offset: [0, 1].map(|c| through(value, c)),
+            slope: [0, 1].map(|c| through(rate, c)),
         }
     }
 }

@@ -1,6 +1,7 @@
 //! Finite elements of a tabulated blade (docs/model.md §11.2–§11.3): a linear beam along the
-//! pitch axis (curved by its prebend and sweep, §11.9), clamped at the root, with flap `u` (along x) and edge `v` (along y) on
-//! cubic Hermite elements and elastic twist `φ` on linear ones. Per node `[u, u', v, v', φ]`,
+//! pitch axis (curved by its prebend and sweep, §11.9), clamped at the root, with flap `u`
+//! (along x) and edge `v` (along y) on cubic Hermite elements and elastic twist `φ` on linear
+//! ones. Per node `[u, u', v, v', φ]`,
 //! where `u`, `v` are the displacements of the shear centre (the elastic axis) and `φ` the
 //! rotation of the section about it.
 //!
@@ -18,6 +19,7 @@
 //! re-assembly. With every offset zero the terms reduce exactly (bit for bit) to those of a blade
 //! whose shear and tension centres lie on the pitch axis.
 
+use super::axis::AxisPoint;
 use super::{BeamSection, BladeTable};
 use crate::error::{Error, Result};
 use crate::physics::basis::gauss_legendre;
@@ -204,8 +206,9 @@ struct Shapes {
     dphi: Row,
 }
 
-/// Hermite cubics (values, first and second z-derivatives) for `[w_a, w'_a, w_b, w'_b]`.
-fn hermite(s: f64, h: f64) -> ([f64; 4], [f64; 4], [f64; 4]) {
+/// Hermite cubics (values, first and second z-derivatives) for `[w_a, w'_a, w_b, w'_b]` at local
+/// `s` of an interval of length `h`.
+pub(super) fn hermite(s: f64, h: f64) -> ([f64; 4], [f64; 4], [f64; 4]) {
     let (s2, s3) = (s * s, s * s * s);
     (
         [
@@ -424,15 +427,15 @@ fn assemble_with(
         let zero = [[0.0; ELEMENT]; ELEMENT];
         let (mut me, mut ke, mut kw) = (zero, zero, zero);
         let mut le = [[0.0; ELEMENT]; 2];
-        let axis = [za, zb].map(|z| axis_in_rotor(table, z, pitch));
-        let blade_axis = [za, zb].map(|z| axis_in_rotor(table, z, 0.0));
+        let axis = [za, zb].map(|z| table.axis.at(z));
         for (&xi, &wq) in gauss_s.iter().zip(&gauss_w) {
             let s = 0.5 * (xi + 1.0);
             let w = 0.5 * wq * h;
             let z = za + s * h;
             let sec = table.at(z);
             let sh = Shapes::at(s, h);
-            let curvature = axis_curvature(&axis, s, h);
+            let along = axis_along(&axis, s, h);
+            let curvature = to_rotor(along.curvature, pitch);
             let theta = sec.twist + pitch;
             let (sn, cs) = theta.sin_cos();
             let to_section = |x: &Row, y: &Row| (mix(x, cs, y, sn), mix(x, -sn, y, cs));
@@ -443,7 +446,7 @@ fn assemble_with(
                         &mix(&sh.ddu, 1.0, &sh.phi, curvature[1]),
                         &mix(&sh.ddv, 1.0, &sh.phi, -curvature[0]),
                     );
-                    let twist_rate = curved_twist_rate(&sh, &sh.du, &sh.dv, curvature);
+                    let twist_rate = curved_twist_rate(&sh.dphi, &sh.du, &sh.dv, curvature);
                     let c = sec.bending_torsion();
                     let strains = [&k_xi, &k_eta, &twist_rate];
                     // Diagonal terms first, then the couplings (flap–edge, then with the twist).
@@ -480,7 +483,7 @@ fn assemble_with(
                         ),
                     );
                     let twist_rate = curved_twist_rate(
-                        &sh,
+                        &sh.dphi,
                         &mix(&sh.du, 1.0, &sh.gu, -1.0),
                         &mix(&sh.dv, 1.0, &sh.gv, -1.0),
                         curvature,
@@ -541,7 +544,7 @@ fn assemble_with(
                 // tension on the curve's slopes against the radial pitch axis, and the in-plane
                 // pull on its offset in the rotor plane, at the mass and its arm about the shear
                 // centre (the terms of K_Ω with the curve in place of the motion).
-                let ([x, y], [dx0, dy0]) = axis_along(&blade_axis, s, h);
+                let ([x, y], [dx0, dy0]) = (along.offset, along.slope);
                 for (turn, (y0, slopes)) in [(y, [dx0, dy0]), (x, [-dy0, dx0])].iter().enumerate() {
                     let load = mix(
                         &mix(&slope_u, -w * t * slopes[0], &slope_v, -w * t * slopes[1]),
@@ -560,11 +563,7 @@ fn assemble_with(
         scatter(&mut k0, &ke, &dofs);
         scatter(&mut k_omega, &kw, &dofs);
         for (global, local) in curve_loads.iter_mut().zip(&le) {
-            for (value, d) in local.iter().zip(&dofs) {
-                if let Some(i) = d {
-                    global[*i] += value;
-                }
-            }
+            scatter_load(global, local, &dofs);
         }
     }
     for (name, a) in [
@@ -591,42 +590,39 @@ fn assemble_with(
     })
 }
 
-/// The reference axis's offset and slope `[x, y]` at span `z` in the rotor frame at `pitch`:
-/// the curve is the blade's, so it turns with the pitch (docs/model.md §11.9).
-fn axis_in_rotor(table: &BladeTable, z: f64, pitch: f64) -> ([f64; 2], [f64; 2]) {
-    let p = table.axis.at(z);
-    (to_rotor(p.offset, pitch), to_rotor(p.slope, pitch))
+/// The reference axis at local `s` of an element of length `h` whose nodes hold `axis`, in the
+/// blade's frame: the Hermite cubic through the nodes' offsets and slopes, the interpolation the
+/// displacements use, and its curvature.
+struct AxisAlong {
+    offset: [f64; 2],
+    slope: [f64; 2],
+    curvature: [f64; 2],
 }
 
-/// The curvature `[x₀'', y₀'']` of the reference axis at local `s` of an element of length `h`
-/// whose nodes hold `axis` (offset, slope): the second derivative of the Hermite cubic through
-/// the nodes' offsets and slopes, the interpolation the displacements use.
-fn axis_curvature(axis: &[([f64; 2], [f64; 2]); 2], s: f64, h: f64) -> [f64; 2] {
-    let (_, _, ddn) = hermite(s, h);
-    let [(xa, sa), (xb, sb)] = axis;
-    [0, 1].map(|c| ddn[0] * xa[c] + ddn[1] * sa[c] + ddn[2] * xb[c] + ddn[3] * sb[c])
+fn axis_along(axis: &[AxisPoint; 2], s: f64, h: f64) -> AxisAlong {
+    let (n, dn, ddn) = hermite(s, h);
+    let [a, b] = axis;
+    let at = |w: &[f64; 4], c: usize| {
+        w[0] * a.offset[c] + w[1] * a.slope[c] + w[2] * b.offset[c] + w[3] * b.slope[c]
+    };
+    AxisAlong {
+        offset: [at(&n, 0), at(&n, 1)],
+        slope: [at(&dn, 0), at(&dn, 1)],
+        curvature: [at(&ddn, 0), at(&ddn, 1)],
+    }
 }
 
 /// The rate of twist of a curved beam (docs/model.md §11.9): `φ' − y₀'' θ_u + x₀'' θ_v`, with
 /// `θ_u`, `θ_v` the section rotations (the slopes, less the shear strains) and `[x₀'', y₀'']`
-/// the axis's curvature: bending a curved axis about one direction turns its sections about
-/// the tangent.
-fn curved_twist_rate(sh: &Shapes, rot_u: &Row, rot_v: &Row, curvature: [f64; 2]) -> Row {
+/// the axis's curvature in the rotor frame: bending a curved axis about one direction turns its
+/// sections about the tangent.
+fn curved_twist_rate(dphi: &Row, rot_u: &Row, rot_v: &Row, curvature: [f64; 2]) -> Row {
     mix(
-        &mix(&sh.dphi, 1.0, rot_u, -curvature[1]),
+        &mix(dphi, 1.0, rot_u, -curvature[1]),
         1.0,
         rot_v,
         curvature[0],
     )
-}
-
-/// The reference axis's offset `[x₀, y₀]` and slope at local `s` of an element of length `h`
-/// whose nodes hold `axis` (offset, slope): the same Hermite cubic as [`axis_curvature`].
-fn axis_along(axis: &[([f64; 2], [f64; 2]); 2], s: f64, h: f64) -> ([f64; 2], [f64; 2]) {
-    let (n, dn, _) = hermite(s, h);
-    let [(xa, sa), (xb, sb)] = axis;
-    let at = |w: &[f64; 4], c: usize| w[0] * xa[c] + w[1] * sa[c] + w[2] * xb[c] + w[3] * sb[c];
-    ([at(&n, 0), at(&n, 1)], [at(&dn, 0), at(&dn, 1)])
 }
 
 /// The section's second moments of mass about its tension centre in the rotor frame,
@@ -665,6 +661,15 @@ fn scatter(global: &mut DMatrix<f64>, local: &ElementMatrix, dofs: &[Option<usiz
         for (value, gj) in row.iter().zip(dofs) {
             let Some(gj) = *gj else { continue };
             global[(gi, gj)] += value;
+        }
+    }
+}
+
+/// Add an element load vector into the global one at the element's free dofs.
+fn scatter_load(global: &mut DVector<f64>, local: &Row, dofs: &[Option<usize>; ELEMENT]) {
+    for (value, d) in local.iter().zip(dofs) {
+        if let Some(i) = d {
+            global[*i] += value;
         }
     }
 }
