@@ -7,7 +7,7 @@
 //! unlike a global spline, it puts no wiggle between points where a table is flat (the straight
 //! inboard part of a prebent blade stays straight).
 
-use super::fem::hermite;
+use super::hermite::hermite;
 use crate::error::{Error, Result};
 
 /// The reference axis's offset from the straight pitch axis along the span.

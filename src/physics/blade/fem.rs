@@ -20,6 +20,7 @@
 //! whose shear and tension centres lie on the pitch axis.
 
 use super::axis::AxisPoint;
+use super::hermite::hermite;
 use super::{BeamSection, BladeTable};
 use crate::error::{Error, Result};
 use crate::physics::basis::gauss_legendre;
@@ -204,32 +205,6 @@ struct Shapes {
     dgv: Row,
     phi: Row,
     dphi: Row,
-}
-
-/// Hermite cubics (values, first and second z-derivatives) for `[w_a, w'_a, w_b, w'_b]` at local
-/// `s` of an interval of length `h`.
-pub(super) fn hermite(s: f64, h: f64) -> ([f64; 4], [f64; 4], [f64; 4]) {
-    let (s2, s3) = (s * s, s * s * s);
-    (
-        [
-            1.0 - 3.0 * s2 + 2.0 * s3,
-            h * (s - 2.0 * s2 + s3),
-            3.0 * s2 - 2.0 * s3,
-            h * (s3 - s2),
-        ],
-        [
-            (-6.0 * s + 6.0 * s2) / h,
-            1.0 - 4.0 * s + 3.0 * s2,
-            (6.0 * s - 6.0 * s2) / h,
-            3.0 * s2 - 2.0 * s,
-        ],
-        [
-            (-6.0 + 12.0 * s) / (h * h),
-            (-4.0 + 6.0 * s) / h,
-            (6.0 - 12.0 * s) / (h * h),
-            (6.0 * s - 2.0) / h,
-        ],
-    )
 }
 
 impl Shapes {

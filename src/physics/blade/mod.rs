@@ -15,6 +15,7 @@ pub mod classical;
 pub mod coupling;
 pub mod fem;
 pub mod hawc2;
+pub mod hermite;
 pub mod modal;
 pub mod pitch_range;
 pub mod source;
