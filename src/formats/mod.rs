@@ -1,6 +1,6 @@
-//! Readers for the blade definition files engineers already have: OpenFAST BeamDyn, ElastoDyn,
-//! AeroDyn 15 and AirfoilInfo inputs, and the HAWC2 htc (model), st, ae, pc and steady-operation
-//! files.
+//! Readers for the blade and turbine definition files engineers already have: OpenFAST BeamDyn,
+//! ElastoDyn (blade, main and tower files), AeroDyn 15 and AirfoilInfo inputs, and the HAWC2 htc
+//! (model), st, ae, pc and steady-operation files.
 //!
 //! Text in, plain tables out. A reader keeps the file's own units, axes and column meanings (each
 //! field says which); mapping them into the model's frame is the physics layer's job, so nothing
@@ -20,6 +20,8 @@ pub mod aerodyn;
 pub mod airfoil;
 pub mod beamdyn;
 pub mod elastodyn;
+pub mod elastodyn_tower;
+pub mod elastodyn_turbine;
 pub mod hawc2_aero;
 pub mod hawc2_st;
 pub mod htc;

@@ -7,7 +7,9 @@ use flutterscope::error::{Error, Result};
 use flutterscope::formats::airfoil::{AirfoilFile, PolarColumns};
 use flutterscope::formats::hawc2_st::{StFile, StRows};
 use flutterscope::formats::text::{read_text, MAX_FILE_BYTES};
-use flutterscope::formats::{aerodyn, airfoil, beamdyn, elastodyn, hawc2_aero, hawc2_st};
+use flutterscope::formats::{
+    aerodyn, airfoil, beamdyn, elastodyn, elastodyn_tower, elastodyn_turbine, hawc2_aero, hawc2_st,
+};
 use flutterscope::preset::Preset;
 use std::path::{Path, PathBuf};
 
@@ -22,6 +24,11 @@ const ST_BTC: &str = "iea15mw/IEA_15MW_RWT_BTC8deg_Blade_st.dat";
 const AE: &str = "iea15mw/IEA_15MW_RWT_ae.dat";
 const PC: &str = "iea15mw/IEA_15MW_RWT_pc.dat";
 const OPT: &str = "iea15mw/IEA_15MW_RWT_Onshore.opt";
+const ED_MAIN: &str = "nrel5mw-turbine/onshore/ElastoDyn.dat";
+const ED_TOWER: &str =
+    "nrel5mw-turbine/5MW_Baseline/NRELOffshrBsline5MW_Onshore_ElastoDyn_Tower.dat";
+const IEA_ED_MAIN: &str =
+    "iea15mw-monopile/IEA-15-240-RWT-Monopile/IEA-15-240-RWT-Monopile_ElastoDyn.dat";
 
 fn blades(rel: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -101,6 +108,220 @@ fn elastodyn_blade_nrel5mw() {
     assert_eq!(
         (tip.bl_fract, tip.b_mass_den, tip.flp_stff, tip.edg_stff),
         (1.0, 10.319, 1.7e5, 5.01e6)
+    );
+}
+
+/// The NREL 5MW onshore ElastoDyn main file, and the tower file its `TwrFile` names relative
+/// to itself (`../5MW_Baseline/…`), read from the main file's folder.
+#[test]
+fn elastodyn_turbine_and_tower_nrel5mw() {
+    let t = elastodyn_turbine::read_turbine(&blades(ED_MAIN)).unwrap();
+    assert_eq!((t.blades, t.tip_radius, t.hub_radius), (3, 63.0, 1.5));
+    assert_eq!(t.precone_deg, vec![-2.5; 3]);
+    assert_eq!(
+        (t.hub_cm, t.overhang, t.shaft_tilt_deg, t.tower_to_shaft),
+        (0.0, -5.0191, -5.0, 1.96256)
+    );
+    assert_eq!(t.nacelle_cm, [1.9, 0.0, 1.75]);
+    assert_eq!((t.tower_height, t.tower_base_height), (87.6, 0.0));
+    assert_eq!(
+        (t.hub_mass, t.hub_inertia, t.generator_inertia),
+        (56780.0, 115926.0, 534.116)
+    );
+    assert_eq!(
+        (t.nacelle_mass, t.nacelle_yaw_inertia, t.yaw_bearing_mass),
+        (240000.0, 2.60789e6, 0.0)
+    );
+    assert_eq!((t.gearbox_efficiency_pct, t.gearbox_ratio), (100.0, 97.0));
+    assert_eq!(
+        (t.drivetrain_stiffness, t.drivetrain_damping),
+        (8.67637e8, 6.215e6)
+    );
+    assert!(t.drivetrain_dof && t.generator_dof);
+
+    let tower_path = t.tower_file_path(&blades(ED_MAIN));
+    assert_eq!(
+        tower_path,
+        blades("nrel5mw-turbine/onshore")
+            .join("../5MW_Baseline/NRELOffshrBsline5MW_Onshore_ElastoDyn_Tower.dat")
+    );
+    let w = elastodyn_tower::read_tower(&tower_path).unwrap();
+    assert_eq!(w, elastodyn_tower::read_tower(&blades(ED_TOWER)).unwrap());
+    assert_eq!(w.stations.len(), 11);
+    assert_eq!(
+        (w.fore_aft_damping_pct, w.side_side_damping_pct),
+        ([1.0; 2], [1.0; 2])
+    );
+    assert_eq!(
+        (w.fore_aft_tuners, w.side_side_tuners),
+        ([1.0; 2], [1.0; 2])
+    );
+    assert_eq!(
+        (w.mass_factor, w.fore_aft_factor, w.side_side_factor),
+        (1.0, 1.0, 1.0)
+    );
+    let (base, top) = (&w.stations[0], &w.stations[10]);
+    assert_eq!(
+        (
+            base.height_fraction,
+            base.mass_density,
+            base.fore_aft_stiffness,
+            base.side_side_stiffness
+        ),
+        (0.0, 5590.87, 6.14343e11, 6.14343e11)
+    );
+    assert_eq!(
+        (
+            top.height_fraction,
+            top.mass_density,
+            top.fore_aft_stiffness
+        ),
+        (1.0, 2536.27, 1.1582e11)
+    );
+    assert_eq!(
+        w.fore_aft_shapes[0],
+        [0.7004, 2.1963, -5.6202, 6.2275, -2.504]
+    );
+    assert_eq!(
+        w.side_side_shapes[1],
+        [-121.21, 184.415, -224.904, 298.536, -135.838]
+    );
+}
+
+/// The IEA 15MW monopile's main file: a direct drive (gearbox ratio 1) whose tower starts at
+/// the transition piece, 15 m up; its `TwrFile` names its own folder by `../`.
+#[test]
+fn elastodyn_turbine_and_tower_iea15mw_monopile() {
+    let t = elastodyn_turbine::read_turbine(&blades(IEA_ED_MAIN)).unwrap();
+    assert_eq!((t.blades, t.tip_radius, t.hub_radius), (3, 120.97, 3.97));
+    assert_eq!(t.precone_deg, vec![-4.0; 3]);
+    assert_eq!((t.tower_height, t.tower_base_height), (144.386, 15.0));
+    assert_eq!((t.gearbox_ratio, t.generator_inertia), (1.0, 1836784.0));
+    assert_eq!(
+        (t.hub_mass, t.nacelle_mass, t.yaw_bearing_mass),
+        (69131.0, 644857.0, 28249.0)
+    );
+    assert_eq!(
+        (t.drivetrain_stiffness, t.drivetrain_damping),
+        (69737644900.0, 49418406.0)
+    );
+    let w = elastodyn_tower::read_tower(&t.tower_file_path(&blades(IEA_ED_MAIN))).unwrap();
+    assert_eq!(w.stations.len(), 20);
+    assert_eq!(w.stations[0].mass_density, 1.031_484_441_173_36e4);
+}
+
+/// The main file's errors name the file, the line and the key: a missing quantity is an error
+/// (never a default), as is a value no turbine can have.
+#[test]
+fn elastodyn_turbine_errors_name_the_line_and_key() {
+    let main = text(ED_MAIN);
+    let line_of = |key: &str| {
+        main.lines()
+            .position(|l| l.split_whitespace().nth(1) == Some(key))
+            .unwrap()
+            + 1
+    };
+    let with = |key: &str, value: &str| {
+        main.lines()
+            .map(|l| {
+                if l.split_whitespace().nth(1) == Some(key) {
+                    format!("{value}   {key}   - edited")
+                } else {
+                    l.to_string()
+                }
+            })
+            .collect::<Vec<_>>()
+            .join("\n")
+    };
+    let parse = |t: &str| elastodyn_turbine::parse_turbine(t, "ed.dat").unwrap_err();
+    let without: String = main
+        .lines()
+        .filter(|l| l.split_whitespace().nth(1) != Some("HubIner"))
+        .collect::<Vec<_>>()
+        .join("\n");
+    assert_format(
+        &parse(&without),
+        "ed.dat",
+        0,
+        "expected a line '<value>  HubIner'",
+    );
+    for (key, value, says) in [
+        (
+            "NacMass",
+            "-240000",
+            "NacMass is -240000: it must be at least 0",
+        ),
+        ("DTTorSpr", "0", "DTTorSpr is 0: it must be greater than 0"),
+        (
+            "GBRatio",
+            "abc",
+            "expected a number for GBRatio, found 'abc'",
+        ),
+        ("NumBl", "4", "NumBl is 4: ElastoDyn models 1 to 3 blades"),
+        (
+            "ShftTilt",
+            "95",
+            "ShftTilt is 95°: it must lie strictly between -90° and 90°",
+        ),
+        (
+            "TowerBsHt",
+            "90",
+            "TowerBsHt (90 m) must be below TowerHt (87.6 m)",
+        ),
+        (
+            "HubRad",
+            "70",
+            "HubRad (70 m) must be less than TipRad (63 m)",
+        ),
+        ("GBoxEff", "0", "GBoxEff is 0 %: it must lie in (0, 100] %"),
+        (
+            "GenDOF",
+            "maybe",
+            "expected True or False for GenDOF, found 'maybe'",
+        ),
+    ] {
+        assert_format(&parse(&with(key, value)), "ed.dat", line_of(key), says);
+    }
+    // Every whole-line prefix fails where the file is cut, or reads the whole file's values.
+    let full = elastodyn_turbine::parse_turbine(&main, "ed.dat").unwrap();
+    for k in 0..main.lines().count() {
+        let prefix = main.lines().take(k).collect::<Vec<_>>().join("\n");
+        match elastodyn_turbine::parse_turbine(&prefix, "ed.dat") {
+            Ok(t) => assert_eq!(t, full, "{k} lines"),
+            Err(e) => assert_located(&e, "ed.dat", &prefix),
+        }
+    }
+}
+
+/// The tower file's errors: a mode shape that is not 1 at the tower top, a table that does not
+/// run from the base to the top, a stiffness of zero.
+#[test]
+fn elastodyn_tower_errors_name_the_line() {
+    let tower = text(ED_TOWER);
+    let parse = |t: String| elastodyn_tower::parse_tower(&t, "tower.dat").unwrap_err();
+    let e = parse(tower.replace("     2.1963   TwFAM1Sh(3)", "     2.2963   TwFAM1Sh(3)"));
+    assert_format(&e, "tower.dat", 36, "TwFAM1Sh(2) … TwFAM1Sh(6) sum to 1.1");
+    let e = parse(tower.replace(
+        "1.0000000E+00  2.5362700E+03",
+        "9.5000000E-01  2.5362700E+03",
+    ));
+    assert_format(&e, "tower.dat", 30, "HtFract of the last station is 0.95");
+    let e = parse(tower.replace(
+        "5.0000000E-01  3.9164100E+03  2.9101100E+11",
+        "5.0000000E-01  3.9164100E+03  0.0",
+    ));
+    assert_format(
+        &e,
+        "tower.dat",
+        25,
+        "TwFAStif is 0: it must be greater than 0",
+    );
+    let e = parse(tower.replace("          1   AdjFASt", "         -1   AdjFASt"));
+    assert_format(
+        &e,
+        "tower.dat",
+        15,
+        "AdjFASt is -1: it must be greater than 0",
     );
 }
 
@@ -504,6 +725,18 @@ fn hostile_elastodyn_blade() {
         same: equal,
         number: (17, 5),
         row: 20,
+    }
+    .run();
+}
+
+#[test]
+fn hostile_elastodyn_tower() {
+    Hostile {
+        rel: ED_TOWER,
+        parse: elastodyn_tower::parse_tower,
+        same: equal,
+        number: (22, 2),
+        row: 25,
     }
     .run();
 }
