@@ -4,8 +4,10 @@
 //! analysis ([`decompose`]) and its parts, isolation by permutation, balancing, the exponential
 //! propagators of the time response ([`phi_functions`]), faer's general eigendecomposition (also
 //! used for the strong-form natural modes), banded symmetric matrices and the lowest eigenpairs
-//! of a banded pencil by shift-invert block Lanczos (the tabulated blade's modes), and the
-//! optimal assignment that mode labelling and tracking share ([`hungarian`]). Nothing here depends on the rest of the crate but its error type.
+//! of a banded pencil by shift-invert block Lanczos (the tabulated blade's modes), the
+//! multi-blade coordinate transform of a rotor's states ([`mbc`]), and the optimal assignment
+//! that mode labelling and tracking share ([`hungarian`]). Nothing here depends on the rest of
+//! the crate but its error type.
 
 mod assignment;
 pub(crate) mod balance;
@@ -19,6 +21,7 @@ mod hessenberg_reduction;
 mod inverse_iteration;
 mod isolate;
 pub mod lanczos;
+pub mod mbc;
 pub mod phi_functions;
 pub mod root;
 mod roots;
