@@ -107,9 +107,9 @@ pub fn aero_blade_of(p: &ValidPreset) -> Result<&AeroBlade> {
 }
 
 /// The preset's `aero.stations` Gauss stations on its aerodynamic description, built once per
-/// blade and count and shared by the presets edited from it ([`crate::physics::rotor::stations`]).
+/// blade and count and shared by the presets edited from it ([`super::files::ReadFiles`]).
 pub fn aero_stations_of(p: &ValidPreset) -> Result<Arc<Vec<bem::AeroStation>>> {
-    // The preset holds stations exactly when it holds a blade; without one, the blade's error.
+    // The read files hold stations exactly when they hold a blade; without one, the blade's error.
     match p.aero_stations() {
         Some(stations) => stations,
         None => aero_blade_of(p)

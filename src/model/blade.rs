@@ -24,13 +24,21 @@ use std::sync::Arc;
 /// or anything aerodynamic then costs the reduced eigenproblem only (§11.4), a change of pitch
 /// the reduced matrices at the new pitch, never a re-assembly.
 pub fn blade_structure(p: &ValidPreset) -> Result<Option<Arc<BladeStructure>>> {
+    Ok(keyed_blade_structure(p)?.map(|(_, built)| built))
+}
+
+/// [`blade_structure`] with the key it was kept under: what the build depends on, for the
+/// builds made from it to be kept by.
+pub(super) fn keyed_blade_structure(
+    p: &ValidPreset,
+) -> Result<Option<(BuildKey, Arc<BladeStructure>)>> {
     let Some(blade) = p.tabulated_blade() else {
         return Ok(None);
     };
     static BUILT_CACHE: Kept<BuildKey, BladeStructure> = Kept::new();
-    BUILT_CACHE
-        .get_or_build(BuildKey::of(p, blade)?, BUILT, || build(p, blade.clone()))
-        .map(Some)
+    let key = BuildKey::of(p, blade)?;
+    let built = BUILT_CACHE.get_or_build(key.clone(), BUILT, || build(p, blade.clone()))?;
+    Ok(Some((key, built)))
 }
 
 /// The beam a preset's tabulated blade is built as (`None` for the uniform blade): shear-deformable
@@ -52,12 +60,14 @@ const BUILT: usize = 4;
 /// per value).
 const RANGES: usize = 2;
 
-/// Everything [`build`] reads from a preset.
+/// Everything [`build`] reads from a preset, compared by value.
 #[derive(Debug, Clone, PartialEq)]
-struct BuildKey {
-    range: RangeKey,
+pub(super) struct BuildKey {
+    // The pitch and ratios first: keys that differ mostly differ there, and the range's blade
+    // is compared station by station.
     pitch: f64,
     ratios: [Option<f64>; 3],
+    range: RangeKey,
 }
 
 /// Everything the pitch-range basis depends on.

@@ -1,5 +1,6 @@
-//! The builds the model keeps for the next call: a structure, a blade's basis. An explorer that
-//! drags one knob, and the points of a sweep, ask for the same build again and again.
+//! The builds the model keeps for the next call: a structure, a blade's basis, the stations on an
+//! aerodynamic description. An explorer that drags one knob, and the points of a sweep, ask for
+//! the same build again and again. Keys are compared by value.
 
 use crate::error::Result;
 use std::sync::{Arc, Mutex};

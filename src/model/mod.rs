@@ -2,8 +2,10 @@
 //! physics (docs/model.md). Each file turns one part of the preset into what one part of the
 //! physics takes: the section ([`section`]), the structure ([`structure`], a tabulated blade's
 //! build in [`blade`], a HAWC2 model's files in [`htc`]), the aerodynamics ([`aero`]), the
-//! operating point and its schedule ([`operating`]), and the coupled system ([`system`]). It also
-//! keeps the builds a sweep or the explorer asks for again ([`kept`]).
+//! operating point and its schedule ([`operating`]), and the coupled system ([`system`]). It
+//! reads the files a preset names when the preset is checked and holds what they gave
+//! ([`files`], carried by the checked preset), and keeps the builds a sweep or the explorer asks
+//! for again ([`kept`]).
 //!
 //! A turbine's several bodies (blades, drivetrain, tower; docs/architecture.md) are assembled
 //! here too: each body's physics takes its own inputs, and this layer reads them from the preset
@@ -11,6 +13,7 @@
 
 pub mod aero;
 pub mod blade;
+pub mod files;
 pub mod htc;
 pub mod kept;
 pub mod operating;

@@ -2,11 +2,10 @@
 //! and blade keys, or the first K modes of a tabulated blade at the rotor speed and pitch, and
 //! the structures kept across calls.
 
-use super::blade::blade_structure;
+use super::blade::{keyed_blade_structure, BuildKey};
 use super::kept::Kept;
 use super::section::section_properties;
 use crate::error::Result;
-use crate::physics::blade::source::BladeStructure;
 use crate::physics::section::SectionProps;
 use crate::physics::structure::galerkin::{assemble_section, BladeSpec, Form, StructuralModel};
 use crate::physics::structure::tabulated::TabulatedStructure;
@@ -16,14 +15,14 @@ use std::sync::Arc;
 
 /// The structure a preset describes, at its rotor speed and pitch: the paper's uniform blade
 /// (§3–§4), or the first K modes of the tabulated blade its files describe (§11), from a build
-/// kept across rotor-speed changes ([`blade_structure`]).
+/// kept across rotor-speed changes ([`super::blade::blade_structure`]).
 ///
-/// Both are kept for the next call: the uniform blade per section and blade ([`KEPT_UNIFORM`]:
-/// the points of a sweep over the wind speed or the pitch share one), a tabulated blade's
-/// structure per build and rotor speed ([`AT_SPEED`]: the passes of an operating point and the
-/// re-solves of a sweep ask for it again and again).
+/// Both are kept for the next call, by value: the uniform blade per section and blade
+/// ([`KEPT_UNIFORM`]: the points of a sweep over the wind speed or the pitch share one), a
+/// tabulated blade's structure per rotor speed and what its build was made from ([`AT_SPEED`]:
+/// the passes of an operating point and the re-solves of a sweep ask for it again and again).
 pub fn for_preset(p: &ValidPreset) -> Result<Arc<dyn Structure>> {
-    match blade_structure(p)? {
+    match keyed_blade_structure(p)? {
         None => {
             static KEPT: Kept<UniformKey, StructuralModel> = Kept::new();
             let (section, spec) = uniform_inputs(p)?;
@@ -33,10 +32,11 @@ pub fn for_preset(p: &ValidPreset) -> Result<Arc<dyn Structure>> {
                 })?;
             Ok(structure)
         }
-        Some(built) => {
-            static KEPT: Kept<(Same, u64), TabulatedStructure> = Kept::new();
+        Some((build, built)) => {
+            // The rotor speed first: the cheap half of the key tells most builds apart.
+            static KEPT: Kept<(u64, BuildKey), TabulatedStructure> = Kept::new();
             let omega = p.omega();
-            let key = (Same(built.clone()), omega.to_bits());
+            let key = (omega.to_bits(), build);
             let structure = KEPT.get_or_build(key, AT_SPEED, || {
                 TabulatedStructure::new(built.modal.clone(), built.modes(omega)?, omega)
             })?;
@@ -76,16 +76,6 @@ const KEPT_UNIFORM: usize = 8;
 
 /// Structures at one rotor speed kept: one per sweep worker and a few more.
 const AT_SPEED: usize = 8;
-
-/// A build compared by identity: two presets share a build exactly when the build cache gave
-/// them the same one.
-struct Same(Arc<BladeStructure>);
-
-impl PartialEq for Same {
-    fn eq(&self, other: &Same) -> bool {
-        Arc::ptr_eq(&self.0, &other.0)
-    }
-}
 
 /// The paper's uniform blade of a preset: section from its source, N from `structure.modes`,
 /// form from `structure.form`, rotor speed from `operating.rotor_speed`, damping from

@@ -5,9 +5,11 @@
 //!
 //! A preset is checked once, when it is loaded or changed, into a [`ValidPreset`]; the physics
 //! and analysis layers take only that type, so they never re-check an input. Checking a preset
-//! whose `blade.source` is a tabulated blade reads the blade's files too ([`files`] says where
-//! they resolve; `physics::blade::source` reads them), so a checked preset holds its blade and
-//! a missing or broken file fails at load, naming the preset, the key and the file's line.
+//! reads the files it names too ([`files`] says where they resolve; [`crate::model::files`]
+//! reads them and holds what they gave), so a checked preset carries its blade, its aerodynamic
+//! description and its operating table beside the TOML, and a missing or broken file fails at
+//! load, naming the preset, the key and the file's line. The [`Preset`] itself is only what its
+//! TOML says.
 //!
 //! Units at this edge: degrees for angles, rpm for rotor speed, SI otherwise. The physics layers
 //! receive SI through the accessors at the bottom of this file.
@@ -23,14 +25,10 @@ pub use rules::MAX_SAMPLES;
 pub use schema::*;
 
 use crate::error::{Error, Result};
-use crate::formats::text_file::TextFile;
-use crate::physics::blade::source::{
-    read_twist, BeamDynFiles, BladeFiles, Hawc2Files, TabulatedBlade,
-};
+use crate::model::files::{read_rotor, read_tabulated, ReadFiles, Tabulated};
+use crate::physics::blade::source::TabulatedBlade;
 use crate::physics::rotor::bem::AeroStation;
-use crate::physics::rotor::files::{read_aerodyn, read_hawc2, read_htc_aero, read_prebend, AePc};
 use crate::physics::rotor::schedule::Table as ScheduleTable;
-use crate::physics::rotor::stations::GaussStations;
 use crate::physics::rotor::AeroBlade;
 use serde::Deserialize;
 use std::path::Path;
@@ -65,23 +63,27 @@ pub fn builtin_names() -> Vec<&'static str> {
     BUILTIN.iter().map(|(n, _)| *n).collect()
 }
 
-/// A preset that passed every key range and every rule across keys, its blade files read
-/// ([`Preset::validate`]). The only way to make one is to validate, so whatever takes a
-/// `&ValidPreset` can rely on it.
+/// A preset that passed every key range and every rule across keys, with the files it names read
+/// ([`Preset::validate`]): the preset as its TOML says (what it derefs to) and, beside it, what
+/// its files gave ([`ReadFiles`], shared by the presets edited from this one in other keys). The
+/// only way to make one is to validate, so whatever takes a `&ValidPreset` can rely on it.
 #[derive(Debug, Clone, PartialEq)]
-pub struct ValidPreset(Preset);
+pub struct ValidPreset {
+    preset: Preset,
+    files: Arc<ReadFiles>,
+}
 
 impl std::ops::Deref for ValidPreset {
     type Target = Preset;
     fn deref(&self) -> &Preset {
-        &self.0
+        &self.preset
     }
 }
 
 impl ValidPreset {
     /// The preset, to edit and validate again.
     pub fn into_preset(self) -> Preset {
-        self.0
+        self.preset
     }
 
     /// This preset with `key` set to `value`, validated again (cross-key rules included).
@@ -90,21 +92,51 @@ impl ValidPreset {
     }
 
     /// This preset with every `(key, value)` set, validated again; a key that cannot change
-    /// what the model computes for this blade is an error ([`Preset::acts`]).
+    /// what the model computes for this blade is an error ([`Preset::acts`]). The files are
+    /// read again only if a key they were read from changed.
     pub fn with_all(&self, values: &[(&str, f64)]) -> Result<ValidPreset> {
-        let mut p = self.0.clone();
+        let mut p = self.preset.clone();
         for (key, value) in values {
             p.acts(key)?;
             p.set(key, *value)?;
         }
-        p.validate()
+        p.validated(Some(&self.files), None)
     }
 
-    /// This preset changed by `edit` (for the keys that are not numbers), validated again.
+    /// This preset changed by `edit` (for the keys that are not numbers), validated again; the
+    /// files are read again only if a key they were read from changed.
     pub fn edited(&self, edit: impl FnOnce(&mut Preset)) -> Result<ValidPreset> {
-        let mut p = self.0.clone();
+        let mut p = self.preset.clone();
         edit(&mut p);
-        p.validate()
+        p.validated(Some(&self.files), None)
+    }
+
+    /// What the preset's files gave when it was checked.
+    pub fn files(&self) -> &ReadFiles {
+        &self.files
+    }
+
+    /// The tabulated blade this checked preset holds (`None` for the uniform blade).
+    pub fn tabulated_blade(&self) -> Option<&Arc<TabulatedBlade>> {
+        self.files.tabulated_blade()
+    }
+
+    /// The aerodynamic description this checked preset holds (`None` when it names no
+    /// aerodynamic files).
+    pub fn aero_blade(&self) -> Option<&Arc<AeroBlade>> {
+        self.files.aero_blade()
+    }
+
+    /// The `aero.stations` Gauss stations on [`Self::aero_blade`], built once and shared by
+    /// the presets edited from this one in other keys (`None` without an aerodynamic
+    /// description).
+    pub fn aero_stations(&self) -> Option<Result<Arc<Vec<AeroStation>>>> {
+        self.files.aero_stations(self.aero.stations)
+    }
+
+    /// The operating table this checked preset holds (`operating.schedule = "table"`).
+    pub fn schedule_table(&self) -> Option<&Arc<ScheduleTable>> {
+        self.files.schedule_table()
     }
 }
 
@@ -190,21 +222,38 @@ impl Preset {
         }
         preset.check_ranges()?;
         rules::check_blade_keys(&preset)?;
-        preset.read_tabulated()?;
-        preset.source_defaults(&table);
-        preset.validate()
+        let tabulated = read_tabulated(&preset, None)?;
+        if let Some(t) = &tabulated {
+            preset.source_defaults(&table, t.blade());
+        }
+        preset.validated(None, tabulated)
     }
 
-    /// Range-check every numeric key, read a tabulated blade's files (unless this preset already
-    /// holds what they say), then the rules across keys ([`rules`]).
-    pub fn validate(mut self) -> Result<ValidPreset> {
+    /// Range-check every numeric key, read the files the preset names, then the rules across
+    /// keys ([`rules`]).
+    pub fn validate(self) -> Result<ValidPreset> {
+        self.validated(None, None)
+    }
+
+    /// [`Preset::validate`], keeping of `held` (the files of the preset this one was edited
+    /// from) and of `tabulated` (its tabulated blade, read already) what was read from the keys
+    /// this preset names ([`crate::model::files`]).
+    fn validated(
+        self,
+        held: Option<&Arc<ReadFiles>>,
+        tabulated: Option<Tabulated>,
+    ) -> Result<ValidPreset> {
         self.check_ranges()?;
         rules::check_blade_keys(&self)?;
-        self.read_tabulated()?;
+        let held_blade = tabulated.as_ref().or(held.and_then(|f| f.tabulated()));
+        let tabulated = read_tabulated(&self, held_blade)?;
         rules::check_rotor_keys(&self)?;
-        self.read_rotor_files()?;
-        rules::check(&self)?;
-        Ok(ValidPreset(self))
+        let files = read_rotor(&self, tabulated, held)?;
+        rules::check(&self, &files)?;
+        Ok(ValidPreset {
+            preset: self,
+            files,
+        })
     }
 
     fn check_ranges(&self) -> Result<()> {
@@ -212,231 +261,10 @@ impl Preset {
             .try_for_each(|spec| spec.check(&self.origin, (spec.get)(self)))
     }
 
-    /// Read the blade `blade.source` and `blade.file` name, once: a preset edited in other keys
-    /// keeps the blade it holds. File errors keep the file's own path and line, after the
-    /// preset and the key that led to the file.
-    fn read_tabulated(&mut self) -> Result<()> {
-        let b = &self.blade;
-        if !b.source.is_tabulated() {
-            self.tabulated = None;
-            return Ok(());
-        }
-        if self.tabulated.as_ref().is_some_and(|t| t.read_from(b)) {
-            return Ok(());
-        }
-        let file = self.base.resolve(&b.file);
-        let twist = match b.source {
-            BladeSource::Hawc2 if !b.from_htc() => Some(
-                read_twist(&self.base.resolve(&b.twist_file)).map_err(|e| Error::Invalid {
-                    origin: self.origin.clone(),
-                    message: format!("blade.twist_file = \"{}\": {e}", b.twist_file),
-                })?,
-            ),
-            _ => None,
-        };
-        let subset = match b.source {
-            BladeSource::Hawc2 => format!(
-                " (blade.st_set = {}, blade.st_subset = {})",
-                b.st_set, b.st_subset
-            ),
-            _ => String::new(),
-        };
-        let files: Box<dyn BladeFiles> = match twist {
-            _ if b.from_htc() => Box::new(crate::model::htc::htc_files(b, &self.base)),
-            Some(twist) => Box::new(Hawc2Files {
-                st: file,
-                twist,
-                set: b.st_set,
-                subset: b.st_subset,
-            }),
-            None => Box::new(BeamDynFiles { primary: file }),
-        };
-        let keys = if b.from_htc() {
-            format!(
-                "blade.htc_file = \"{}\" (blade.htc_body = \"{}\")",
-                b.htc_file, b.htc_body
-            )
-        } else {
-            format!("blade.file = \"{}\"{subset}", b.file)
-        };
-        let blade = files.read().map_err(|e| Error::Invalid {
-            origin: self.origin.clone(),
-            message: format!("{keys}: {e}"),
-        })?;
-        self.tabulated = Some(Tabulated {
-            source: b.source,
-            file: b.file.clone(),
-            twist_file: b.twist_file.clone(),
-            st_set: b.st_set,
-            st_subset: b.st_subset,
-            htc: b.htc_keys(),
-            blade: Arc::new(blade),
-        });
-        Ok(())
-    }
-
-    /// Read the aerodynamic description (`aero.blade_file` … or `aero.ae_file` …) and the
-    /// operating table (`operating.schedule_file`), once: a preset edited in other keys keeps
-    /// what it holds. File errors keep the file's own path and line, after the preset and keys.
-    fn read_rotor_files(&mut self) -> Result<()> {
-        let keys = RotorFiles::keys_of(self);
-        let held = self.rotor_files.as_ref();
-        if held.is_some_and(|r| r.keys == keys) {
-            return Ok(());
-        }
-        // The aerodynamic description and the table are kept apart: an operating point on its
-        // schedule sets `operating.schedule = "none"` (docs/model.md §12.6), which must not read
-        // the blade's aerodynamic files again (a third of a point's cost on the IEA 15MW).
-        let held_blade = held
-            .filter(|r| (&r.keys.0, &r.keys.1) == (&keys.0, &keys.1))
-            .map(|r| (r.blade.clone(), r.stations.clone()));
-        let held_table = held.filter(|r| r.keys.2 == keys.2).map(|r| r.table.clone());
-        let base = &self.base;
-        let (blade, stations) = match held_blade {
-            Some(held) => held,
-            None => (
-                self.read_aero_blade()?.map(Arc::new),
-                GaussStations::default(),
-            ),
-        };
-        let table = if let Some(table) = held_table {
-            table
-        } else {
-            match self.operating.schedule {
-                Schedule::Table => {
-                    let name = &self.operating.schedule_file;
-                    Some(Arc::new(read_schedule_table(&base.resolve(name)).map_err(
-                        |e| self.file_error(&format!("operating.schedule_file = \"{name}\""), e),
-                    )?))
-                }
-                _ => None,
-            }
-        };
-        self.rotor_files = Some(RotorFiles {
-            keys,
-            blade,
-            table,
-            stations,
-        });
-        Ok(())
-    }
-
-    /// A file's error named after the preset and the keys that name the file.
-    fn file_error(&self, keys: &str, e: Error) -> Error {
-        Error::Invalid {
-            origin: self.origin.clone(),
-            message: format!("{keys}: {e}"),
-        }
-    }
-
-    /// Read the aerodynamic description (`aero.blade_file` … or `aero.ae_file` …) with its
-    /// prebend; `None` when the preset names no aerodynamic files.
-    fn read_aero_blade(&self) -> Result<Option<AeroBlade>> {
-        let (a, base) = (&self.aero, &self.base);
-        let blade = if self.blade.from_htc() {
-            self.read_htc_aero()?
-        } else if !a.blade_file.is_empty() {
-            let airfoils: Vec<BladeFile> = a.airfoils.iter().map(|f| base.resolve(f)).collect();
-            Some(
-                read_aerodyn(
-                    &base.resolve(&a.blade_file),
-                    &airfoils,
-                    &base.resolve(&a.pitch_axis_file),
-                )
-                .map_err(|e| {
-                    self.file_error(
-                        &format!(
-                            "aero.blade_file = \"{}\" (with aero.airfoils, aero.pitch_axis_file = \"{}\")",
-                            a.blade_file, a.pitch_axis_file
-                        ),
-                        e,
-                    )
-                })?,
-            )
-        } else if !a.ae_file.is_empty() {
-            Some(
-                read_hawc2(
-                    &base.resolve(&a.ae_file),
-                    a.ae_set,
-                    &base.resolve(&a.pc_file),
-                    &base.resolve(&self.blade.twist_file),
-                )
-                .map_err(|e| {
-                    self.file_error(
-                        &format!(
-                            "aero.ae_file = \"{}\" (aero.ae_set = {}, aero.pc_file = \"{}\", \
-                             twist from blade.twist_file = \"{}\")",
-                            a.ae_file, a.ae_set, a.pc_file, self.blade.twist_file
-                        ),
-                        e,
-                    )
-                })?,
-            )
-        } else {
-            None
-        };
-        let blade = match (blade, a.prebend_file.is_empty()) {
-            (Some(mut b), false) => {
-                b.prebend = read_prebend(&base.resolve(&a.prebend_file)).map_err(|e| {
-                    self.file_error(&format!("aero.prebend_file = \"{}\"", a.prebend_file), e)
-                })?;
-                Some(b)
-            }
-            (blade, _) => blade,
-        };
-        Ok(blade)
-    }
-
-    /// The aerodynamic description of an htc blade: the ae and pc files the htc's `aero` block
-    /// names, or `aero.ae_file`, `aero.ae_set` and `aero.pc_file` where the preset names them;
-    /// twist and prebend from the body's `c2_def`.
-    fn read_htc_aero(&self) -> Result<Option<AeroBlade>> {
-        let (a, b, base) = (&self.aero, &self.blade, &self.base);
-        let named = |s: &str| !s.trim().is_empty();
-        let given = AePc {
-            ae: named(&a.ae_file).then(|| (base.resolve(&a.ae_file), a.ae_set)),
-            pc: named(&a.pc_file).then(|| base.resolve(&a.pc_file)),
-        };
-        let keys = match (named(&a.ae_file), named(&a.pc_file)) {
-            (false, false) => format!(
-                "blade.htc_file = \"{}\" (blade.htc_body = \"{}\", its aero block)",
-                b.htc_file, b.htc_body
-            ),
-            _ => format!(
-                "aero.ae_file = \"{}\" (aero.ae_set = {}), aero.pc_file = \"{}\" (either empty: \
-                 the aero block's; twist and prebend from blade.htc_file = \"{}\")",
-                a.ae_file, a.ae_set, a.pc_file, b.htc_file
-            ),
-        };
-        read_htc_aero(&crate::model::htc::htc_files(b, base), given)
-            .map_err(|e| self.file_error(&keys, e))
-    }
-
-    /// The aerodynamic description this checked preset holds (`None` when it names no
-    /// aerodynamic files).
-    pub fn aero_blade(&self) -> Option<&Arc<AeroBlade>> {
-        self.rotor_files.as_ref().and_then(|r| r.blade.as_ref())
-    }
-
-    /// The `aero.stations` Gauss stations on [`Self::aero_blade`], built once and shared by
-    /// the presets edited from this one in other keys (`None` without an aerodynamic
-    /// description).
-    pub fn aero_stations(&self) -> Option<Result<Arc<Vec<AeroStation>>>> {
-        let files = self.rotor_files.as_ref()?;
-        let blade = files.blade.as_ref()?;
-        Some(files.stations.of(blade, self.aero.stations))
-    }
-
-    /// The operating table this checked preset holds (`operating.schedule = "table"`).
-    pub fn schedule_table(&self) -> Option<&Arc<ScheduleTable>> {
-        self.rotor_files.as_ref().and_then(|r| r.table.as_ref())
-    }
-
     /// Defaults that depend on `blade.source`, for the keys `written` (the preset's keys as
     /// written, overrides applied) leaves out: a tabulated blade is as long as its file says,
     /// keeps [`TABULATED_MODES`] modes and, until its aerodynamics can be described, has none.
-    fn source_defaults(&mut self, written: &toml::Table) {
-        let Some(t) = &self.tabulated else { return };
+    fn source_defaults(&mut self, written: &toml::Table, blade: &TabulatedBlade) {
         let given = |table: &str, key: &str| {
             written
                 .get(table)
@@ -444,7 +272,7 @@ impl Preset {
                 .is_some_and(|t| t.contains_key(key))
         };
         if !given("blade", "length") {
-            self.blade.length = t.blade.length();
+            self.blade.length = blade.length();
         }
         if !given("structure", "modes") {
             self.structure.modes = TABULATED_MODES;
@@ -452,11 +280,6 @@ impl Preset {
         if !given("aero", "model") {
             self.aero.model = AeroModel::None;
         }
-    }
-
-    /// The tabulated blade this checked preset holds (`None` for the uniform blade).
-    pub fn tabulated_blade(&self) -> Option<&Arc<TabulatedBlade>> {
-        self.tabulated.as_ref().map(|t| &t.blade)
     }
 
     /// `Ok` when setting `key` can change what the model computes for this preset's blade, else
@@ -549,22 +372,6 @@ impl Preset {
     pub fn pitch_rad(&self) -> f64 {
         self.operating.pitch.to_radians()
     }
-}
-
-/// An operating table from a HAWC2 `.opt` file, in SI.
-fn read_schedule_table(file: &BladeFile) -> Result<ScheduleTable> {
-    let name = file.display();
-    let opt = crate::formats::hawc2_aero::parse_opt(&file.read()?, &name)?;
-    Ok(ScheduleTable {
-        wind_speed: opt.wind_speed,
-        pitch: opt.pitch_deg.iter().map(|d| d.to_radians()).collect(),
-        rotor_speed: opt
-            .rotor_speed_rpm
-            .iter()
-            .map(|r| r * std::f64::consts::PI / 30.0)
-            .collect(),
-        origin: name,
-    })
 }
 
 /// A `--set operating.schedule` away from "table" on a preset that runs along a table file: the

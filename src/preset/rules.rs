@@ -5,6 +5,7 @@
 
 use super::schema::{AeroModel, BladeSource, ContourShape, Preset, Schedule, SectionSource};
 use crate::error::{Error, Result};
+use crate::model::files::ReadFiles;
 use crate::physics::blade::coupling::{coupling_ratio, indefinite_station};
 
 /// Most samples one time response may hold (`simulation.duration × simulation.sample_rate`):
@@ -315,7 +316,7 @@ pub fn check_rotor_keys(p: &Preset) -> Result<()> {
 
 /// `operating.schedule = "law"` needs its parameters and the rotor's aerodynamics (the pitch
 /// above rated comes from the BEM).
-fn law_is_complete(p: &Preset) -> std::result::Result<(), String> {
+fn law_is_complete(p: &Preset, files: &ReadFiles) -> std::result::Result<(), String> {
     let o = &p.operating;
     if o.schedule != Schedule::Law {
         return Ok(());
@@ -338,7 +339,7 @@ fn law_is_complete(p: &Preset) -> std::result::Result<(), String> {
             o.rotor_speed_min, o.rotor_speed_max
         ));
     }
-    if p.aero_blade().is_none() {
+    if files.aero_blade().is_none() {
         return Err(
             "operating.schedule = \"law\" pitches to hold operating.rated_power with \
                     the rotor's aerodynamics: give aero.blade_file (AeroDyn) or aero.ae_file \
@@ -361,17 +362,18 @@ fn cut_in_below_cut_out(p: &Preset) -> std::result::Result<(), String> {
     Ok(())
 }
 
-/// Every rule, in the order a user would fix them; the first broken one is the error.
-pub fn check(p: &Preset) -> Result<()> {
+/// Every rule, in the order a user would fix them, the preset's keys against each other and
+/// against what its `files` gave; the first broken one is the error.
+pub fn check(p: &Preset, files: &ReadFiles) -> Result<()> {
     let invalid = |message: String| Error::Invalid {
         origin: p.origin.clone(),
         message,
     };
-    length_is_the_files(p).map_err(invalid)?;
-    law_is_complete(p).map_err(invalid)?;
+    length_is_the_files(p, files).map_err(invalid)?;
+    law_is_complete(p, files).map_err(invalid)?;
     cut_in_below_cut_out(p).map_err(invalid)?;
-    coupling_is_definite(p).map_err(invalid)?;
-    let described = p.rotor_files.as_ref().is_some_and(|r| r.blade.is_some());
+    coupling_is_definite(p, files).map_err(invalid)?;
+    let described = files.aero_blade().is_some();
     if p.blade.source.is_tabulated() && p.aero.model != AeroModel::None && !described {
         return Err(invalid(format!(
             "aero.model = \"{}\" with blade.source = \"{}\": strip aerodynamics on a tabulated \
@@ -413,11 +415,11 @@ pub fn check(p: &Preset) -> Result<()> {
 /// A tabulated blade is as long as its file says: `blade.length` either left out (it is then
 /// filled in from the file) or equal to it, so a preset cannot describe one blade and compute
 /// another.
-fn length_is_the_files(p: &Preset) -> std::result::Result<(), String> {
-    let Some(t) = &p.tabulated else {
+fn length_is_the_files(p: &Preset, files: &ReadFiles) -> std::result::Result<(), String> {
+    let Some(t) = files.tabulated() else {
         return Ok(());
     };
-    let from_file = t.blade.length();
+    let from_file = t.blade().length();
     if (p.blade.length - from_file).abs() <= 1e-9 * from_file {
         return Ok(());
     }
@@ -425,18 +427,18 @@ fn length_is_the_files(p: &Preset) -> std::result::Result<(), String> {
         "blade.length = {} m does not apply to blade.source = \"{}\": the blade is {from_file} m \
          long as blade.file = \"{}\" describes it; leave blade.length out or give the file's",
         p.blade.length,
-        t.source.name(),
-        t.file
+        t.source().name(),
+        t.file()
     ))
 }
 
 /// A tabulated blade's stations stay positive definite in bending and torsion with
 /// `blade.bend_twist_coupling` added (docs/model.md §11.7), or its strain energy is not.
-fn coupling_is_definite(p: &Preset) -> std::result::Result<(), String> {
-    let (Some(t), alpha) = (&p.tabulated, p.blade.bend_twist_coupling) else {
+fn coupling_is_definite(p: &Preset, files: &ReadFiles) -> std::result::Result<(), String> {
+    let (Some(t), alpha) = (files.tabulated(), p.blade.bend_twist_coupling) else {
         return Ok(());
     };
-    let Some((k, s)) = indefinite_station(&t.blade.table, alpha) else {
+    let Some((k, s)) = indefinite_station(&t.blade().table, alpha) else {
         return Ok(());
     };
     Err(format!(
@@ -445,7 +447,7 @@ fn coupling_is_definite(p: &Preset) -> std::result::Result<(), String> {
          from the file plus α must leave the section's bending–torsion stiffness positive \
          definite (|g|/√(EI_flap·GJ) < 1 without edge coupling); choose a smaller |α|",
         k + 1,
-        t.file,
+        t.file(),
         s.z,
         coupling_ratio(&s)
     ))

@@ -503,6 +503,31 @@ fn lower_layers_import_nothing_above_them() {
     );
 }
 
+/// A preset is checked with the files it names: `preset/` calls into the model only to read them
+/// (`model/files.rs`, and a HAWC2 model's files, `model/htc.rs`), and those read nothing of
+/// `preset/` but its schema and file bases, so the model stays above the preset.
+#[test]
+fn the_preset_calls_the_model_only_to_read_its_files() {
+    let readers = ["src/model/files.rs", "src/model/htc.rs"];
+    let reader = |file: &str| readers.contains(&file);
+    let wrong: Vec<String> = import_edges()
+        .into_iter()
+        .filter(|(from, to)| {
+            let into_model = from.starts_with("src/preset/") && to.starts_with("src/model/");
+            let into_preset = reader(from) && to.starts_with("src/preset/");
+            (into_model && !reader(to))
+                || (into_preset
+                    && !(to.starts_with("src/preset/schema/") || to == "src/preset/files.rs"))
+        })
+        .map(|(from, to)| format!("  {from} → {to}"))
+        .collect();
+    assert!(
+        wrong.is_empty(),
+        "imports between the preset and the model other than the file readers:\n{}",
+        wrong.join("\n")
+    );
+}
+
 #[test]
 fn cycle_finder_finds_a_known_cycle() {
     let file = |rel: &str, text: &str| (rel.to_string(), text.to_string());

@@ -100,6 +100,44 @@ fn a_tabulated_blade_is_read_once_and_round_trips() {
     assert_eq!(p, again);
 }
 
+/// What a preset's files gave is held beside the preset, with the keys it was read from: an
+/// edit of other keys shares all of it, an edit of a key one file was read from reads that file
+/// again and shares the others.
+#[test]
+fn an_edit_reads_again_only_the_files_whose_keys_it_changed() {
+    let p = Preset::load("iea15mw", &[]).unwrap();
+    let moved = p.with("operating.wind_speed", 14.0).unwrap();
+    assert!(std::ptr::eq(p.files(), moved.files()));
+    let straight = p.edited(|q| q.aero.prebend_file.clear()).unwrap();
+    assert!(Arc::ptr_eq(
+        p.tabulated_blade().unwrap(),
+        straight.tabulated_blade().unwrap()
+    ));
+    assert!(Arc::ptr_eq(
+        p.schedule_table().unwrap(),
+        straight.schedule_table().unwrap()
+    ));
+    assert!(!Arc::ptr_eq(
+        p.aero_blade().unwrap(),
+        straight.aero_blade().unwrap()
+    ));
+    assert!(straight.aero_blade().unwrap().prebend.is_empty());
+    assert_ne!(p.files(), straight.files());
+    let held = p
+        .edited(|q| {
+            q.operating.schedule = flutterscope::preset::Schedule::None;
+            q.operating.schedule_file.clear();
+        })
+        .unwrap();
+    assert!(held.schedule_table().is_none());
+    assert!(Arc::ptr_eq(
+        p.aero_blade().unwrap(),
+        held.aero_blade().unwrap()
+    ));
+    // The same text loaded twice: the same preset, its files read from the same keys.
+    assert_eq!(p, Preset::load("iea15mw", &[]).unwrap());
+}
+
 /// `structure.modes` means K retained blade modes for a tabulated blade, 12 unless the preset
 /// says otherwise; `blade.length` comes from the file and may only repeat it.
 #[test]

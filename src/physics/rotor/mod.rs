@@ -9,7 +9,6 @@ pub mod bem;
 pub mod files;
 pub mod induction;
 pub mod schedule;
-pub mod stations;
 pub mod steady;
 
 use crate::physics::aero::polar::Polar;

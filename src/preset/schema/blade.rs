@@ -1,9 +1,7 @@
 //! The `[blade]` table: the blade's length, mass and stiffness source (the paper's uniform blade
 //! or a real blade's tabulated files) and the files' damping and coupling settings.
 
-use crate::physics::blade::source::TabulatedBlade;
 use serde::{Deserialize, Serialize};
-use std::sync::Arc;
 
 /// Where the blade's structure comes from (`blade.source`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -77,32 +75,6 @@ pub struct Blade {
     /// blade, on top of its files' (docs/model.md §11.7); α > 0 twists toward feather under
     /// downwind bending. Tabulated blades only.
     pub bend_twist_coupling: f64,
-}
-
-/// The tabulated blade a preset was checked with, and the keys it was read from: a change of
-/// any of them (an edited preset) reads the files again.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Tabulated {
-    pub source: BladeSource,
-    pub file: String,
-    pub twist_file: String,
-    pub st_set: usize,
-    pub st_subset: usize,
-    /// `htc_file`, `htc_body`, `htc_root`.
-    pub htc: [String; 3],
-    pub blade: Arc<TabulatedBlade>,
-}
-
-impl Tabulated {
-    /// Whether this was read from what `blade` now names.
-    pub fn read_from(&self, blade: &Blade) -> bool {
-        self.source == blade.source
-            && self.file == blade.file
-            && self.htc == blade.htc_keys()
-            && (self.source != BladeSource::Hawc2
-                || (self.st_set, self.st_subset, &self.twist_file)
-                    == (blade.st_set, blade.st_subset, &blade.twist_file))
-    }
 }
 
 impl Blade {
