@@ -19,6 +19,7 @@
 //! solve needs no special case) and, if it is not affine and must be simulated as such (ONERA,
 //! §5.3), `nonlinear_support`; then add it to `crate::model::aero::model_for`.
 
+pub mod airfoil;
 pub mod blade_element;
 pub mod onera;
 pub mod polar;
