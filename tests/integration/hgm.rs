@@ -420,3 +420,15 @@ fn hgm_runs_in_eigen_sweep_flutter_and_simulate() {
         "{worst_twist:e} {worst_flap:e}"
     );
 }
+
+#[test]
+fn the_aero_key_reaches_hgm_on_a_real_blade_only() {
+    use flutterscope::preset::AeroModel;
+    assert_eq!(AeroModel::Onera.cycle_for(true, true), AeroModel::Hgm);
+    assert_eq!(AeroModel::Hgm.cycle_for(true, true), AeroModel::None);
+    assert_eq!(AeroModel::Onera.cycle_for(true, false), AeroModel::None);
+    assert_eq!(AeroModel::None.cycle_for(false, false), AeroModel::Onera);
+    // Shown and read back, a set constant stays set and the others unset.
+    let p = Preset::load("nrel5mw", &["aero.hgm.tau_f=4.5".into()]).unwrap();
+    assert_eq!((p.aero.hgm.tau_f, p.aero.hgm.a1), (Some(4.5), None));
+}

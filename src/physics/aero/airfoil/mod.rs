@@ -1,5 +1,5 @@
 //! The section's unsteady airfoil model behind the blade-element strip loads (docs/model.md
-//! §12.5): one trait, [`AirfoilDynamics`], one implementation per file.
+//! §12.5, §12.8): one trait, [`AirfoilDynamics`], one implementation per file.
 //!
 //! A model sees the section's polar and its flow — the three-quarter-chord angle of attack
 //! `α_¾`, the geometric angle `α_g` the loads are resolved in, the twist rate and the reduced-time
@@ -15,8 +15,9 @@
 //!
 //! Adding a model: a file implementing [`AirfoilDynamics`] (its coefficients and rates, and the
 //! states that hold still at a constant angle of attack), a variant of
-//! `blade_element::Unsteadiness` and its arm in `Unsteadiness::visit`, the one place a model is
-//! named.
+//! `blade_element::Unsteadiness` and its arm in `Unsteadiness::visit`, the one place the strip
+//! names a model; the preset names it in `AeroModel` and `crate::model::operating::unsteadiness`
+//! maps the one onto the other.
 
 pub mod hgm;
 pub mod jones;
