@@ -3,7 +3,8 @@
 //! aeroelastic equilibrium (schedule, BEM passes, structure, strips; target with the eigen-solve
 //! < 3 ms) and the whole stability analysis of it; the Campbell is the 23-point sweep along the
 //! schedule from 3 to 25 m/s (target < 0.2 s on two cores); ONERA at 30 stations (target
-//! < 50 ms a point).
+//! < 50 ms a point); the Hansen–Gaunaa–Madsen model at 30 stations (targets < 20 ms a point,
+//! < 0.5 s the Campbell).
 //!
 //! Run: `cargo bench --bench rotor`.
 
@@ -83,6 +84,33 @@ fn stability_at_an_operating_point_onera(bencher: divan::Bencher) {
 #[divan::bench(sample_count = 5)]
 fn campbell_along_the_schedule(bencher: divan::Bencher) {
     let p = preset();
+    let grid: Vec<f64> = (3..=25).map(f64::from).collect();
+    bencher.bench(|| track(divan::black_box(&p), "operating.wind_speed", &grid).unwrap());
+}
+
+fn hgm() -> ValidPreset {
+    Preset::load("iea15mw", &["aero.model=hgm".to_string()]).unwrap()
+}
+
+/// The whole stability analysis with the Hansen–Gaunaa–Madsen model at every station (target
+/// with the eigen-solve < 20 ms a point).
+#[divan::bench]
+fn stability_at_an_operating_point_hgm(bencher: divan::Bencher) {
+    let p = hgm();
+    bencher.bench(|| analyse(divan::black_box(&p)).unwrap());
+}
+
+/// Its eigen-analysis alone (144 states), on the system built once.
+#[divan::bench]
+fn eigen_analysis_of_the_operating_point_hgm(bencher: divan::Bencher) {
+    let ls = linear_system(&hgm()).unwrap();
+    bencher.bench(|| analyse_system(divan::black_box(&ls)).unwrap());
+}
+
+/// The Campbell diagram along the schedule with it (target < 0.5 s).
+#[divan::bench(sample_count = 5)]
+fn campbell_along_the_schedule_hgm(bencher: divan::Bencher) {
+    let p = hgm();
     let grid: Vec<f64> = (3..=25).map(f64::from).collect();
     bencher.bench(|| track(divan::black_box(&p), "operating.wind_speed", &grid).unwrap());
 }

@@ -1,10 +1,10 @@
 //! AirfoilInfo polar files (OpenFAST AeroDyn 15): one or more tables of static lift, drag and
 //! (optionally) pitching-moment coefficients against angle of attack.
 //!
-//! Lines starting with `!` are comments anywhere, as in AirfoilInfo. The unsteady-aerodynamics
-//! block of a table (`InclUAdata` true) is skipped by its key lines: its coefficients belong to
-//! a dynamic-stall model, not to the static polar. Airfoil coordinates (`NumCoords`, inline or
-//! an `@"file"` reference) are not read.
+//! Lines starting with `!` are comments anywhere, as in AirfoilInfo. Of the unsteady-aerodynamics
+//! block of a table (`InclUAdata` true) the constants the Hansen–Gaunaa–Madsen model reads are
+//! kept ([`UaBlock`]); the rest is passed over by its key lines. Airfoil coordinates
+//! (`NumCoords`, inline or an `@"file"` reference) are not read.
 
 use super::text::{read_text, value, KeyLine, Row, Source, Table};
 use crate::error::Result;
@@ -74,6 +74,22 @@ pub struct Polar {
     pub cm: Option<Vec<f64>>,
     /// Minimum pressure coefficient, when the layout has the column.
     pub cpmin: Option<Vec<f64>>,
+    /// The table's unsteady-aerodynamics constants, when `InclUAdata` is true.
+    pub ua: Option<UaBlock>,
+}
+
+/// The constants of a table's unsteady-aerodynamics block that the Hansen–Gaunaa–Madsen model
+/// reads, as written: `None` for `Default` (AeroDyn's own default applies) or a missing line.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct UaBlock {
+    pub a1: Option<f64>,
+    pub a2: Option<f64>,
+    pub b1: Option<f64>,
+    pub b2: Option<f64>,
+    /// `T_f0`: the separation time constant (semichord travel times).
+    pub t_f0: Option<f64>,
+    /// `T_p`: the pressure time constant (semichord travel times).
+    pub t_p: Option<f64>,
 }
 
 /// An AirfoilInfo file.
@@ -168,10 +184,11 @@ fn table(
     let prop_line = src.key_next(&["UserProp", "Ctrl"], re_line.idx + 1)?;
     let user_prop = src.number(&prop_line)?;
     let ua_line = src.key_next(&["InclUAdata"], prop_line.idx + 1)?;
-    let n_line = if src.flag(&ua_line)? {
-        after_ua_block(src, ua_line.idx + 1, t)?
+    let (n_line, ua) = if src.flag(&ua_line)? {
+        let (n_line, ua) = ua_block(src, ua_line.idx + 1, t)?;
+        (n_line, Some(ua))
     } else {
-        src.key_next(&["NumAlf"], ua_line.idx + 1)?
+        (src.key_next(&["NumAlf"], ua_line.idx + 1)?, None)
     };
     let n = src.count(&n_line, 1)?;
 
@@ -194,23 +211,51 @@ fn table(
         cd: column(c.cd).unwrap_or_default(),
         cm: column(c.cm),
         cpmin: column(c.cpmin),
+        ua,
     };
     Ok((polar, next))
 }
 
-/// The `NumAlf` line after a table's unsteady-aerodynamics block: every line up to it must be
-/// a `value  Key` line, so a missing `NumAlf` is not found in the next table instead.
-fn after_ua_block<'a>(src: &Source<'a>, from: usize, t: usize) -> Result<KeyLine<'a>> {
+/// A table's unsteady-aerodynamics block up to the `NumAlf` line after it, with the constants
+/// [`UaBlock`] keeps: every line up to `NumAlf` must be a `value  Key` line, so a missing
+/// `NumAlf` is not found in the next table instead.
+fn ua_block<'a>(src: &Source<'a>, from: usize, t: usize) -> Result<(KeyLine<'a>, UaBlock)> {
     let expected = format!("expected the line '<value>  NumAlf' of table {t} after its UA block");
+    let mut ua = UaBlock::default();
     let mut pos = from;
     loop {
         let idx = src.expect_content(pos, &expected)?;
         match src.key_line(idx) {
-            Some(k) if k.key.eq_ignore_ascii_case("NumAlf") => return Ok(k),
+            Some(k) if k.key.eq_ignore_ascii_case("NumAlf") => return Ok((k, ua)),
             Some(k)
                 if !k.key.eq_ignore_ascii_case("Re")
                     && super::text::parse_number(k.key).is_none() =>
             {
+                let slot = match k.key.to_ascii_lowercase().as_str() {
+                    "a1" => Some(&mut ua.a1),
+                    "a2" => Some(&mut ua.a2),
+                    "b1" => Some(&mut ua.b1),
+                    "b2" => Some(&mut ua.b2),
+                    "t_f0" => Some(&mut ua.t_f0),
+                    "t_p" => Some(&mut ua.t_p),
+                    _ => None,
+                };
+                if let Some(slot) = slot {
+                    *slot = if k.value.eq_ignore_ascii_case("default") {
+                        None
+                    } else {
+                        Some(src.number(&k).map_err(|_| {
+                            src.err(
+                                idx,
+                                format!(
+                                    "expected Default or a number for {} in the UA block of \
+                                     table {t}, found '{}'",
+                                    k.key, k.value
+                                ),
+                            )
+                        })?)
+                    };
+                }
                 pos = idx + 1
             }
             _ => return Err(src.err(idx, format!("{expected}, found '{}'", src.excerpt(idx)))),

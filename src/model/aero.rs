@@ -36,6 +36,12 @@ pub fn model_for(p: &ValidPreset) -> Result<Box<dyn StripModel>> {
             onera_coefficients(&p.aero.onera),
             p.aero.onera.forcing,
         ))),
+        AeroModel::Hgm => Err(Error::Invalid {
+            origin: p.origin.clone(),
+            message: "aero.model = \"hgm\" reads each station's airfoil polar: it runs on a \
+                      tabulated blade with its aerodynamic description, not on the uniform blade"
+                .into(),
+        }),
     }
 }
 

@@ -6,7 +6,7 @@ use super::aero::{aero_blade_of, aero_stations_of, rotor_of};
 use super::structure::for_preset;
 use crate::error::{Error, Result};
 use crate::physics::aero::blade_element::{
-    BladeElement, ElementSection, StallDynamics, Unsteadiness,
+    BladeElement, ElementSection, Hgm, HgmOverrides, StallDynamics, Unsteadiness,
 };
 use crate::physics::operating::{settle as settle_passes, Built, Operation, SteadyInputs};
 use crate::physics::rotor::schedule::Law;
@@ -156,6 +156,19 @@ pub fn unsteadiness(p: &ValidPreset) -> Unsteadiness {
             a: [o.a_l, o.a_m, o.a_d],
             r: [o.r_l, o.r_m, o.r_d],
         }),
+        AeroModel::Hgm => {
+            let h = &p.aero.hgm;
+            Unsteadiness::Hgm(Hgm {
+                overrides: HgmOverrides {
+                    a1: h.a1,
+                    a2: h.a2,
+                    b1: h.b1,
+                    b2: h.b2,
+                    tau_p: h.tau_p,
+                    tau_f: h.tau_f,
+                },
+            })
+        }
     }
 }
 
@@ -209,6 +222,18 @@ fn settle(
         air_density: p.operating.air_density,
         unsteadiness: unsteady,
     };
+    if let Unsteadiness::Hgm(hgm) = unsteady {
+        for (i, sec) in model.sections.iter().enumerate() {
+            hgm.check(&sec.polar).map_err(|e| Error::Invalid {
+                origin: p.origin.clone(),
+                message: format!(
+                    "aero.model = \"hgm\": the constants of station {} of {}: {e}",
+                    i + 1,
+                    model.sections.len()
+                ),
+            })?;
+        }
+    }
     let context = || p.operating_point();
     let inputs = SteadyInputs {
         rotor: rotor_of(p, blade),

@@ -21,6 +21,8 @@ pub struct KeySpec {
     pub integer: bool,
     pub get: fn(&Preset) -> f64,
     pub set: fn(&mut Preset, f64),
+    /// True while an optional key is unset: there is no value to check.
+    pub unset: fn(&Preset) -> bool,
 }
 
 impl KeySpec {
@@ -83,6 +85,7 @@ macro_rules! real {
             integer: false,
             get: |p| p.$($f).+,
             set: |p, v| p.$($f).+ = v,
+            unset: |_| false,
         }
     };
 }
@@ -98,6 +101,7 @@ macro_rules! int {
             integer: true,
             get: |p| p.$($f).+ as f64,
             set: |p, v| p.$($f).+ = v.round().max(0.0) as usize,
+            unset: |_| false,
         }
     };
 }
@@ -106,15 +110,19 @@ macro_rules! int {
 /// blade file's damping). It reads 0 while unset, and setting it sets it.
 macro_rules! optional {
     ($key:literal, $unit:literal, $min:expr, $max:expr, $($f:ident).+) => {
+        optional!($key, $unit, $min, $max, open = false, $($f).+)
+    };
+    ($key:literal, $unit:literal, $min:expr, $max:expr, open=$open:expr, $($f:ident).+) => {
         KeySpec {
             key: $key,
             unit: $unit,
             min: $min,
             max: $max,
-            min_open: false,
+            min_open: $open,
             integer: false,
             get: |p| p.$($f).+.unwrap_or(0.0),
             set: |p, v| p.$($f).+ = Some(v),
+            unset: |p| p.$($f).+.is_none(),
         }
     };
 }
@@ -200,6 +208,12 @@ pub static KEYS: &[KeySpec] = &[
     real!("aero.onera.cd0", "", 0.0, 2.0, open = false, aero.onera.cd0),
     real!("aero.onera.alpha1", "deg", 0.0, 85.0, open = false, aero.onera.alpha1),
     real!("aero.onera.alpha2", "deg", 0.0, 85.0, open = false, aero.onera.alpha2),
+    optional!("aero.hgm.a1", "", 0.0, 1.0, aero.hgm.a1),
+    optional!("aero.hgm.a2", "", 0.0, 1.0, aero.hgm.a2),
+    optional!("aero.hgm.b1", "", 0.0, 10.0, open = true, aero.hgm.b1),
+    optional!("aero.hgm.b2", "", 0.0, 10.0, open = true, aero.hgm.b2),
+    optional!("aero.hgm.tau_p", "", 0.0, 100.0, open = true, aero.hgm.tau_p),
+    optional!("aero.hgm.tau_f", "", 0.0, 100.0, open = true, aero.hgm.tau_f),
     real!("simulation.kick_twist", "deg", -90.0, 90.0, open = false, simulation.kick_twist),
     real!("simulation.kick_flap", "m", -100.0, 100.0, open = false, simulation.kick_flap),
     real!("simulation.duration", "s", 0.0, 1e4, open = true, simulation.duration),

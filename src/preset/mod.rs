@@ -258,6 +258,7 @@ impl Preset {
 
     fn check_ranges(&self) -> Result<()> {
         KEYS.iter()
+            .filter(|spec| !(spec.unset)(self))
             .try_for_each(|spec| spec.check(&self.origin, (spec.get)(self)))
     }
 

@@ -384,6 +384,26 @@ pub fn check(p: &Preset, files: &ReadFiles) -> Result<()> {
             p.blade.source.name()
         )));
     }
+    if p.aero.model.needs_polars() && !p.blade.source.is_tabulated() {
+        return Err(invalid(format!(
+            "aero.model = \"{}\" with blade.source = \"{}\": the Hansen–Gaunaa–Madsen model \
+             reads each station's airfoil polar (its separation point from the polar's lift), \
+             and the uniform blade has none; give a tabulated blade with its aerodynamic \
+             description (blade.source = \"beamdyn\" or \"hawc2\"), or choose aero.model = \
+             \"none\", \"quasi-steady\", \"theodorsen\" or \"onera\"",
+            p.aero.model.name(),
+            p.blade.source.name()
+        )));
+    }
+    if let (Some(a1), Some(a2)) = (p.aero.hgm.a1, p.aero.hgm.a2) {
+        if a1 + a2 > 1.0 {
+            return Err(invalid(format!(
+                "aero.hgm.a1 + aero.hgm.a2 = {a1} + {a2} = {}; allowed: at most 1 (the direct \
+                 part 1 − A1 − A2 of the indicial response is not negative)",
+                a1 + a2
+            )));
+        }
+    }
     let o = &p.aero.onera;
     if o.alpha2 <= o.alpha1 {
         return Err(invalid(format!(

@@ -11,6 +11,7 @@ mod curved;
 mod eigen;
 mod explorer;
 mod formats;
+mod hgm;
 mod hostile;
 mod htc;
 mod identify;

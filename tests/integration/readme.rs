@@ -92,6 +92,14 @@ fn every_numeric_key_is_documented_with_its_range_and_default() {
             spec.max
         );
         let shown = row.trim_end_matches('|').rsplit('|').next().unwrap().trim();
+        if shown == "unset" {
+            assert!(
+                (spec.unset)(&defaults),
+                "docs/presets.md shows {} unset, the code sets it",
+                spec.key
+            );
+            continue;
+        }
         let shown = match shown {
             "2π" => std::f64::consts::TAU,
             v => v.parse::<f64>().unwrap_or_else(|_| {

@@ -184,7 +184,8 @@ impl AppState {
 
     /// The next (or previous) aerodynamic model.
     fn cycle_aero(&mut self, forward: bool) -> Vec<Effect> {
-        let model = self.preset.aero.model.cycle(forward);
+        let polars = self.preset.blade.source.is_tabulated();
+        let model = self.preset.aero.model.cycle_for(forward, polars);
         let edited = self.preset.edited(|p| p.aero.model = model);
         self.apply(edited)
     }

@@ -17,8 +17,11 @@
 //! Adding a model: implement [`StripModel`] in its own file, including `steady_states` (the
 //! states that make `ż = 0` for a static deflection, with their derivative, so the equilibrium
 //! solve needs no special case) and, if it is not affine and must be simulated as such (ONERA,
-//! §5.3), `nonlinear_support`; then add it to `crate::model::aero::model_for`.
+//! §5.3), `nonlinear_support`; then add it to `crate::model::aero::model_for`. A real blade's
+//! section model is an `airfoil::AirfoilDynamics` instead, behind the one blade-element strip
+//! (§12.5, §12.8).
 
+pub mod airfoil;
 pub mod blade_element;
 pub mod onera;
 pub mod polar;

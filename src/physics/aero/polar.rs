@@ -4,7 +4,9 @@
 //!
 //! Inputs: the tabulated coefficients (α in radians, strictly increasing, covering ±180° for a
 //! full polar). Outputs: the coefficients and their slopes at any α ([`Polar::at`]), and the
-//! attached line `C_l ≈ a0 (α − α0)` ([`Polar::attached`]).
+//! attached line `C_l ≈ a0 (α − α0)` ([`Polar::attached`]), and the separation point of
+//! Kirchhoff's flow inverted on that line with the fully separated lift it implies
+//! ([`Polar::separation`], docs/model.md §12.8).
 
 use crate::error::{Error, Result};
 
@@ -35,6 +37,81 @@ impl AttachedLine {
     }
 }
 
+/// The steady separation point `f_st` and the fully separated lift `C_l,fs` at one angle of
+/// attack, with their slopes ∂/∂α (1/rad).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Separation {
+    pub f: f64,
+    pub cl_fs: f64,
+    pub df: f64,
+    pub dcl_fs: f64,
+}
+
+/// The dynamic-stall constants of the Hansen–Gaunaa–Madsen model (docs/model.md §12.8): Jones-type
+/// indicial constants `A1, A2, b1, b2` and the time constants `τ_p` (pressure lag) and `τ_f`
+/// (separation lag), in semichord travel times.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct UnsteadyConstants {
+    pub a1: f64,
+    pub a2: f64,
+    pub b1: f64,
+    pub b2: f64,
+    pub tau_p: f64,
+    pub tau_f: f64,
+}
+
+impl UnsteadyConstants {
+    /// `Ok` when every constant lies in its range (`A1, A2 ≥ 0` with `A1 + A2 ≤ 1`, `b1, b2` in
+    /// (0, 10], `τ_p, τ_f` in (0, 100]), else which one does not and where it may lie.
+    pub fn check(&self) -> std::result::Result<(), String> {
+        let ranged = [
+            ("A1", self.a1, 0.0, 1.0, false),
+            ("A2", self.a2, 0.0, 1.0, false),
+            ("b1", self.b1, 0.0, 10.0, true),
+            ("b2", self.b2, 0.0, 10.0, true),
+            ("tau_p", self.tau_p, 0.0, 100.0, true),
+            ("tau_f", self.tau_f, 0.0, 100.0, true),
+        ];
+        for (name, v, lo, hi, open) in ranged {
+            let above = if open { v > lo } else { v >= lo };
+            if !(v.is_finite() && above && v <= hi) {
+                let bracket = if open { "(" } else { "[" };
+                return Err(format!("{name} = {v}; allowed: {bracket}{lo}, {hi}]"));
+            }
+        }
+        if self.a1 + self.a2 > 1.0 {
+            return Err(format!(
+                "A1 + A2 = {} + {} = {}; allowed: at most 1 (the direct part 1 − A1 − A2 of the \
+                 indicial response is not negative)",
+                self.a1,
+                self.a2,
+                self.a1 + self.a2
+            ));
+        }
+        Ok(())
+    }
+
+    /// `(1 − t)·self + t·other`, constant by constant.
+    fn mix(&self, other: &UnsteadyConstants, t: f64) -> UnsteadyConstants {
+        let m = |a: f64, b: f64| (1.0 - t) * a + t * b;
+        UnsteadyConstants {
+            a1: m(self.a1, other.a1),
+            a2: m(self.a2, other.a2),
+            b1: m(self.b1, other.b1),
+            b2: m(self.b2, other.b2),
+            tau_p: m(self.tau_p, other.tau_p),
+            tau_f: m(self.tau_f, other.tau_f),
+        }
+    }
+}
+
+/// Dynamic-stall constants a polar's file gives, with the file (and table) they come from.
+#[derive(Debug, Clone, PartialEq)]
+pub struct UnsteadyBlock {
+    pub constants: UnsteadyConstants,
+    pub origin: String,
+}
+
 #[derive(Debug, Clone, PartialEq)]
 pub struct Polar {
     /// α (rad), strictly increasing.
@@ -43,6 +120,11 @@ pub struct Polar {
     cd: Vec<f64>,
     cm: Vec<f64>,
     attached: AttachedLine,
+    /// `f_st` at every row.
+    separation: Vec<f64>,
+    /// `C_l,fs` at every row.
+    separated_lift: Vec<f64>,
+    unsteady: Option<UnsteadyBlock>,
 }
 
 /// Half-width of the window, around the zero-lift angle, over which the attached line is fitted:
@@ -106,34 +188,54 @@ impl Polar {
                  cylinder's)"
             ))
         })?;
+        let (separation, separated_lift) = separation_columns(&alpha, &cl, attached);
         Ok(Polar {
             alpha,
             cl,
             cd,
             cm,
             attached,
+            separation,
+            separated_lift,
+            unsteady: None,
         })
+    }
+
+    /// This polar with the dynamic-stall constants its file gives.
+    pub fn with_unsteady(mut self, block: UnsteadyBlock) -> Polar {
+        self.unsteady = Some(block);
+        self
+    }
+
+    /// The dynamic-stall constants the polar's file gives, if it gives any.
+    pub fn unsteady(&self) -> Option<&UnsteadyBlock> {
+        self.unsteady.as_ref()
     }
 
     /// A linear polar `C_l = a0 (α − α0)`, constant drag, no moment: the paper's section and the
     /// uniform test blades.
     pub fn linear(slope: f64, zero_lift: f64, drag: f64) -> Polar {
         let alpha = vec![-std::f64::consts::PI, std::f64::consts::PI];
-        let cl = alpha.iter().map(|a| slope * (a - zero_lift)).collect();
+        let cl: Vec<f64> = alpha.iter().map(|a| slope * (a - zero_lift)).collect();
+        let attached = AttachedLine { slope, zero_lift };
+        let (separation, separated_lift) = separation_columns(&alpha, &cl, attached);
         Polar {
             alpha,
             cl,
             cd: vec![drag; 2],
             cm: vec![0.0; 2],
-            attached: AttachedLine { slope, zero_lift },
+            attached,
+            separation,
+            separated_lift,
+            unsteady: None,
         }
     }
 
-    /// Coefficients and slopes at `alpha` (rad): linear between rows, held constant beyond the
-    /// table (slopes zero there).
-    pub fn at(&self, alpha: f64) -> Coefficients {
+    /// The row below `alpha`, the fraction of the way to the next, and whether `alpha` lies
+    /// inside the table (beyond it the end row holds).
+    fn locate(&self, alpha: f64) -> (usize, f64, bool) {
         let n = self.alpha.len();
-        let (i, t, inside) = if alpha <= self.alpha[0] {
+        if alpha <= self.alpha[0] {
             (0, 0.0, false)
         } else if alpha >= self.alpha[n - 1] {
             (n - 2, 1.0, false)
@@ -141,7 +243,13 @@ impl Polar {
             let i = self.alpha.partition_point(|&a| a <= alpha) - 1;
             let t = (alpha - self.alpha[i]) / (self.alpha[i + 1] - self.alpha[i]);
             (i, t, true)
-        };
+        }
+    }
+
+    /// Coefficients and slopes at `alpha` (rad): linear between rows, held constant beyond the
+    /// table (slopes zero there).
+    pub fn at(&self, alpha: f64) -> Coefficients {
+        let (i, t, inside) = self.locate(alpha);
         let h = self.alpha[i + 1] - self.alpha[i];
         let lerp = |v: &[f64]| v[i] + t * (v[i + 1] - v[i]);
         let slope = |v: &[f64]| {
@@ -158,6 +266,26 @@ impl Polar {
             dcl: slope(&self.cl),
             dcd: slope(&self.cd),
             dcm: slope(&self.cm),
+        }
+    }
+
+    /// `f_st` and `C_l,fs` at `alpha` (rad), linear between rows as the coefficients are.
+    pub fn separation(&self, alpha: f64) -> Separation {
+        let (i, t, inside) = self.locate(alpha);
+        let h = self.alpha[i + 1] - self.alpha[i];
+        let lerp = |v: &[f64]| v[i] + t * (v[i + 1] - v[i]);
+        let slope = |v: &[f64]| {
+            if inside {
+                (v[i + 1] - v[i]) / h
+            } else {
+                0.0
+            }
+        };
+        Separation {
+            f: lerp(&self.separation),
+            cl_fs: lerp(&self.separated_lift),
+            df: slope(&self.separation),
+            dcl_fs: slope(&self.separated_lift),
         }
     }
 
@@ -185,8 +313,78 @@ impl Polar {
                 .collect()
         };
         let (cl, cd, cm) = (mix(|c| c.cl), mix(|c| c.cd), mix(|c| c.cm));
-        Polar::new(alpha, cl, cd, cm, origin)
+        let blended = Polar::new(alpha, cl, cd, cm, origin)?;
+        // Between an airfoil whose file gives dynamic-stall constants and one whose file gives
+        // none, the constants given hold.
+        let unsteady = match (&self.unsteady, &other.unsteady) {
+            (Some(a), Some(b)) => Some(UnsteadyBlock {
+                constants: a.constants.mix(&b.constants, t),
+                origin: if a.origin == b.origin {
+                    a.origin.clone()
+                } else {
+                    format!("{} and {}", a.origin, b.origin)
+                },
+            }),
+            (Some(a), None) | (None, Some(a)) => Some(a.clone()),
+            (None, None) => None,
+        };
+        Ok(Polar {
+            unsteady,
+            ..blended
+        })
     }
+}
+
+/// The steady separation point of Kirchhoff's flow, `C_l = a0 (α − α0) ((1 + √f)/2)²`, inverted
+/// on the attached line at every row: `f = (2 √(C_l / a0(α − α0)) − 1)²`, 1 where the polar lies
+/// on or above the line (and at α0 itself), and 0 from the first row on each side of α0 where
+/// the ratio falls to ¼ or below, outward to the table's ends (the flow does not reattach
+/// beyond full separation). A section that lifts nowhere is separated everywhere. With it the
+/// fully separated lift `C_l,fs = (C_l − a0 (α − α0) f)/(1 − f)`, written through `√f` so that it
+/// stays exact as `f → 1` (`a0 (α − α0) (1 + 3√f)/(4 (1 + √f))`), `C_l/2` at `f = 1` and `C_l`
+/// at `f = 0`.
+fn separation_columns(alpha: &[f64], cl: &[f64], line: AttachedLine) -> (Vec<f64>, Vec<f64>) {
+    let n = alpha.len();
+    let mut f = vec![0.0; n];
+    if line.slope > 0.0 {
+        let kirchhoff = |k: usize| {
+            if (alpha[k] - line.zero_lift).abs() <= 1e-9 {
+                return 1.0;
+            }
+            let ratio = cl[k] / line.lift(alpha[k]);
+            if ratio >= 1.0 {
+                1.0
+            } else if ratio <= 0.25 {
+                0.0
+            } else {
+                (2.0 * ratio.sqrt() - 1.0).powi(2)
+            }
+        };
+        let start = alpha.partition_point(|&a| a < line.zero_lift);
+        let mut walk = |rows: &mut dyn Iterator<Item = usize>| {
+            for k in rows {
+                f[k] = kirchhoff(k);
+                if f[k] == 0.0 {
+                    break;
+                }
+            }
+        };
+        walk(&mut (start..n));
+        walk(&mut (0..start).rev());
+    }
+    let separated = (0..n)
+        .map(|k| {
+            if f[k] >= 1.0 {
+                0.5 * cl[k]
+            } else if f[k] <= 0.0 {
+                cl[k]
+            } else {
+                let root = f[k].sqrt();
+                line.lift(alpha[k]) * (1.0 + 3.0 * root) / (4.0 * (1.0 + root))
+            }
+        })
+        .collect();
+    (f, separated)
 }
 
 /// The attached line: the zero-lift angle where lift rises through zero nearest α = 0 (within

@@ -18,7 +18,7 @@ use crate::formats::airfoil::{self, AirfoilFile, PolarColumns};
 use crate::formats::elastodyn::{self, ElastoDynBlade};
 use crate::formats::hawc2_aero::{self, AeFile, PcFile, PcProfile, PcSet};
 use crate::formats::text_file::TextFile;
-use crate::physics::aero::polar::Polar;
+use crate::physics::aero::polar::{Polar, UnsteadyBlock, UnsteadyConstants};
 use crate::physics::blade::hawc2::ChordTwist;
 use crate::physics::blade::source::{c2_line, HtcFiles};
 use std::sync::Arc;
@@ -70,14 +70,46 @@ pub fn airfoil_polar(file: &AirfoilFile, origin: &str) -> Result<Polar> {
         )
     })?;
     let alpha = table.alpha_deg.iter().map(|a| a.to_radians()).collect();
-    Polar::new(
+    let polar = Polar::new(
         alpha,
         table.cl.clone(),
         table.cd.clone(),
         cm,
         &format!("{origin}, table 1"),
     )
-    .map_err(|e| Error::format(origin, 0, e.to_string()))
+    .map_err(|e| Error::format(origin, 0, e.to_string()))?;
+    Ok(match &table.ua {
+        Some(ua) => polar.with_unsteady(UnsteadyBlock {
+            constants: unsteady_constants(ua),
+            origin: format!("{origin}, table 1"),
+        }),
+        None => polar,
+    })
+}
+
+/// AeroDyn's defaults for the constants an AirfoilInfo UA block leaves at `Default` (its
+/// AirfoilInfo documentation): `A1 = 0.3`, `A2 = 0.7`, `b1 = 0.14`, `b2 = 0.53`, `T_f0 = 3`,
+/// `T_p = 1.7`.
+pub const AERODYN_UA_DEFAULTS: UnsteadyConstants = UnsteadyConstants {
+    a1: 0.3,
+    a2: 0.7,
+    b1: 0.14,
+    b2: 0.53,
+    tau_p: 1.7,
+    tau_f: 3.0,
+};
+
+/// The Hansen–Gaunaa–Madsen constants of a UA block, AeroDyn's defaults where it says `Default`.
+pub fn unsteady_constants(ua: &airfoil::UaBlock) -> UnsteadyConstants {
+    let d = AERODYN_UA_DEFAULTS;
+    UnsteadyConstants {
+        a1: ua.a1.unwrap_or(d.a1),
+        a2: ua.a2.unwrap_or(d.a2),
+        b1: ua.b1.unwrap_or(d.b1),
+        b2: ua.b2.unwrap_or(d.b2),
+        tau_p: ua.t_p.unwrap_or(d.tau_p),
+        tau_f: ua.t_f0.unwrap_or(d.tau_f),
+    }
 }
 
 /// [`read_aerodyn`] on parsed files; `blade_origin` and `axis_origin` name them in errors.

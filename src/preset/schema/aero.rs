@@ -1,5 +1,5 @@
 //! The `[aero]` table: the aerodynamic model, its stations, the rotor's aerodynamic files and
-//! the ONERA dynamic-stall parameters.
+//! the ONERA and Hansen–Gaunaa–Madsen dynamic-stall parameters.
 
 use crate::physics::rotor::induction::HighThrust;
 use serde::{Deserialize, Serialize};
@@ -11,14 +11,16 @@ pub enum AeroModel {
     QuasiSteady,
     Theodorsen,
     Onera,
+    Hgm,
 }
 
 impl AeroModel {
-    pub const ALL: [AeroModel; 4] = [
+    pub const ALL: [AeroModel; 5] = [
         AeroModel::None,
         AeroModel::QuasiSteady,
         AeroModel::Theodorsen,
         AeroModel::Onera,
+        AeroModel::Hgm,
     ];
     pub fn name(self) -> &'static str {
         match self {
@@ -26,7 +28,24 @@ impl AeroModel {
             AeroModel::QuasiSteady => "quasi-steady",
             AeroModel::Theodorsen => "theodorsen",
             AeroModel::Onera => "onera",
+            AeroModel::Hgm => "hgm",
         }
+    }
+
+    /// True when the model needs each station's own polar (a tabulated blade's aerodynamic
+    /// description): the uniform blade has none.
+    pub fn needs_polars(self) -> bool {
+        self == AeroModel::Hgm
+    }
+
+    /// [`AeroModel::cycle`] over the models a blade takes: without polars (`polars` false),
+    /// past those that need them.
+    pub fn cycle_for(self, forward: bool, polars: bool) -> AeroModel {
+        let mut m = self.cycle(forward);
+        while m.needs_polars() && !polars {
+            m = m.cycle(forward);
+        }
+        m
     }
     /// The next model in [`AeroModel::ALL`] order (the previous one when `forward` is false),
     /// wrapping around.
@@ -52,6 +71,7 @@ pub struct Aero {
     /// Profile drag C_D0 for quasi-steady (the paper: 0).
     pub drag_coefficient: f64,
     pub onera: Onera,
+    pub hgm: HgmKeys,
     /// An AeroDyn 15 blade file (chord, twist, airfoil id per node), relative to the preset's
     /// directory; with `airfoils` and `pitch_axis_file` (docs/model.md §12.1).
     pub blade_file: String,
@@ -103,6 +123,21 @@ pub struct Onera {
     pub alpha2: f64,
 }
 
+/// Hansen–Gaunaa–Madsen constants set for every station (docs/model.md §12.8); unset, each
+/// station's airfoil file gives them (its AirfoilInfo UA block), else the published values.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct HgmKeys {
+    pub a1: Option<f64>,
+    pub a2: Option<f64>,
+    pub b1: Option<f64>,
+    pub b2: Option<f64>,
+    /// τ_p: the pressure lag's time constant in semichord travel times.
+    pub tau_p: Option<f64>,
+    /// τ_f: the separation point's time constant in semichord travel times.
+    pub tau_f: Option<f64>,
+}
+
 impl Default for Aero {
     fn default() -> Self {
         Aero {
@@ -111,6 +146,7 @@ impl Default for Aero {
             stations: 8,
             drag_coefficient: 0.0,
             onera: Onera::default(),
+            hgm: HgmKeys::default(),
             blade_file: String::new(),
             airfoils: Vec::new(),
             pitch_axis_file: String::new(),
