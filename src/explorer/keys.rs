@@ -85,9 +85,16 @@ impl Binding {
     /// The help line: [`Binding::help`], and for the actions that cycle through a list, the list
     /// in the order the key walks it (taken from the list itself).
     pub fn help_text(&self) -> String {
-        let cycle: Vec<&str> = match self.action {
-            Action::CycleAero => AeroModel::ALL.iter().map(|m| m.name()).collect(),
-            Action::CycleMarker => MarkerKind::ALL.iter().map(|m| m.name()).collect(),
+        let cycle: Vec<String> = match self.action {
+            // The key passes by the models that read a station's polar where the blade has none.
+            Action::CycleAero => AeroModel::ALL
+                .iter()
+                .map(|m| match m.needs_polars() {
+                    true => format!("{} (real blades)", m.name()),
+                    false => m.name().to_string(),
+                })
+                .collect(),
+            Action::CycleMarker => MarkerKind::ALL.iter().map(|m| m.name().to_string()).collect(),
             _ => return self.help.to_string(),
         };
         format!("{}: {}", self.help, cycle.join(", "))
