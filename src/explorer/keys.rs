@@ -94,7 +94,10 @@ impl Binding {
                     false => m.name().to_string(),
                 })
                 .collect(),
-            Action::CycleMarker => MarkerKind::ALL.iter().map(|m| m.name().to_string()).collect(),
+            Action::CycleMarker => MarkerKind::ALL
+                .iter()
+                .map(|m| m.name().to_string())
+                .collect(),
             _ => return self.help.to_string(),
         };
         format!("{}: {}", self.help, cycle.join(", "))

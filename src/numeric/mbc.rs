@@ -350,6 +350,24 @@ mod tests {
         a
     }
 
+    /// `ẋ = A(t) x` from `x0` (one column per solution) over `[0, t_end]` by classical RK4 in
+    /// 20,000 steps, far below every time scale of the test systems.
+    fn rk4(a: impl Fn(f64) -> DMatrix<f64>, x0: DMatrix<f64>, t_end: f64) -> DMatrix<f64> {
+        let steps = 20_000;
+        let h = t_end / steps as f64;
+        let mut x = x0;
+        for i in 0..steps {
+            let t = i as f64 * h;
+            let (a0, a1, a2) = (a(t), a(t + 0.5 * h), a(t + h));
+            let k1 = &a0 * &x;
+            let k2 = &a1 * (&x + 0.5 * h * &k1);
+            let k3 = &a1 * (&x + 0.5 * h * &k2);
+            let k4 = &a2 * (&x + h * &k3);
+            x += (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+        }
+        x
+    }
+
     fn rotor_layout() -> MultiBlade {
         MultiBlade::new(
             8,
@@ -423,8 +441,8 @@ mod tests {
     }
 
     /// The ground-frame roots against Floquet theory on the periodic rotating-frame system: over
-    /// one revolution `T = 2π/Ω` the monodromy matrix (the state transition, integrated by RK4
-    /// in 20,000 steps) has the multipliers `exp(λ T)` of the constant ground-frame matrix, since
+    /// one revolution `T = 2π/Ω` the monodromy matrix (the state transition, integrated by RK4)
+    /// has the multipliers `exp(λ T)` of the constant ground-frame matrix, since
     /// the transform itself returns to the identity after a revolution.
     #[test]
     fn the_ground_frame_roots_are_the_floquet_multipliers_of_the_periodic_system() {
@@ -434,19 +452,11 @@ mod tests {
             .transform(&rotor_on_a_support(0.0, 1.0), 0.0, omega)
             .unwrap();
         let period = TAU / omega;
-        let steps = 20_000;
-        let h = period / steps as f64;
-        let a = |t: f64| rotor_on_a_support(omega * t, 1.0);
-        let mut phi = DMatrix::<f64>::identity(8, 8);
-        for i in 0..steps {
-            let t = i as f64 * h;
-            let (a0, a1, a2) = (a(t), a(t + 0.5 * h), a(t + h));
-            let k1 = &a0 * &phi;
-            let k2 = &a1 * (&phi + 0.5 * h * &k1);
-            let k3 = &a1 * (&phi + 0.5 * h * &k2);
-            let k4 = &a2 * (&phi + h * &k3);
-            phi += (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
-        }
+        let phi = rk4(
+            |t| rotor_on_a_support(omega * t, 1.0),
+            DMatrix::identity(8, 8),
+            period,
+        );
         // One root of each conjugate pair is listed; a multiplier's phase may land either side.
         let multipliers = crate::numeric::eigen_decomposition(&phi).unwrap().values;
         for l in crate::numeric::eigen_decomposition(&nr).unwrap().values {
@@ -471,20 +481,12 @@ mod tests {
             .transform(&rotor_on_a_support(psi0, 1.0), psi0, omega)
             .unwrap();
         let t_end = 1.3;
-        let steps = 20_000;
-        let h = t_end / steps as f64;
-        let a = |t: f64| rotor_on_a_support(psi0 + omega * t, 1.0);
-        let x0 = nalgebra::DVector::from_vec(vec![0.1, 0.3, -0.2, 0.05, 0.0, 0.4, 0.1, -0.3]);
-        let mut x = x0.clone();
-        for i in 0..steps {
-            let t = i as f64 * h;
-            let (a0, a1, a2) = (a(t), a(t + 0.5 * h), a(t + h));
-            let k1 = &a0 * &x;
-            let k2 = &a1 * (&x + 0.5 * h * &k1);
-            let k3 = &a1 * (&x + 0.5 * h * &k2);
-            let k4 = &a2 * (&x + h * &k3);
-            x += (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
-        }
+        let x0 = DMatrix::from_column_slice(8, 1, &[0.1, 0.3, -0.2, 0.05, 0.0, 0.4, 0.1, -0.3]);
+        let x = rk4(
+            |t| rotor_on_a_support(psi0 + omega * t, 1.0),
+            x0.clone(),
+            t_end,
+        );
         let ground = (nr * t_end).exp() * mb.to_ground(psi0, omega) * &x0;
         let back = mb.to_rotating(psi0 + omega * t_end, omega) * ground;
         let e = (&back - &x).amax() / x.amax();

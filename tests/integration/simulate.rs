@@ -291,7 +291,7 @@ fn stall_response_from_a_kick_decays_at_the_largest_sigma() {
 
 /// Classical RK4 on the full right-hand side with a step far below every time scale: an
 /// independent reference for the nonlinear stepper.
-fn rk4_tip(
+pub(crate) fn rk4_tip(
     system: &System,
     x0: &DVector<f64>,
     h: f64,

@@ -231,11 +231,11 @@ impl Polar {
         }
     }
 
-    /// The row below `alpha`, the fraction of the way to the next, and whether `alpha` lies
-    /// inside the table (beyond it the end row holds).
-    fn locate(&self, alpha: f64) -> (usize, f64, bool) {
+    /// Where `alpha` falls in the table: the row below it, the fraction of the way to the next,
+    /// and whether it lies inside (beyond the table the end row holds).
+    fn between(&self, alpha: f64) -> Between {
         let n = self.alpha.len();
-        if alpha <= self.alpha[0] {
+        let (i, t, inside) = if alpha <= self.alpha[0] {
             (0, 0.0, false)
         } else if alpha >= self.alpha[n - 1] {
             (n - 2, 1.0, false)
@@ -243,49 +243,37 @@ impl Polar {
             let i = self.alpha.partition_point(|&a| a <= alpha) - 1;
             let t = (alpha - self.alpha[i]) / (self.alpha[i + 1] - self.alpha[i]);
             (i, t, true)
+        };
+        Between {
+            i,
+            t,
+            h: self.alpha[i + 1] - self.alpha[i],
+            inside,
         }
     }
 
     /// Coefficients and slopes at `alpha` (rad): linear between rows, held constant beyond the
     /// table (slopes zero there).
     pub fn at(&self, alpha: f64) -> Coefficients {
-        let (i, t, inside) = self.locate(alpha);
-        let h = self.alpha[i + 1] - self.alpha[i];
-        let lerp = |v: &[f64]| v[i] + t * (v[i + 1] - v[i]);
-        let slope = |v: &[f64]| {
-            if inside {
-                (v[i + 1] - v[i]) / h
-            } else {
-                0.0
-            }
-        };
+        let at = self.between(alpha);
         Coefficients {
-            cl: lerp(&self.cl),
-            cd: lerp(&self.cd),
-            cm: lerp(&self.cm),
-            dcl: slope(&self.cl),
-            dcd: slope(&self.cd),
-            dcm: slope(&self.cm),
+            cl: at.value(&self.cl),
+            cd: at.value(&self.cd),
+            cm: at.value(&self.cm),
+            dcl: at.slope(&self.cl),
+            dcd: at.slope(&self.cd),
+            dcm: at.slope(&self.cm),
         }
     }
 
     /// `f_st` and `C_l,fs` at `alpha` (rad), linear between rows as the coefficients are.
     pub fn separation(&self, alpha: f64) -> Separation {
-        let (i, t, inside) = self.locate(alpha);
-        let h = self.alpha[i + 1] - self.alpha[i];
-        let lerp = |v: &[f64]| v[i] + t * (v[i + 1] - v[i]);
-        let slope = |v: &[f64]| {
-            if inside {
-                (v[i + 1] - v[i]) / h
-            } else {
-                0.0
-            }
-        };
+        let at = self.between(alpha);
         Separation {
-            f: lerp(&self.separation),
-            cl_fs: lerp(&self.separated_lift),
-            df: slope(&self.separation),
-            dcl_fs: slope(&self.separated_lift),
+            f: at.value(&self.separation),
+            cl_fs: at.value(&self.separated_lift),
+            df: at.slope(&self.separation),
+            dcl_fs: at.slope(&self.separated_lift),
         }
     }
 
@@ -418,6 +406,30 @@ fn attached_line(alpha: &[f64], cl: &[f64]) -> Option<AttachedLine> {
         (cl[i] - cl[i - 1]) / (alpha[i] - alpha[i - 1])
     };
     (slope.is_finite() && slope > 0.0).then_some(AttachedLine { slope, zero_lift })
+}
+
+/// A place in a polar's table ([`Polar::between`]), to read any column there.
+struct Between {
+    i: usize,
+    t: f64,
+    h: f64,
+    inside: bool,
+}
+
+impl Between {
+    /// The column's value, linear between the rows.
+    fn value(&self, v: &[f64]) -> f64 {
+        v[self.i] + self.t * (v[self.i + 1] - v[self.i])
+    }
+
+    /// The column's slope in α: the rows' difference inside the table, zero beyond it.
+    fn slope(&self, v: &[f64]) -> f64 {
+        if self.inside {
+            (v[self.i + 1] - v[self.i]) / self.h
+        } else {
+            0.0
+        }
+    }
 }
 
 #[cfg(test)]
