@@ -290,6 +290,12 @@ fn presets_show_prints_every_key_with_defaults_and_overrides() {
         again.into_preset().to_toml(),
         direct.into_preset().to_toml()
     );
+    // A table of keys that are all unset (the HGM constants a blade's airfoil files give) is
+    // left out rather than printed empty; set, it appears and loads back.
+    assert!(!shown["aero"].as_table().unwrap().contains_key("hgm"));
+    let r = run(&["presets", "--show", "iea15mw", "--set", "aero.hgm.tau_f=4"]);
+    assert_eq!(r.code, Some(0), "{}", r.stderr);
+    assert!(r.stdout.contains("[aero.hgm]\ntau_f = 4.0"), "{}", r.stdout);
     assert_fails_naming(
         &run(&["presets", "--show", "no-such-blade"]),
         &["no-such-blade"],

@@ -71,6 +71,7 @@ pub struct Aero {
     /// Profile drag C_D0 for quasi-steady (the paper: 0).
     pub drag_coefficient: f64,
     pub onera: Onera,
+    #[serde(skip_serializing_if = "HgmKeys::is_unset")]
     pub hgm: HgmKeys,
     /// An AeroDyn 15 blade file (chord, twist, airfoil id per node), relative to the preset's
     /// directory; with `airfoils` and `pitch_axis_file` (docs/model.md §12.1).
@@ -136,6 +137,13 @@ pub struct HgmKeys {
     pub tau_p: Option<f64>,
     /// τ_f: the separation point's time constant in semichord travel times.
     pub tau_f: Option<f64>,
+}
+
+impl HgmKeys {
+    /// Whether no constant is set, so that a preset written back leaves the table out.
+    pub fn is_unset(&self) -> bool {
+        *self == HgmKeys::default()
+    }
 }
 
 impl Default for Aero {
