@@ -333,6 +333,12 @@ pub fn search(p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<S
         None => Ok(crossing.label.clone()),
     };
     let root = match (&name, crossing.content()) {
+        // The branch's name and the one its content gives at the crossing can differ where the
+        // air has reshaped the root; say both, so that `eigen` there is not read as another mode.
+        (Ok(name), Some(content)) if *name != crossing.label => format!(
+            "{name} ({content}; tracked from {start}{unit}; {} by its content there)",
+            crossing.label
+        ),
         (Ok(name), Some(content)) => {
             format!("{name} ({content}; tracked from {start}{unit})")
         }

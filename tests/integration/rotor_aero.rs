@@ -320,6 +320,55 @@ fn nrel5mw_overspeed_equilibrium() {
     );
 }
 
+/// Where the branch's name and the content's differ at the crossing, the search says both, and the
+/// second is the one `eigen` gives that root there: along the coupling knob the IEA 15MW's root
+/// that is flap 1 at α = 0 crosses at α ≈ −0.12, where its content (1.44 Hz, flap 2's in vacuo
+/// 1.50 Hz) makes it flap 2.
+#[test]
+fn a_search_names_the_branch_and_the_content_where_they_differ() {
+    let out = crate::flutterscope_ok(&[
+        "flutter",
+        "--preset",
+        "iea15mw",
+        "--vary",
+        "blade.bend_twist_coupling",
+        "--from",
+        "0",
+        "--to",
+        "-0.3",
+        "--json",
+    ]);
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let message = json["message"].as_str().unwrap();
+    let (branch, alpha, f) = (
+        json["mode"].as_str().unwrap().to_string(),
+        json["critical"].as_f64().unwrap(),
+        json["frequency_hz"].as_f64().unwrap(),
+    );
+    let beyond = Preset::load(
+        "iea15mw",
+        &[format!("blade.bend_twist_coupling={}", alpha - 1e-3)],
+    )
+    .unwrap();
+    let stability = flutterscope::analysis::eigen::analyse(&beyond).unwrap();
+    let there = stability
+        .eigenvalues
+        .iter()
+        .filter(|m| m.re > 0.0)
+        .min_by(|a, b| {
+            (a.frequency_hz - f)
+                .abs()
+                .total_cmp(&(b.frequency_hz - f).abs())
+        })
+        .unwrap();
+    assert_ne!(there.label, branch, "{message}");
+    assert!(
+        message.contains(&format!("{branch} ("))
+            && message.contains(&format!("; {} by its content there)", there.label)),
+        "{message}"
+    );
+}
+
 /// The flutter mode's name is the one its branch has where the search starts, followed along the
 /// search path: with bend–twist coupling the IEA 15MW's crossing root at 3.06 Hz is not flap 1
 /// (0.54 Hz in vacuo), though the identification, by its content alone, names it so at the
