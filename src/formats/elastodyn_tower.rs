@@ -6,7 +6,7 @@
 //! `φ(h) = Σ_{i=2}^{6} c_i h^i`, normalised to 1 at the tower top, so the coefficients of each
 //! shape must sum to 1; a shape that does not is an error, not rescaled.
 
-use super::text::{read_text, Row, Source, Table};
+use super::text::{read_text, Bound, Row, Source, Table};
 use crate::error::Result;
 use std::path::Path;
 
@@ -61,22 +61,8 @@ pub fn parse_tower(text: &str, origin: &str) -> Result<ElastoDynTower> {
     let src = Source::new(origin, text);
     let n_line = src.key("NTwInpSt", 0)?;
     let n = src.count(&n_line, 2)?;
-    let non_negative = |key: &str| {
-        let k = src.key(key, 0)?;
-        let v = src.number(&k)?;
-        if v < 0.0 {
-            return Err(src.err(k.idx, format!("{key} is {v}: it must be at least 0")));
-        }
-        Ok(v)
-    };
-    let positive = |key: &str| {
-        let k = src.key(key, 0)?;
-        let v = src.number(&k)?;
-        if v <= 0.0 {
-            return Err(src.err(k.idx, format!("{key} is {v}: it must be greater than 0")));
-        }
-        Ok(v)
-    };
+    let non_negative = |key: &str| src.bounded(key, 0, Bound::NonNegative);
+    let positive = |key: &str| src.bounded(key, 0, Bound::Positive);
     let pair = |key: &str, read: &dyn Fn(&str) -> Result<f64>| -> Result<[f64; 2]> {
         Ok([read(&format!("{key}(1)"))?, read(&format!("{key}(2)"))?])
     };

@@ -9,7 +9,7 @@
 //! stiffness, a tower top below its base) is an error naming the file and line here, so that
 //! nothing downstream needs to know where a number came from.
 
-use super::text::{read_text, KeyLine, Source};
+use super::text::{read_text, Bound, Source};
 use crate::error::Result;
 use std::path::{Path, PathBuf};
 
@@ -74,23 +74,11 @@ pub fn read_turbine(path: &Path) -> Result<ElastoDynTurbine> {
     parse_turbine(&read_text(path)?, &path.display().to_string())
 }
 
-/// What a value must be to describe a turbine.
-#[derive(Clone, Copy)]
-enum Range {
-    Any,
-    NonNegative,
-    Positive,
-}
-
 /// Parses the text of an ElastoDyn main file; `origin` names it in errors.
 pub fn parse_turbine(text: &str, origin: &str) -> Result<ElastoDynTurbine> {
     let src = Source::new(origin, text);
     let line = |key: &str| src.key(key, 0);
-    let value = |key: &str, range: Range| -> Result<f64> {
-        let k = line(key)?;
-        let v = src.number(&k)?;
-        checked(&src, &k, v, range)
-    };
+    let value = |key: &str, bound: Bound| src.bounded(key, 0, bound);
     let blades_line = line("NumBl")?;
     let blades = src.count(&blades_line, 1)?;
     if blades > 3 {
@@ -100,18 +88,18 @@ pub fn parse_turbine(text: &str, origin: &str) -> Result<ElastoDynTurbine> {
         ));
     }
     let precone_deg = (1..=blades)
-        .map(|k| value(&format!("PreCone({k})"), Range::Any))
+        .map(|k| value(&format!("PreCone({k})"), Bound::Any))
         .collect::<Result<Vec<_>>>()?;
-    let tip_radius = value("TipRad", Range::Positive)?;
+    let tip_radius = value("TipRad", Bound::Positive)?;
     let hub_line = line("HubRad")?;
-    let hub_radius = checked(&src, &hub_line, src.number(&hub_line)?, Range::NonNegative)?;
+    let hub_radius = value("HubRad", Bound::NonNegative)?;
     if hub_radius >= tip_radius {
         return Err(src.err(
             hub_line.idx,
             format!("HubRad ({hub_radius} m) must be less than TipRad ({tip_radius} m)"),
         ));
     }
-    let tower_height = value("TowerHt", Range::Any)?;
+    let tower_height = value("TowerHt", Bound::Any)?;
     let base_line = line("TowerBsHt")?;
     let tower_base_height = src.number(&base_line)?;
     if tower_base_height >= tower_height {
@@ -133,42 +121,31 @@ pub fn parse_turbine(text: &str, origin: &str) -> Result<ElastoDynTurbine> {
         tip_radius,
         hub_radius,
         precone_deg,
-        hub_cm: value("HubCM", Range::Any)?,
-        overhang: value("OverHang", Range::Any)?,
+        hub_cm: value("HubCM", Bound::Any)?,
+        overhang: value("OverHang", Bound::Any)?,
         shaft_tilt_deg: angle(&src, "ShftTilt")?,
-        tower_to_shaft: value("Twr2Shft", Range::Any)?,
+        tower_to_shaft: value("Twr2Shft", Bound::Any)?,
         nacelle_cm: [
-            value("NacCMxn", Range::Any)?,
-            value("NacCMyn", Range::Any)?,
-            value("NacCMzn", Range::Any)?,
+            value("NacCMxn", Bound::Any)?,
+            value("NacCMyn", Bound::Any)?,
+            value("NacCMzn", Bound::Any)?,
         ],
         tower_height,
         tower_base_height,
-        hub_mass: value("HubMass", Range::NonNegative)?,
-        hub_inertia: value("HubIner", Range::NonNegative)?,
-        generator_inertia: value("GenIner", Range::NonNegative)?,
-        nacelle_mass: value("NacMass", Range::NonNegative)?,
-        nacelle_yaw_inertia: value("NacYIner", Range::NonNegative)?,
-        yaw_bearing_mass: value("YawBrMass", Range::NonNegative)?,
+        hub_mass: value("HubMass", Bound::NonNegative)?,
+        hub_inertia: value("HubIner", Bound::NonNegative)?,
+        generator_inertia: value("GenIner", Bound::NonNegative)?,
+        nacelle_mass: value("NacMass", Bound::NonNegative)?,
+        nacelle_yaw_inertia: value("NacYIner", Bound::NonNegative)?,
+        yaw_bearing_mass: value("YawBrMass", Bound::NonNegative)?,
         gearbox_efficiency_pct: efficiency(&src)?,
-        gearbox_ratio: value("GBRatio", Range::Positive)?,
-        drivetrain_stiffness: value("DTTorSpr", Range::Positive)?,
-        drivetrain_damping: value("DTTorDmp", Range::NonNegative)?,
+        gearbox_ratio: value("GBRatio", Bound::Positive)?,
+        drivetrain_stiffness: value("DTTorSpr", Bound::Positive)?,
+        drivetrain_damping: value("DTTorDmp", Bound::NonNegative)?,
         drivetrain_dof: flag("DrTrDOF")?,
         generator_dof: flag("GenDOF")?,
         tower_file: tower.value.to_string(),
     })
-}
-
-/// `v` of line `k`, or an error naming the line and the range it breaks.
-fn checked(src: &Source, k: &KeyLine, v: f64, range: Range) -> Result<f64> {
-    let allowed = match range {
-        Range::Any => return Ok(v),
-        Range::NonNegative if v < 0.0 => "at least 0",
-        Range::Positive if v <= 0.0 => "greater than 0",
-        _ => return Ok(v),
-    };
-    Err(src.err(k.idx, format!("{} is {v}: it must be {allowed}", k.key)))
 }
 
 /// `ShftTilt` within ±90°: beyond that the shaft would point the rotor backward.

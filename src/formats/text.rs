@@ -66,6 +66,14 @@ pub(super) struct Source<'a> {
     pub(super) comment: Option<char>,
 }
 
+/// What a number read by [`Source::bounded`] must be to describe a turbine or a blade.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Bound {
+    Any,
+    NonNegative,
+    Positive,
+}
+
 /// A `value  Key  - description` line of an OpenFAST input file.
 pub(super) struct KeyLine<'a> {
     pub(super) idx: usize,
@@ -286,6 +294,19 @@ impl<'a> Source<'a> {
                 ),
             )
         })
+    }
+
+    /// The number on the first `value  key` line at or after `from`, which must lie in `bound`;
+    /// an error names the line, the key, the value and what it must be.
+    pub(super) fn bounded(&self, key: &str, from: usize, bound: Bound) -> Result<f64> {
+        let k = self.key(key, from)?;
+        let v = self.number(&k)?;
+        let allowed = match bound {
+            Bound::NonNegative if v < 0.0 => "at least 0",
+            Bound::Positive if v <= 0.0 => "greater than 0",
+            _ => return Ok(v),
+        };
+        Err(self.err(k.idx, format!("{} is {v}: it must be {allowed}", k.key)))
     }
 
     pub(super) fn flag(&self, k: &KeyLine) -> Result<bool> {

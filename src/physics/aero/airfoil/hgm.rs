@@ -25,7 +25,7 @@
 //! (`x4 → 0`, where `√x4` has no derivative) can be linearised; at the steady state both roots
 //! are equal and the drag is the polar's.
 
-use super::{polar_coefficients, AirfoilDynamics, SectionFlow, SteadyFlow};
+use super::{carried, polar_coefficients, AirfoilDynamics, SectionFlow, SteadyFlow};
 use crate::physics::aero::polar::{Polar, UnsteadyConstants};
 use nalgebra::{Const, U1};
 use num_dual::{DualNum, DualSVec64};
@@ -76,8 +76,7 @@ fn root<T: DualNum<Primitive = f64> + Copy>(x: T) -> T {
 /// `[f_st, C_l,fs]` of `polar` at `alpha`, carried to every input through α's derivative.
 fn separation<T: DualNum<Primitive = f64> + Copy>(polar: &Polar, alpha: T) -> [T; 2] {
     let s = polar.separation(alpha.re());
-    let delta = alpha - alpha.re();
-    [delta * s.df + s.f, delta * s.dcl_fs + s.cl_fs]
+    [carried(alpha, s.f, s.df), carried(alpha, s.cl_fs, s.dcl_fs)]
 }
 
 impl Hgm {

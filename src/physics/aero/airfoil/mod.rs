@@ -86,10 +86,15 @@ pub trait AirfoilDynamics: Copy + std::fmt::Debug + PartialEq + Send + Sync {
 /// every input through α's derivative.
 pub fn polar_coefficients<T: DualNum<Primitive = f64> + Copy>(polar: &Polar, alpha: T) -> [T; 3] {
     let c = polar.at(alpha.re());
-    let delta = alpha - alpha.re();
     [
-        delta * c.dcl + c.cl,
-        delta * c.dcd + c.cd,
-        delta * c.dcm + c.cm,
+        carried(alpha, c.cl, c.dcl),
+        carried(alpha, c.cd, c.dcd),
+        carried(alpha, c.cm, c.dcm),
     ]
+}
+
+/// A table's `value` and `slope` at α's value, as a function of α: the value, carried to every
+/// input α depends on through its derivative.
+pub fn carried<T: DualNum<Primitive = f64> + Copy>(alpha: T, value: f64, slope: f64) -> T {
+    (alpha - alpha.re()) * slope + value
 }
