@@ -34,11 +34,18 @@ pub fn for_preset(p: &ValidPreset) -> Result<Arc<dyn Structure>> {
         }
         Some((build, built)) => {
             // The rotor speed first: the cheap half of the key tells most builds apart.
-            static KEPT: Kept<(u64, BuildKey), TabulatedStructure> = Kept::new();
+            static KEPT: Kept<(u64, bool, BuildKey), TabulatedStructure> = Kept::new();
             let omega = p.omega();
-            let key = (omega.to_bits(), build);
+            let corrected = p.structure.static_correction;
+            let key = (omega.to_bits(), corrected, build);
             let structure = KEPT.get_or_build(key, AT_SPEED, || {
-                TabulatedStructure::new(built.modal.clone(), built.modes(omega)?, omega)
+                if corrected {
+                    let (modes, left_out) = built.retained_and_left_out(omega)?;
+                    TabulatedStructure::new(built.modal.clone(), modes, omega)?
+                        .with_left_out(left_out, omega)
+                } else {
+                    TabulatedStructure::new(built.modal.clone(), built.modes(omega)?, omega)
+                }
             })?;
             Ok(structure)
         }

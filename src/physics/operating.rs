@@ -104,7 +104,9 @@ pub fn settle<T>(
         air_density: inputs.air_density,
     };
     // The deflection the BEM sees, `[twist…, flap/R…]`: the flap scaled by the tip radius so
-    // that one tolerance (rad) serves both.
+    // that one tolerance (rad) serves both; then, where the structure truncates its basis, the
+    // left-out modes' static coordinates, each scaled by the largest twist or flap/R it gives
+    // (docs/model.md §12.6).
     let n = strips.len();
     let mut shape = vec![0.0; 2 * n];
     let mut change = f64::INFINITY;
@@ -141,10 +143,22 @@ pub fn settle<T>(
             None => System::from_parts(Arc::clone(&b.structure), stations, Box::new(model.clone())),
             Some(earlier) => earlier.on_inflow(stations, Box::new(model.clone())),
         }?;
+        let left_out = system.left_out_count();
+        shape.resize(2 * n + left_out, 0.0);
+        let held = system.left_out_unscaled(&shape[2 * n..]);
+        let system = system.with_left_out_at(held);
         let equilibrium = system.equilibrium().map_err(|e| e.at(context(&b.tag)))?;
+        let (system, left_out_scaled) = match system.left_out_response(&equilibrium) {
+            Some(p) => {
+                let scaled = system.left_out_scaled(&p);
+                (system.with_left_out_at(p), scaled)
+            }
+            None => (system, Vec::new()),
+        };
         let motion = system.station_motion(&equilibrium);
         let settled: Vec<f64> = (motion.iter().map(|[phi, _, _]| *phi))
             .chain(motion.iter().map(|[_, u, _]| u / rotor.tip_radius))
+            .chain(left_out_scaled)
             .collect();
         change = settled
             .iter()

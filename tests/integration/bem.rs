@@ -181,9 +181,9 @@ fn iea15mw_rigid_against_the_flexible_operation_table() {
 /// axis the BEM sees (§12.2), and HAWC2's thrust–induction relation (`aero.high_thrust =
 /// "madsen"`). The blade bends downwind and twists toward feather under load, which brings power
 /// and thrust toward the table's at every wind speed from 7 m/s up; at 5 m/s (λ = 12.7, C_T ≈
-/// 0.94) the induction relation decides the power: Buhl's leaves it 12.6 % short. The 5 % bound
-/// is met for power from 5 to 10 m/s and for thrust at 5 and 7 m/s; not for thrust from 9 m/s
-/// nor above rated (README, validation table; docs/model.md §12.4 says why). Each bound is what is
+/// 0.94) the induction relation decides the power: Buhl's leaves it 12.8 % short. The 5 % bound
+/// is met for power from 5 to 10 m/s and at 17 m/s, and for thrust at 5, 7 and 17 m/s; not for
+/// thrust at 9 and 10 m/s nor at 13 m/s (README, validation table; docs/model.md §12.4 says why). Each bound is what is
 /// achieved, rounded up: losing the cone, tilt, prebend (in the aerodynamics or the structure),
 /// deflected geometry or the induction relation breaks one of them.
 #[test]
@@ -198,12 +198,12 @@ fn iea15mw_deflected_against_the_operation_table() {
     let stations = AeroStation::gauss(&blade, 30).unwrap();
     // Largest |power|, |thrust| difference from the table achieved at each wind speed.
     let bounds = [
-        (5.0, 0.035, 0.037),
-        (7.0, 0.006, 0.038),
-        (9.0, 0.016, 0.064),
-        (10.0, 0.026, 0.079),
-        (13.0, 0.068, 0.075),
-        (17.0, 0.080, 0.071),
+        (5.0, 0.034, 0.042),
+        (7.0, 0.002, 0.045),
+        (9.0, 0.021, 0.076),
+        (10.0, 0.032, 0.092),
+        (13.0, 0.066, 0.073),
+        (17.0, 0.042, 0.040),
     ];
     for (row, (wind, power_bound, thrust_bound)) in iea15mw_table(&IEA_WINDS).iter().zip(bounds) {
         assert_eq!(row.wind, wind);
@@ -250,7 +250,7 @@ fn iea15mw_deflected_against_the_operation_table() {
             row.wind
         );
     }
-    // The same equilibrium with Buhl's relation at 5 m/s: the power 12.6 % short of the table's.
+    // The same equilibrium with Buhl's relation at 5 m/s: the power 12.8 % short of the table's.
     let buhl = Preset::load("iea15mw", &["aero.high_thrust=buhl".to_string()]).unwrap();
     let row = &iea15mw_table(&[5.0])[0];
     let (_, op) = steady(
@@ -259,7 +259,10 @@ fn iea15mw_deflected_against_the_operation_table() {
     )
     .unwrap();
     let power = op.flow.power / row.power - 1.0;
-    assert!((-0.127..-0.125).contains(&power), "Buhl at 5 m/s: {power}");
+    assert!(
+        (-0.1285..-0.1265).contains(&power),
+        "Buhl at 5 m/s: {power}"
+    );
 }
 
 /// Cone, tilt and prebend as CCBlade takes them (docs/model.md §12.2): a straight blade coned by

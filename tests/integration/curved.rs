@@ -206,7 +206,7 @@ fn frequency(modes: &[BladeMode], family: usize, number: usize) -> f64 {
 /// The IEA 15MW's 4 m of prebend (its AeroDyn `BlCrvAC`) in the structure, measured against
 /// the same blade straight (docs/model.md §11.9): the curve couples edge bending with torsion,
 /// which pushes the second edge mode down and the first torsion mode up, and rotation pulls the
-/// blade 0.9 m toward the rotor plane at rated, where its twist eases by 0.36°.
+/// blade 0.94 m toward the rotor plane at rated, where its twist eases by 0.42°.
 #[test]
 fn the_iea15mw_prebend_moves_its_edge_and_torsion_modes_and_its_tip() {
     let curved = Preset::load("iea15mw", &[]).unwrap();
@@ -230,9 +230,9 @@ fn the_iea15mw_prebend_moves_its_edge_and_torsion_modes_and_its_tip() {
     let ([twist_c, flap_c, _], [twist_s, flap_s, _]) = (tip(&curved), tip(&straight));
     let pulled = flap_c - flap_s;
     assert!(
-        (pulled - 0.895).abs() < 0.01,
+        (pulled - 0.935).abs() < 0.01,
         "tip pulled downwind by {pulled} m"
     );
     let eased = (twist_s - twist_c).to_degrees();
-    assert!((eased - 0.356).abs() < 0.01, "tip twist eased by {eased}°");
+    assert!((eased - 0.424).abs() < 0.01, "tip twist eased by {eased}°");
 }

@@ -1741,7 +1741,7 @@ fn a_margin_search_ends_at_the_slider_end_and_prints_no_float_noise() {
     );
     assert!(!frame.contains("error"), "{frame}");
     assert!(
-        frame.contains("margin along bend–twist α: flutter at α -0.22"),
+        frame.contains("margin along bend–twist α: flutter at α -0.20"),
         "{frame}"
     );
     let noisy = frame

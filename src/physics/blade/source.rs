@@ -405,12 +405,26 @@ impl BladeStructure {
     /// ratio: the family's when the preset or the source sets one, else its projection.
     pub fn modes(&self, omega: f64) -> Result<Vec<BladeMode>> {
         let mut modes = self.modal.modes(omega, self.count)?;
-        for m in &mut modes {
+        self.damp(&mut modes);
+        Ok(modes)
+    }
+
+    /// The first K modes at rotor speed `omega` (rad/s), as [`BladeStructure::modes`], and the
+    /// rest of the reduced basis's modes there, ascending: the modes the K coordinates leave
+    /// out, whose static response corrects the truncated basis (docs/model.md §12.6).
+    pub fn retained_and_left_out(&self, omega: f64) -> Result<(Vec<BladeMode>, Vec<BladeMode>)> {
+        let mut modes = self.modal.modes(omega, self.modal.basis_size())?;
+        let left_out = modes.split_off(self.count.min(modes.len()));
+        self.damp(&mut modes);
+        Ok((modes, left_out))
+    }
+
+    fn damp(&self, modes: &mut [BladeMode]) {
+        for m in modes {
             if let Some(ratio) = self.ratios[m.family().index()] {
                 m.damping_ratio = ratio;
             }
         }
-        Ok(modes)
     }
 
     /// Finite elements along the span.

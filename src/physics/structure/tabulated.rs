@@ -25,6 +25,9 @@ pub struct TabulatedStructure {
     /// `Φᵀ M_b Φ` for the flap, edge and twist blocks `b` of the mass matrix: the kinetic energy
     /// of each family in any combination of the modes.
     family_energy: [DMatrix<f64>; 3],
+    /// The reduced basis's modes beyond these, as a structure of their own
+    /// ([`Structure::left_out`]).
+    left_out: Option<Box<TabulatedStructure>>,
 }
 
 impl TabulatedStructure {
@@ -76,7 +79,29 @@ impl TabulatedStructure {
             damping,
             static_load,
             family_energy,
+            left_out: None,
         })
+    }
+
+    /// This structure with `left_out`, the modes of the same blade beyond its own (from
+    /// [`ModalBlade::modes`] at the same rotor speed, ascending), whose static response the
+    /// system adds to the equilibrium (docs/model.md §12.6); none when `left_out` is empty.
+    pub fn with_left_out(
+        mut self,
+        left_out: Vec<BladeMode>,
+        rotor_speed: f64,
+    ) -> Result<TabulatedStructure> {
+        self.left_out = if left_out.is_empty() {
+            None
+        } else {
+            let blade = Arc::clone(&self.blade);
+            Some(Box::new(TabulatedStructure::new(
+                blade,
+                left_out,
+                rotor_speed,
+            )?))
+        };
+        Ok(self)
     }
 
     /// The modes the coordinates are amplitudes of.
@@ -164,5 +189,8 @@ impl Structure for TabulatedStructure {
     }
     fn span_points(&self) -> Vec<f64> {
         self.blade.geometry.mesh.nodes.clone()
+    }
+    fn left_out(&self) -> Option<&dyn Structure> {
+        self.left_out.as_deref().map(|s| s as &dyn Structure)
     }
 }

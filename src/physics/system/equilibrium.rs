@@ -29,10 +29,10 @@ impl System {
         let (rigid, jac) = self.static_residual(&q0, 1.0, true)?;
         let scale = self.load_scale(&rigid);
         match self.newton_from(q0, rigid, jac, 1.0, scale) {
-            Ok(q) => Ok(self.steady_state_of(&q)),
+            Ok(q) => Ok(self.steady_state_of(&q, 1.0)),
             Err(_) => self
                 .load_continuation(scale)
-                .map(|q| self.steady_state_of(&q)),
+                .map(|q| self.steady_state_of(&q, 1.0)),
         }
     }
 
@@ -174,14 +174,15 @@ impl System {
         ))
     }
 
-    /// The full state at static deflection q: q̇ = 0, aero states steady.
-    fn steady_state_of(&self, q: &DVector<f64>) -> DVector<f64> {
+    /// The full state at static deflection q: q̇ = 0, aero states steady (`ramp`: the share of
+    /// the left-out modes' response to the strip loads, [`System::position_at`]).
+    fn steady_state_of(&self, q: &DVector<f64>, ramp: f64) -> DVector<f64> {
         let nq = self.nq();
         let mut x = DVector::zeros(self.dim());
         x.rows_mut(0, nq).copy_from(q);
         let mut st = SteadyStates::new(self.ns);
         for (si, s) in self.stations.iter().enumerate() {
-            let deflection = self.deflection_at(si, q.as_view());
+            let deflection = self.position_at(si, q.as_view(), ramp);
             self.model.steady_states(s, deflection, &mut st);
             x.rows_mut(2 * nq + si * self.ns, self.ns)
                 .copy_from_slice(&st.z);
@@ -191,7 +192,8 @@ impl System {
 
     /// `R(q) = s Q(q, 0, z*(q)) + f − K q` at load factor `s` (1: the full aerodynamic load; the
     /// structure's own static load `f`, the centrifugal pull on a curved blade, is never ramped:
-    /// it is linear) and, when asked,
+    /// it is linear; the left-out modes' response to the strip loads is ramped with them, their
+    /// response to `f` is not) and, when asked,
     /// `dR/dq` (aero states held steady).
     fn static_residual(
         &self,
@@ -200,14 +202,14 @@ impl System {
         want_jac: bool,
     ) -> Result<(DVector<f64>, DMatrix<f64>)> {
         let nq = self.nq();
-        let x = self.steady_state_of(q);
+        let x = self.steady_state_of(q, load);
         let (qv, v, z) = self.split(&x);
         let wanted = if want_jac {
             Derivatives::Static
         } else {
             Derivatives::None
         };
-        let pr = self.project(qv, v, z, wanted);
+        let pr = self.project(qv, v, z, wanted, load);
         let mut res = load * &pr.force - &self.stiffness * q;
         self.add_static_load(&mut res);
         if !res.iter().all(|v| v.is_finite()) {
@@ -224,7 +226,7 @@ impl System {
             let mut zq = DMatrix::zeros(self.n_aero(), nq);
             let mut st = SteadyStates::new(self.ns);
             for (si, s) in self.stations.iter().enumerate() {
-                let deflection = self.deflection_at(si, q.as_view());
+                let deflection = self.position_at(si, q.as_view(), load);
                 self.model.steady_states(s, deflection, &mut st);
                 let rows = self.kinematic_rows(si);
                 for i in 0..self.ns {

@@ -18,6 +18,8 @@ pub struct LinearSystem {
     /// Tip twist φ(L) = `tip_twist · q` and tip flap u(L) = `tip_flap · q` (`n_q` each).
     pub tip_twist: DVector<f64>,
     pub tip_flap: DVector<f64>,
+    /// The left-out modes' static tip twist and flap (docs/model.md §12.6), added to every state's.
+    pub tip_offset: [f64; 2],
     pub structure: Arc<dyn Structure>,
 }
 
@@ -49,6 +51,10 @@ impl System {
             n_aero: self.n_aero(),
             tip_twist: self.tip_rows[0].clone(),
             tip_flap: self.tip_rows[1].clone(),
+            tip_offset: {
+                let [phi, u, _] = self.tip_offset();
+                [phi, u]
+            },
             structure: Arc::clone(&self.structure),
         }
     }
@@ -62,6 +68,7 @@ impl LinearSystem {
     /// Tip twist and flap of a state.
     pub fn tip(&self, x: &DVector<f64>) -> (f64, f64) {
         let q = x.rows(0, self.nq);
-        (self.tip_twist.dot(&q), self.tip_flap.dot(&q))
+        let [phi, u] = self.tip_offset;
+        (self.tip_twist.dot(&q) + phi, self.tip_flap.dot(&q) + u)
     }
 }

@@ -21,9 +21,11 @@
 //!
 //! Files: this one builds the system and evaluates it (state layout, right-hand side, Jacobian,
 //! the strip projection); [`equilibrium`] solves the static equilibrium, [`linear`] linearises
-//! about it, [`splitting`] separates the right-hand side for the time stepper.
+//! about it, [`splitting`] separates the right-hand side for the time stepper; [`left_out`] holds
+//! the modes a truncated basis leaves out, whose static response corrects the equilibrium.
 
 mod equilibrium;
+mod left_out;
 mod linear;
 mod splitting;
 
@@ -34,6 +36,7 @@ use crate::error::{Error, Result};
 use crate::physics::aero::{Kinematics, StripEval, StripModel, LOADS, RATES};
 use crate::physics::inflow::Station;
 use crate::physics::structure::Structure;
+use left_out::{LeftOut, Offsets};
 use nalgebra::{DMatrix, DVector};
 use std::sync::Arc;
 
@@ -54,6 +57,11 @@ pub struct System {
     static_load: Option<DVector<f64>>,
     /// States per station.
     ns: usize,
+    /// The modes the structure's coordinates leave out, at the stations (docs/model.md §12.6).
+    left_out: Option<Arc<LeftOut>>,
+    /// Their static coordinates and motion, added to every position the strips and the
+    /// outputs read; none until set ([`System::with_left_out_at`]).
+    offsets: Option<Offsets>,
 }
 
 /// Which derivatives a [`System::project`] call assembles.
@@ -108,6 +116,7 @@ impl System {
         let static_load = static_load.iter().any(|v| *v != 0.0).then_some(static_load);
         let mass_inv = mass_inverse(structure.as_ref(), &stations, &rows, model.as_ref())?;
         let ns = model.states_per_station();
+        let left_out = LeftOut::of(structure.as_ref(), &stations)?.map(Arc::new);
         Ok(System {
             structure,
             stations,
@@ -119,6 +128,8 @@ impl System {
             damping,
             static_load,
             ns,
+            left_out,
+            offsets: None,
         })
     }
 
@@ -150,6 +161,8 @@ impl System {
             damping: self.damping.clone(),
             static_load: self.static_load.clone(),
             ns: self.ns,
+            left_out: self.left_out.clone(),
+            offsets: self.offsets.clone(),
         })
     }
 
@@ -176,15 +189,25 @@ impl System {
 
     /// Tip twist φ(L) (rad) and tip flap u(L) (m) of a state.
     pub fn tip(&self, x: &DVector<f64>) -> (f64, f64) {
-        let q = x.rows(0, self.nq());
-        (self.tip_rows[0].dot(&q), self.tip_rows[1].dot(&q))
+        let [phi, u, _] = self.tip_motion(x);
+        (phi, u)
     }
 
     /// `[φ, u, v]` (twist toward feather, flap downwind, edge toward the leading edge) at the
-    /// tip's reference axis in state `x`.
+    /// tip's reference axis in state `x`, the left-out modes' static motion included.
     pub fn tip_motion(&self, x: &DVector<f64>) -> [f64; RATES] {
         let q = x.rows(0, self.nq());
-        self.tip_rows.each_ref().map(|row| row.dot(&q))
+        let offset = self.tip_offset();
+        let mut motion = self.tip_rows.each_ref().map(|row| row.dot(&q));
+        for (m, o) in motion.iter_mut().zip(offset) {
+            *m += o;
+        }
+        motion
+    }
+
+    /// The left-out modes' static `[φ, u, v]` at the tip (zero without them).
+    fn tip_offset(&self) -> [f64; RATES] {
+        self.offsets.as_ref().map_or([0.0; RATES], |o| o.tip)
     }
 
     /// `[φ, u, v]` at every station in state `x`.
@@ -199,7 +222,7 @@ impl System {
     pub fn rhs(&self, x: &DVector<f64>) -> DVector<f64> {
         let nq = self.nq();
         let (q, v, z) = self.split(x);
-        let pr = self.project(q, v, z, Derivatives::None);
+        let pr = self.project(q, v, z, Derivatives::None, 1.0);
         let mut out = DVector::zeros(self.dim());
         out.rows_mut(0, nq).copy_from(&v);
         let mut net = &pr.force - &self.stiffness * q - &self.damping * v;
@@ -221,7 +244,7 @@ impl System {
     pub fn jacobian(&self, x: &DVector<f64>) -> DMatrix<f64> {
         let (nq, na) = (self.nq(), self.n_aero());
         let (q, v, z) = self.split(x);
-        let pr = self.project(q, v, z, Derivatives::All);
+        let pr = self.project(q, v, z, Derivatives::All, 1.0);
         let mut a = DMatrix::zeros(self.dim(), self.dim());
         a.view_mut((0, nq), (nq, nq)).fill_with_identity();
         a.view_mut((nq, 0), (nq, nq))
@@ -252,9 +275,47 @@ impl System {
         (x.rows(0, nq), x.rows(nq, nq), x.rows(2 * nq, self.n_aero()))
     }
 
-    /// `[φ, u, v]` at station `si` for coordinates `q`.
+    /// `[φ, u, v]` at station `si` for coordinates `q`, with the left-out modes' static motion.
     fn deflection_at(&self, si: usize, q: nalgebra::DVectorView<f64>) -> [f64; RATES] {
-        self.rows[si].each_ref().map(|row| row.dot(&q))
+        self.position_at(si, q, 1.0)
+    }
+
+    /// [`System::deflection_at`] with the left-out modes' response to the strip loads scaled by
+    /// `ramp`: the equilibrium's load continuation ramps it with the load.
+    fn position_at(&self, si: usize, q: nalgebra::DVectorView<f64>, ramp: f64) -> [f64; RATES] {
+        let mut d = self.rate_at(si, q);
+        if let Some(o) = &self.offsets {
+            for ((d, fixed), loaded) in d.iter_mut().zip(o.fixed[si]).zip(o.loaded[si]) {
+                *d += fixed + ramp * loaded;
+            }
+        }
+        d
+    }
+
+    /// `[φ̇, u̇, v̇]` at station `si` for coordinate rates `v` (the left-out modes are static).
+    fn rate_at(&self, si: usize, v: nalgebra::DVectorView<f64>) -> [f64; RATES] {
+        self.rows[si].each_ref().map(|row| row.dot(&v))
+    }
+
+    /// The strip kinematics at station `si` for coordinates `q` and their rates `v` (`ramp`:
+    /// [`System::position_at`]).
+    fn kinematics(
+        &self,
+        si: usize,
+        q: nalgebra::DVectorView<f64>,
+        v: nalgebra::DVectorView<f64>,
+        ramp: f64,
+    ) -> Kinematics {
+        let [phi, u, edge] = self.position_at(si, q, ramp);
+        let [phi_dot, u_dot, v_dot] = self.rate_at(si, v);
+        Kinematics {
+            phi,
+            u,
+            v: edge,
+            phi_dot,
+            u_dot,
+            v_dot,
+        }
     }
 
     fn kinematic_rows(&self, si: usize) -> &[DVector<f64>; RATES] {
@@ -267,6 +328,7 @@ impl System {
         v: nalgebra::DVectorView<f64>,
         z: nalgebra::DVectorView<f64>,
         wanted: Derivatives,
+        ramp: f64,
     ) -> Projection {
         let (nq, na, ns) = (self.nq(), self.n_aero(), self.ns);
         let want_jac = wanted != Derivatives::None;
@@ -291,16 +353,7 @@ impl System {
         let mut eval = StripEval::new(ns);
         let mut zs = Vec::with_capacity(ns);
         for (si, s) in self.stations.iter().enumerate() {
-            let [phi, u, edge] = self.deflection_at(si, q);
-            let [phi_dot, u_dot, v_dot] = self.deflection_at(si, v);
-            let k = Kinematics {
-                phi,
-                u,
-                v: edge,
-                phi_dot,
-                u_dot,
-                v_dot,
-            };
+            let k = self.kinematics(si, q, v, ramp);
             zs.clear();
             zs.extend(z.rows(si * ns, ns).iter());
             eval.clear();
@@ -352,6 +405,62 @@ impl System {
             }
         }
         pr
+    }
+}
+
+impl System {
+    // ---- the truncated basis's static correction (docs/model.md §12.6) ----
+
+    /// The left-out modes' static coordinates under the strip loads of state `x` and the
+    /// structure's own static load, where the structure leaves modes out (docs/model.md §12.6).
+    pub fn left_out_response(&self, x: &DVector<f64>) -> Option<DVector<f64>> {
+        let left_out = self.left_out.as_deref()?;
+        let (q, v, z) = self.split(x);
+        let mut force = left_out.own_load();
+        let mut eval = StripEval::new(self.ns);
+        let mut zs = Vec::with_capacity(self.ns);
+        for (si, s) in self.stations.iter().enumerate() {
+            let k = self.kinematics(si, q, v, 1.0);
+            zs.clear();
+            zs.extend(z.rows(si * self.ns, self.ns).iter());
+            eval.clear();
+            self.model.evaluate(s, &k, &zs, &mut eval, false);
+            left_out.add_strip(&mut force, si, s.weight, &eval.loads);
+        }
+        Some(left_out.coordinates(force))
+    }
+
+    /// This system with the left-out modes held at static coordinates `p` (from
+    /// [`System::left_out_response`]); unchanged where the structure leaves none out.
+    pub fn with_left_out_at(mut self, p: DVector<f64>) -> System {
+        if let Some(left_out) = self.left_out.as_deref() {
+            debug_assert_eq!(p.len(), left_out.len());
+            self.offsets = Some(left_out.offsets(p));
+        }
+        self
+    }
+
+    /// The left-out modes' coordinates the system holds (none without a correction).
+    pub fn left_out_coordinates(&self) -> Option<&DVector<f64>> {
+        self.offsets.as_ref().map(|o| &o.coordinates)
+    }
+
+    /// How many modes the structure leaves out (0 for a complete basis).
+    pub fn left_out_count(&self) -> usize {
+        self.left_out.as_deref().map_or(0, LeftOut::len)
+    }
+
+    /// `p` on the scale the operating point's passes compare (rad of twist or flap over the
+    /// tip radius it gives at a station), and back.
+    pub fn left_out_scaled(&self, p: &DVector<f64>) -> Vec<f64> {
+        self.left_out
+            .as_deref()
+            .map_or_else(Vec::new, |l| l.scaled(p).iter().copied().collect())
+    }
+    pub fn left_out_unscaled(&self, scaled: &[f64]) -> DVector<f64> {
+        self.left_out
+            .as_deref()
+            .map_or_else(|| DVector::zeros(0), |l| l.unscaled(scaled))
     }
 }
 

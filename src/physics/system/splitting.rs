@@ -177,7 +177,7 @@ impl System {
         let (nq, ns) = (self.nq(), self.ns);
         out.clear();
         out.extend_from_slice(&self.deflection_at(si, x.rows(0, nq)));
-        out.extend_from_slice(&self.deflection_at(si, x.rows(nq, nq)));
+        out.extend_from_slice(&self.rate_at(si, x.rows(nq, nq)));
         out.extend(x.rows(2 * nq + si * ns, ns).iter());
     }
 

@@ -36,6 +36,10 @@ pub struct StructureSettings {
     /// axis; `false`: the beam straight along the pitch axis, the prebend in the aerodynamics
     /// only (docs/model.md §11.9).
     pub curved: bool,
+    /// Tabulated blade: the static response of the reduced basis's modes beyond the first K
+    /// added to the operating point's equilibrium (the truncated basis's correction,
+    /// docs/model.md §12.6); `false`: the equilibrium on the K modes alone.
+    pub static_correction: bool,
     /// Tabulated blade: modal damping ratio of every flap mode; `None`: the blade file's.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub damping_flap: Option<f64>,
@@ -56,6 +60,7 @@ impl Default for StructureSettings {
             min_elements: MIN_ELEMENTS,
             shear: true,
             curved: true,
+            static_correction: true,
             damping_flap: None,
             damping_edge: None,
             damping_torsion: None,
