@@ -11,7 +11,8 @@
 //! Rules, from the ontology's definitions:
 //! - the non-dimensional arc s is the arc length from the trailing edge on the suction side,
 //!   over the perimeter; for an open (flatback) trailing edge s = 0 and s = 1 are at its middle;
-//! - the leading edge is the contour point of least x;
+//! - the leading edge is the contour point of least x (midway along the arc between the first
+//!   and last such point, for a blunt nose);
 //! - a width w (m) centred on s_m spans s_m ∓ w/(2L) (L the perimeter); from a start s_0 it
 //!   spans s_0 to s_0 + w/L, up to an end s_1 from s_1 − w/L;
 //! - an edge locked to `LE` is at the leading edge, to `TE` at s = 0 (a start or midpoint) or
@@ -100,10 +101,27 @@ impl Contour {
                 "expected a contour of positive finite length, found {total}"
             )));
         }
-        let le = (0..points.len())
-            .min_by(|&a, &b| points[a][0].total_cmp(&points[b][0]))
-            .unwrap_or(0);
-        let leading_edge = arc[le] / total;
+        // The ontology lists the suction side first: from the trailing edge the contour turns
+        // counter-clockwise in (x toward the trailing edge, y toward the suction side). Listed
+        // the other way, every arc position would land on the opposite side.
+        let twice_area: f64 = points
+            .windows(2)
+            .map(|w| w[0][0] * w[1][1] - w[1][0] * w[0][1])
+            .sum();
+        if twice_area <= 0.0 {
+            return Err(fail(
+                "expected the contour from the trailing edge over the suction side (y > 0) first, \
+                 found it listed the other way round"
+                    .into(),
+            ));
+        }
+        // Several points may share the least x (a blunt nose); the edge is midway between them.
+        let least = points.iter().map(|p| p[0]).fold(f64::INFINITY, f64::min);
+        let foremost: Vec<usize> = (0..points.len())
+            .filter(|&i| points[i][0] == least)
+            .collect();
+        let (first, last) = (foremost[0], foremost[foremost.len() - 1]);
+        let leading_edge = (arc[first] + arc[last]) / 2.0 / total;
         Ok(Contour {
             points,
             arc,
@@ -469,6 +487,43 @@ mod tests {
             e.contains("layer `cap` at span 0.5: the line at offset 3 m"),
             "{e}"
         );
+    }
+
+    #[test]
+    fn an_open_trailing_edge_starts_the_arc_at_its_middle() {
+        // A 1 m × 0.2 m rectangle open at the trailing edge (x = 1): the arc runs from the
+        // middle of the gap, so the perimeter includes the gap and the leading edge is halfway.
+        let x = [1.0, 0.0, 0.0, 1.0];
+        let y = [0.1, 0.1, -0.1, -0.1];
+        let c = Contour::new(&x, &y, 1.0, 0.0).unwrap();
+        assert!((c.length() - 2.4).abs() < 1e-12);
+        assert!((c.leading_edge() - 0.5).abs() < 1e-12);
+        let e = Contour::new(&[1.0, 0.0, 0.0, 1.0], &[-0.1, -0.1, 0.1, 0.1], 1.0, 0.0)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("suction side (y > 0) first"), "{e}");
+    }
+
+    #[test]
+    fn a_width_from_the_trailing_edge_runs_toward_the_leading_edge() {
+        let mut w = read_test_file();
+        let nose = &mut w.blade.structure.layers[2];
+        nose.midpoint_nd_arc = None;
+        nose.end_nd_arc = Some(ArcPosition {
+            fixed: Some(Fixed::TrailingEdge),
+            values: None,
+            line: 1,
+        });
+        let contour = circle();
+        let at = Station {
+            eta: 0.5,
+            twist: 0.0,
+            contour: &contour,
+        };
+        let placed = place_layers(&w.blade.structure.layers, &at, "t.yaml").unwrap();
+        let (s, e) = placed[2].unwrap();
+        assert_eq!(e, 1.0);
+        assert!((s - (1.0 - 0.4 / contour.length())).abs() < 1e-12, "{s}");
     }
 
     #[test]
