@@ -1,6 +1,6 @@
 //! Readers for the blade and turbine definition files engineers already have: OpenFAST BeamDyn,
 //! ElastoDyn (blade, main and tower files), AeroDyn 15 and AirfoilInfo inputs, and the HAWC2 htc
-//! (model), st, ae, pc and steady-operation files.
+//! (model), st, ae, pc and steady-operation files, and the WindIO ontology (YAML: the layup).
 //!
 //! Text in, plain tables out. A reader keeps the file's own units, axes and column meanings (each
 //! field says which); mapping them into the model's frame is the physics layer's job, so nothing
@@ -27,3 +27,4 @@ pub mod hawc2_st;
 pub mod htc;
 pub mod text;
 pub mod text_file;
+pub mod windio;

@@ -32,6 +32,7 @@ mod tabulated;
 mod timoshenko;
 mod tui_tmux;
 mod validation;
+mod windio;
 
 /// The real binary run with `args`, as a user would; a failure fails the test with its stderr.
 fn flutterscope_ok(args: &[&str]) -> std::process::Output {
