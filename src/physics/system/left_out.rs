@@ -127,6 +127,16 @@ impl LeftOut {
         }
     }
 
+    /// The rows `e_φ, e_u, e_v` of the left-out modes at station `si`.
+    pub fn rows_at(&self, si: usize) -> &[DVector<f64>; RATES] {
+        &self.rows[si]
+    }
+
+    /// `ω_j²` of each left-out mode.
+    pub fn stiffness(&self) -> DVector<f64> {
+        self.flexibility.map(|f| 1.0 / f)
+    }
+
     /// The static coordinates under generalised load `force`.
     pub fn coordinates(&self, force: DVector<f64>) -> DVector<f64> {
         force.component_mul(&self.flexibility)

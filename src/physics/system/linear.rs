@@ -1,7 +1,8 @@
 //! The system linearised about its equilibrium (docs/model.md §6): the state matrix.
 
 use super::{check_finite, System};
-use crate::error::Result;
+use crate::error::{Error, Result};
+use crate::physics::aero::{StripEval, LOADS, RATES};
 use crate::physics::structure::Structure;
 use nalgebra::{DMatrix, DVector};
 use std::sync::Arc;
@@ -36,9 +37,84 @@ impl System {
             Some(x) => x,
             None => self.equilibrium()?,
         };
-        let a = self.jacobian(&x_eq);
+        let mut a = self.jacobian(&x_eq);
+        self.condense_left_out(&x_eq, &mut a)?;
         check_finite("state matrix", &a)?;
         Ok(self.tangent(x_eq, a))
+    }
+
+    /// Adds to the state matrix `a` at `x` the left-out modes' quasi-static response
+    /// (docs/model.md §12.6): their coordinates follow the strip loads without inertia,
+    /// `δp = (Λ − ∂Q_R/∂p)⁻¹ (∂Q_R/∂q δq + ∂Q_R/∂q̇ δq̇ + ∂Q_R/∂z δz)`, and move the strips'
+    /// positions, so the retained loads gain `∂Q/∂p δp` and the lag states `∂G/∂p δp`. At zero
+    /// frequency the condensed system is the whole basis's; the left-out modes' own rates,
+    /// inertia and apparent mass are left out. Nothing where the structure leaves no mode out.
+    fn condense_left_out(&self, x: &DVector<f64>, a: &mut DMatrix<f64>) -> Result<()> {
+        let Some(left_out) = self.left_out.as_deref() else {
+            return Ok(());
+        };
+        let (nq, na, ns, m) = (self.nq(), self.n_aero(), self.ns, left_out.len());
+        let inputs = 2 * nq + na;
+        // ∂Q_R/∂[q, q̇, z] (m × inputs), ∂Q_R/∂p, ∂Q/∂p, ∂G/∂p.
+        let mut qr = DMatrix::zeros(m, inputs);
+        let mut qr_p = DMatrix::from_diagonal(&left_out.stiffness());
+        let mut qk_p = DMatrix::zeros(nq, m);
+        let mut g_p = DMatrix::zeros(na, m);
+        let (q, v, z) = self.split(x);
+        let mut eval = StripEval::new(ns);
+        let mut zs = Vec::with_capacity(ns);
+        for (si, s) in self.stations.iter().enumerate() {
+            let k = self.kinematics(si, q, v, 1.0);
+            zs.clear();
+            zs.extend(z.rows(si * ns, ns).iter());
+            eval.clear();
+            self.model.evaluate(s, &k, &zs, &mut eval, true);
+            let (rows, left) = (self.kinematic_rows(si), left_out.rows_at(si));
+            let w = s.weight;
+            for l in 0..LOADS {
+                for j in 0..RATES {
+                    let dpos = w * eval.dloads_dk[l][j];
+                    let drate = w * eval.dloads_dk[l][j + RATES];
+                    if dpos != 0.0 {
+                        qr.view_mut((0, 0), (m, nq))
+                            .ger(dpos, &left[l], &rows[j], 1.0);
+                        qr_p.ger(-dpos, &left[l], &left[j], 1.0);
+                        qk_p.ger(dpos, &rows[l], &left[j], 1.0);
+                    }
+                    if drate != 0.0 {
+                        qr.view_mut((0, nq), (m, nq))
+                            .ger(drate, &left[l], &rows[j], 1.0);
+                    }
+                }
+                for i in 0..ns {
+                    let mut col = qr.column_mut(2 * nq + si * ns + i);
+                    col.axpy(w * eval.dloads_dz[l][i], &left[l], 1.0);
+                }
+            }
+            for i in 0..ns {
+                let mut row = g_p.row_mut(si * ns + i);
+                for (j, r) in left.iter().enumerate() {
+                    let d = eval.dzdot_dk[i][j];
+                    if d != 0.0 {
+                        row += d * r.transpose();
+                    }
+                }
+            }
+        }
+        let response = qr_p.lu().solve(&qr).ok_or_else(|| {
+            Error::numerical(
+                "the left-out modes' quasi-static response: their stiffness less the air's is \
+                 singular",
+            )
+        })?;
+        let loads = &self.mass_inv * (&qk_p * &response);
+        let mut accelerations = a.view_mut((nq, 0), (nq, inputs));
+        accelerations += loads;
+        if na > 0 {
+            let mut rates = a.view_mut((2 * nq, 0), (na, inputs));
+            rates += &g_p * &response;
+        }
+        Ok(())
     }
 
     /// The tangent system `ẋ ≈ A (x − x_r)` about a state `x_r` with its Jacobian `a` (the
