@@ -158,3 +158,95 @@ impl BeamMatrices {
         Ok(out)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::material::Orthotropic;
+    use super::super::mesh::{graded, Mesh, Ply};
+    use super::super::solve::analyse;
+
+    /// A `b × h` rectangle centred at `centre`, its long side turned by `angle` from x.
+    fn turned_rectangle(b: f64, h: f64, centre: [f64; 2], angle: f64) -> Mesh {
+        let xs = graded(&[-b / 2.0, b / 2.0], &[16]);
+        let ys = graded(&[-h / 2.0, h / 2.0], &[8]);
+        let mut m = Mesh::grid(
+            &xs,
+            &ys,
+            vec![Orthotropic::isotropic(70e9, 0.3, 2700.0)],
+            |_| {
+                Some(Ply {
+                    material: 0,
+                    fibre_angle: 0.0,
+                    orientation: 0.0,
+                })
+            },
+        )
+        .unwrap();
+        let (s, c) = angle.sin_cos();
+        for p in &mut m.nodes {
+            *p = [
+                centre[0] + c * p[0] - s * p[1],
+                centre[1] + s * p[0] + c * p[1],
+            ];
+        }
+        m
+    }
+
+    #[test]
+    fn principal_axes_turn_with_the_section() {
+        let (b, h) = (0.2, 0.1);
+        let straight = analyse(&turned_rectangle(b, h, [0.0, 0.0], 0.0), [0.0, 0.0])
+            .unwrap()
+            .properties()
+            .unwrap();
+        let angle = 0.3;
+        let turned = analyse(&turned_rectangle(b, h, [0.4, -0.1], angle), [0.0, 0.0])
+            .unwrap()
+            .properties()
+            .unwrap();
+        // The stiffer axis is across the long side: at angle + π/2, wrapped to (−π/2, π/2].
+        let expected = angle - std::f64::consts::FRAC_PI_2;
+        assert!(
+            (turned.principal_angle - expected).abs() < 1e-9,
+            "{}",
+            turned.principal_angle
+        );
+        for k in 0..2 {
+            let (a, t) = (straight.ei_principal[k], turned.ei_principal[k]);
+            assert!((a - t).abs() < 1e-9 * a, "EI {k}: {a} vs {t}");
+        }
+        assert!((turned.gj - straight.gj).abs() < 1e-9 * straight.gj);
+        for c in [
+            turned.elastic_centre,
+            turned.shear_centre,
+            turned.centre_of_mass,
+        ] {
+            assert!(
+                (c[0] - 0.4).abs() < 1e-9 && (c[1] + 0.1).abs() < 1e-9,
+                "{c:?}"
+            );
+        }
+        let m = straight.mass_moments;
+        assert!((m[0] - 2700.0 * b * h * h * h / 12.0).abs() < 1e-9 * m[0]);
+        assert!((m[1] - 2700.0 * h * b * b * b / 12.0).abs() < 1e-9 * m[1]);
+    }
+
+    #[test]
+    fn moving_there_and_back_changes_nothing() {
+        let a = analyse(&turned_rectangle(0.2, 0.1, [0.1, 0.2], 0.7), [0.0, 0.0]).unwrap();
+        let back = a.about([0.3, -0.5]).about([0.0, 0.0]);
+        let worst = a
+            .stiffness
+            .iter()
+            .flatten()
+            .zip(back.stiffness.iter().flatten())
+            .map(|(x, y)| (x - y).abs())
+            .fold(0.0, f64::max);
+        let scale = a
+            .stiffness
+            .iter()
+            .flatten()
+            .fold(0.0f64, |m, v| m.max(v.abs()));
+        assert!(worst < 1e-12 * scale);
+    }
+}
