@@ -1,6 +1,7 @@
 //! Cross sections by two-dimensional finite elements (docs/model.md §11.10) against closed forms:
-//! the solid rectangle, the circular tube, the thin rectangular box (Bredt), the channel's shear
-//! centre, and composite boxes against thin-walled laminate theory and the paper's Table 1.
+//! the solid rectangle (with the torsion and flexure series), the circular tube, the thin
+//! rectangular box (Bredt), the channel's shear centre, and composite boxes against thin-walled
+//! laminate theory and the paper's Table 1.
 
 use flutterscope::physics::cross_section::mesh::graded;
 use flutterscope::physics::cross_section::{analyse, Mesh, Orthotropic, Ply, SectionProperties};
@@ -511,4 +512,87 @@ fn cas_box_bend_twist_coupling_against_laminate_theory_and_table1() {
         torsion_gaps.windows(2).all(|w| w[1] < w[0]),
         "{torsion_gaps:?}"
     );
+}
+
+/// The shear coefficient `k = V²/(A ∫τ² dA)` of a rectangle from the exact Saint-Venant flexure
+/// stresses (Timoshenko & Goodier, *Theory of Elasticity*, §124): depth `2c` along the load,
+/// width `2a` across it, coordinates `s` along the load and `q` across,
+/// `τ_s = V/(2I) (c² − s²) + ν/(1+ν) V/I [(3q² − a²)/6 − 2a²/π² Σ (−1)ⁿ/n² cos(nπq/a) cosh(nπs/a)/cosh(nπc/a)]`,
+/// `τ_q = ν/(1+ν) V/I 2a²/π² Σ (−1)ⁿ/n² sin(nπq/a) sinh(nπs/a)/cosh(nπc/a)`
+/// (they satisfy equilibrium, compatibility with the anticlastic strains and free lateral
+/// faces). The energy is integrated by Simpson's rule.
+fn rectangle_shear_coefficient(c: f64, a: f64, nu: f64) -> f64 {
+    let i = 2.0 * a * (2.0 * c).powi(3) / 12.0;
+    let f = nu / (1.0 + nu) / i;
+    let terms = 200;
+    let stress = |s: f64, q: f64| {
+        let (mut sum_s, mut sum_q) = (0.0, 0.0);
+        for n in 1..=terms {
+            let k = n as f64 * PI / a;
+            let sign = if n % 2 == 0 { 1.0 } else { -1.0 };
+            // cosh(ks)/cosh(kc) without overflow.
+            let ratio_c =
+                ((k * (s - c)).exp() + (-k * (s + c)).exp()) / (1.0 + (-2.0 * k * c).exp());
+            let ratio_s =
+                ((k * (s - c)).exp() - (-k * (s + c)).exp()) / (1.0 + (-2.0 * k * c).exp());
+            let w = sign / (n * n) as f64;
+            sum_s += w * (k * q).cos() * ratio_c;
+            sum_q += w * (k * q).sin() * ratio_s;
+        }
+        let g = 2.0 * a * a / (PI * PI);
+        let ts = (c * c - s * s) / (2.0 * i) + f * ((3.0 * q * q - a * a) / 6.0 - g * sum_s);
+        let tq = f * g * sum_q;
+        ts * ts + tq * tq
+    };
+    let m = 200;
+    let simpson = |k: usize| {
+        if k == 0 || k == m {
+            1.0
+        } else if k % 2 == 1 {
+            4.0
+        } else {
+            2.0
+        }
+    };
+    let (hs, hq) = (2.0 * c / m as f64, 2.0 * a / m as f64);
+    let mut energy = 0.0;
+    for js in 0..=m {
+        for jq in 0..=m {
+            let (s, q) = (-c + js as f64 * hs, -a + jq as f64 * hq);
+            energy += simpson(js) * simpson(jq) * stress(s, q);
+        }
+    }
+    energy *= hs * hq / 9.0;
+    1.0 / (4.0 * a * c * energy)
+}
+
+#[test]
+fn solid_rectangle_shear_stiffness_with_poisson_contraction_is_the_exact_flexure_solutions() {
+    let (b, h, nu) = (0.2, 0.1, 0.3);
+    let g = shear_modulus(nu);
+    // Shear along x: the load across the width b; along y: across the height h.
+    let kx = rectangle_shear_coefficient(b / 2.0, h / 2.0, nu);
+    let ky = rectangle_shear_coefficient(h / 2.0, b / 2.0, nu);
+    let cowper = 10.0 * (1.0 + nu) / (12.0 + 11.0 * nu);
+    eprintln!("rectangle 2:1, ν = 0.3: exact k_x = {kx:.5}, k_y = {ky:.5} (Cowper {cowper:.5})");
+    // Without contraction the series vanish and the elementary 5/6 is left.
+    let plain = rectangle_shear_coefficient(h / 2.0, b / 2.0, 0.0);
+    assert!(rel(plain, 5.0 / 6.0) < 1e-6, "{plain}");
+    let mut errors = Vec::new();
+    for n in [4, 8, 16, 32] {
+        let p = props(&rectangle(b, h, [0.0, 0.0], 2 * n, n, nu), [0.0, 0.0]);
+        let k = p.shear_stiffness;
+        let e = [rel(k[0][0], kx * g * b * h), rel(k[1][1], ky * g * b * h)];
+        eprintln!(
+            "rectangle shear ν = 0.3, {}×{n}: k_x {:.5} ({:.2e}), k_y {:.5} ({:.2e})",
+            2 * n,
+            k[0][0] / (g * b * h),
+            e[0],
+            k[1][1] / (g * b * h),
+            e[1]
+        );
+        errors.push(e);
+    }
+    assert_converging(&errors, 0);
+    assert!(errors[3].iter().all(|e| *e < 2e-3), "{errors:?}");
 }

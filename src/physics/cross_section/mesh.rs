@@ -107,6 +107,39 @@ impl Mesh {
                 }
             }
         }
+        self.check_connected()
+    }
+
+    /// Every node in an element and every element joined to the others through shared nodes: a
+    /// node in no element, or a piece on its own, has rigid motions nothing holds, and the warping
+    /// equations would be singular.
+    fn check_connected(&self) -> Result<()> {
+        let mut parent: Vec<usize> = (0..self.nodes.len()).collect();
+        fn root(parent: &mut [usize], mut k: usize) -> usize {
+            while parent[k] != k {
+                parent[k] = parent[parent[k]];
+                k = parent[k];
+            }
+            k
+        }
+        let mut used = vec![false; self.nodes.len()];
+        for e in &self.elements {
+            let first = root(&mut parent, e.nodes[0]);
+            for &n in &e.nodes {
+                used[n] = true;
+                let r = root(&mut parent, n);
+                parent[r] = first;
+            }
+        }
+        if let Some(k) = used.iter().position(|u| !u) {
+            return Err(invalid(format!("node {k} belongs to no element")));
+        }
+        let base = root(&mut parent, 0);
+        if let Some(k) = (0..self.nodes.len()).find(|&k| root(&mut parent, k) != base) {
+            return Err(invalid(format!(
+                "the mesh is in more than one piece (node {k} is not joined to node 0)"
+            )));
+        }
         Ok(())
     }
 
@@ -309,6 +342,18 @@ mod tests {
         m.elements[0].ply.fibre_angle = f64::INFINITY;
         assert!(m.validate().is_err(), "infinite angle accepted");
         assert!(Mesh::ring([0.0, 0.0], 1.0, 0.5, 8, 1, steel(), 0.0).is_err());
+        // Two squares that do not touch, and a node no element uses.
+        let apart = Mesh::grid(&[0.0, 1.0, 2.0, 3.0], &[0.0, 1.0], vec![steel()], |c| {
+            if c[0] > 1.0 && c[0] < 2.0 {
+                None
+            } else {
+                solid()
+            }
+        });
+        assert!(apart.is_err(), "a mesh in two pieces accepted");
+        let mut m = Mesh::ring([0.0, 0.0], 0.5, 1.0, 8, 1, steel(), 0.0).unwrap();
+        m.nodes.push([3.0, 3.0]);
+        assert!(m.validate().is_err(), "a loose node accepted");
         assert!(Mesh::grid(&[0.0, 0.0], &[0.0, 1.0], vec![steel()], |_| solid()).is_err());
     }
 }
