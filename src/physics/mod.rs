@@ -4,6 +4,7 @@
 pub mod aero;
 pub mod basis;
 pub mod blade;
+pub mod cross_section;
 pub mod inflow;
 pub mod laminate;
 pub mod operating;

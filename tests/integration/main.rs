@@ -7,6 +7,7 @@ mod blade;
 mod cli_basic;
 mod cli_reliability;
 mod coupling;
+mod cross_section;
 mod curved;
 mod eigen;
 mod explorer;

@@ -1,0 +1,537 @@
+//! The section's 6×6 stiffness and mass from its mesh (docs/model.md §11.10): Giavotto's
+//! anisotropic beam theory discretised as in BECAS, solved for the warping.
+//!
+//! A point of the section at `(x, y)` moves by the section's rigid motion plus the warping:
+//! `u = Z(x, y) r(z) + N(x, y) w(z)`, `r = (u_x, u_y, u_z, θ_x, θ_y, θ_z)` with right-hand
+//! rotations, `N` the elements' bilinear shape functions and `w` the nodal warping. The strains
+//! are `ε = S_z Z ψ + B w + S w'`, with the section's strains `ψ = (γ_x, γ_y, ε, κ_x, κ_y, κ_z)`,
+//! `B` the in-plane derivatives and `S` the `∂/∂z` part. Far from the beam's ends (the "central
+//! solution") the forces `T = (F_x, F_y, F_z, M_x, M_y, M_z)` vary only as equilibrium demands,
+//! `T' = Aᵀ T`, and the warping and section strains are linear in them, `w = X T`, `ψ = Y T`; the
+//! warping equations and the definition `T = ∂U/∂ψ` give
+//!
+//! ```text
+//!   E X + R Y = −(C − Cᵀ) X Aᵀ + M Y Aᵀ,      Rᵀ X + 𝒜 Y = I − Mᵀ X Aᵀ,
+//! ```
+//!
+//! with `E = ∫BᵀQB`, `C = ∫BᵀQS`, `R = ∫BᵀQ S_zZ`, `M = ∫SᵀQ S_zZ`, `𝒜 = ∫(S_zZ)ᵀQ S_zZ`. `Aᵀ`
+//! only carries the shear forces into the moments' slopes (`M_x' = F_y`, `M_y' = −F_x`), so the
+//! columns for `F_z, M_x, M_y, M_z` have a plain right-hand side and the two shear columns take
+//! theirs from the bending columns. The compliance is the strain energy of that solution,
+//! `½ Tᵀ F T = ½ ∫εᵀQε dA`; the stiffness is `F⁻¹`.
+//!
+//! The warping is defined up to the six rigid motions (they move the section, and `r` already
+//! does). Rather than constraining them with Lagrange multipliers, six warping components at three
+//! nodes are held at zero: the system stays symmetric positive definite (one sparse Cholesky) and,
+//! since the strain field and so the energy does not depend on how the rigid motion is split
+//! between `r` and `w`, the compliance does not either (tested against another choice of nodes).
+
+use super::material::section_stiffness;
+use super::mesh::Mesh;
+use crate::error::{Error, Result};
+use faer::linalg::solvers::Solve;
+use faer::sparse::{SparseColMat, Triplet};
+use faer::{Mat, Side};
+use nalgebra::{Matrix6, SMatrix, Vector6};
+
+/// The section's matrices about `reference` (m, `[x, y]` in the mesh's plane), BeamDyn's
+/// order: strains `(γ_x, γ_y, ε, κ_x, κ_y, κ_z)` (shear along x, along y, extension, bending
+/// about x, about y, twist; `κ` the rates of the right-hand rotations about the axes) against
+/// `(F_x, F_y, F_z, M_x, M_y, M_z)`, z along the beam and `x × y = z`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BeamMatrices {
+    /// Stiffness (N, N·m, N·m²).
+    pub stiffness: [[f64; 6]; 6],
+    /// Mass per length `∫ρ ZᵀZ dA`: `[[m I, −m c̃], [m c̃, J]]` (kg/m, kg, kg·m).
+    pub mass: [[f64; 6]; 6],
+    /// The point the matrices are about (m).
+    pub reference: [f64; 2],
+}
+
+type Mat6x12 = SMatrix<f64, 6, 12>;
+type Vec12 = SMatrix<f64, 12, 1>;
+
+const GAUSS: f64 = 0.577_350_269_189_625_8;
+const CORNERS: [[f64; 2]; 4] = [[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]];
+
+/// One Gauss point: shape functions, their x and y derivatives, position from the reference
+/// and weight times the Jacobian determinant.
+#[derive(Clone, Copy)]
+struct Point {
+    n: [f64; 4],
+    dx: [f64; 4],
+    dy: [f64; 4],
+    x: f64,
+    y: f64,
+    w: f64,
+}
+
+/// An element's Gauss points, its material stiffness in section axes, density and nodes.
+struct Quad {
+    points: [Point; 4],
+    q: Matrix6<f64>,
+    rho: f64,
+    nodes: [usize; 4],
+}
+
+impl Point {
+    /// `B` (in-plane derivatives of the warping) and `S` (its `∂/∂z` factor), Voigt
+    /// (xx, yy, zz, yz, xz, xy), warping components (x, y, z) node by node.
+    fn operators(&self) -> (Mat6x12, Mat6x12) {
+        let mut b = Mat6x12::zeros();
+        let mut s = Mat6x12::zeros();
+        for a in 0..4 {
+            let c = 3 * a;
+            b[(0, c)] = self.dx[a];
+            b[(1, c + 1)] = self.dy[a];
+            b[(3, c + 2)] = self.dy[a];
+            b[(4, c + 2)] = self.dx[a];
+            b[(5, c)] = self.dy[a];
+            b[(5, c + 1)] = self.dx[a];
+            s[(2, c + 2)] = self.n[a];
+            s[(3, c + 1)] = self.n[a];
+            s[(4, c)] = self.n[a];
+        }
+        (b, s)
+    }
+
+    /// `S_z Z`: the strains of the section's strains `ψ` at this point.
+    fn rigid(&self) -> Matrix6<f64> {
+        let mut z = Matrix6::zeros();
+        z[(2, 2)] = 1.0;
+        z[(2, 3)] = self.y;
+        z[(2, 4)] = -self.x;
+        z[(3, 1)] = 1.0;
+        z[(3, 5)] = self.x;
+        z[(4, 0)] = 1.0;
+        z[(4, 5)] = -self.y;
+        z
+    }
+}
+
+fn quads(mesh: &Mesh, reference: [f64; 2]) -> Result<Vec<Quad>> {
+    let stiffness = mesh
+        .materials
+        .iter()
+        .map(|m| m.stiffness())
+        .collect::<Result<Vec<_>>>()?;
+    mesh.elements
+        .iter()
+        .enumerate()
+        .map(|(k, e)| {
+            let p = mesh.corners(e);
+            let mut points = [Point {
+                n: [0.0; 4],
+                dx: [0.0; 4],
+                dy: [0.0; 4],
+                x: 0.0,
+                y: 0.0,
+                w: 0.0,
+            }; 4];
+            for (g, point) in points.iter_mut().enumerate() {
+                let (xi, eta) = (CORNERS[g][0] * GAUSS, CORNERS[g][1] * GAUSS);
+                let mut n = [0.0; 4];
+                let (mut dxi, mut deta) = ([0.0; 4], [0.0; 4]);
+                for a in 0..4 {
+                    let (xa, ea) = (CORNERS[a][0], CORNERS[a][1]);
+                    n[a] = 0.25 * (1.0 + xa * xi) * (1.0 + ea * eta);
+                    dxi[a] = 0.25 * xa * (1.0 + ea * eta);
+                    deta[a] = 0.25 * ea * (1.0 + xa * xi);
+                }
+                let mut j = [[0.0; 2]; 2];
+                let (mut x, mut y) = (0.0, 0.0);
+                for a in 0..4 {
+                    j[0][0] += dxi[a] * p[a][0];
+                    j[0][1] += dxi[a] * p[a][1];
+                    j[1][0] += deta[a] * p[a][0];
+                    j[1][1] += deta[a] * p[a][1];
+                    x += n[a] * p[a][0];
+                    y += n[a] * p[a][1];
+                }
+                let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+                if !(det > 0.0 && det.is_finite()) {
+                    return Err(Error::Invalid {
+                        origin: "cross-section mesh".into(),
+                        message: format!("element {k} has Jacobian {det} at a Gauss point"),
+                    });
+                }
+                let mut dx = [0.0; 4];
+                let mut dy = [0.0; 4];
+                for a in 0..4 {
+                    dx[a] = (j[1][1] * dxi[a] - j[0][1] * deta[a]) / det;
+                    dy[a] = (-j[1][0] * dxi[a] + j[0][0] * deta[a]) / det;
+                }
+                *point = Point {
+                    n,
+                    dx,
+                    dy,
+                    x: x - reference[0],
+                    y: y - reference[1],
+                    w: det,
+                };
+            }
+            let material = e.ply.material;
+            Ok(Quad {
+                points,
+                q: section_stiffness(&stiffness[material], e.ply.fibre_angle, e.ply.orientation),
+                rho: mesh.materials[material].rho,
+                nodes: e.nodes,
+            })
+        })
+        .collect()
+}
+
+/// The element's part of a nodal vector (warping components node by node).
+fn gather(v: &[f64], nodes: &[usize; 4]) -> Vec12 {
+    Vec12::from_fn(|i, _| v[3 * nodes[i / 3] + i % 3])
+}
+
+fn scatter(out: &mut [f64], nodes: &[usize; 4], add: &Vec12) {
+    for i in 0..12 {
+        out[3 * nodes[i / 3] + i % 3] += add[i];
+    }
+}
+
+/// Six warping components held at zero to take out the rigid motions: both in-plane components
+/// at `first`, the one across the line to the node farthest from it, and the axial component at
+/// those two and at the node farthest from their line (a plane through three points that are not
+/// on a line is fixed by them).
+fn pins(nodes: &[[f64; 2]], first: usize) -> Result<[usize; 6]> {
+    let a = nodes[first];
+    let dist2 = |p: &[f64; 2]| (p[0] - a[0]).powi(2) + (p[1] - a[1]).powi(2);
+    let (b, far) = nodes
+        .iter()
+        .enumerate()
+        .map(|(k, p)| (k, dist2(p)))
+        .fold((first, 0.0), |m, c| if c.1 > m.1 { c } else { m });
+    let d = [nodes[b][0] - a[0], nodes[b][1] - a[1]];
+    let off_line = |p: &[f64; 2]| ((p[0] - a[0]) * d[1] - (p[1] - a[1]) * d[0]).abs();
+    let (c, area) = nodes
+        .iter()
+        .enumerate()
+        .map(|(k, p)| (k, off_line(p)))
+        .fold((first, 0.0), |m, c| if c.1 > m.1 { c } else { m });
+    if !(far > 0.0 && area > 1e-9 * far) {
+        return Err(Error::Invalid {
+            origin: "cross-section mesh".into(),
+            message: "the nodes lie on a line: a section needs an area".into(),
+        });
+    }
+    // Across the a–b line: the component of b's motion that a rotation about a would give.
+    let across = if d[0].abs() >= d[1].abs() { 1 } else { 0 };
+    Ok([
+        3 * first,
+        3 * first + 1,
+        3 * b + across,
+        3 * first + 2,
+        3 * b + 2,
+        3 * c + 2,
+    ])
+}
+
+/// The section's stiffness and mass matrices about `reference` (see [`BeamMatrices`]).
+pub fn analyse(mesh: &Mesh, reference: [f64; 2]) -> Result<BeamMatrices> {
+    analyse_pinned(mesh, reference, 0)
+}
+
+/// [`analyse`] with the warping's rigid motions held at the nodes chosen from `first`.
+pub(crate) fn analyse_pinned(
+    mesh: &Mesh,
+    reference: [f64; 2],
+    first: usize,
+) -> Result<BeamMatrices> {
+    mesh.validate()?;
+    if !(reference[0].is_finite() && reference[1].is_finite()) {
+        return Err(Error::Invalid {
+            origin: "cross-section".into(),
+            message: format!("the reference point {reference:?} is not finite"),
+        });
+    }
+    let quads = quads(mesh, reference)?;
+    let ndof = 3 * mesh.nodes.len();
+    let pinned = pins(&mesh.nodes, first.min(mesh.nodes.len() - 1))?;
+    let mut free = vec![0usize; ndof];
+    let mut nfree = 0;
+    for (k, f) in free.iter_mut().enumerate() {
+        if pinned.contains(&k) {
+            *f = usize::MAX;
+        } else {
+            *f = nfree;
+            nfree += 1;
+        }
+    }
+
+    // E (sparse, free components), R (dense columns), 𝒜 and the mass.
+    let mut triplets = Vec::with_capacity(quads.len() * 144);
+    let mut r = vec![[0.0; 6]; ndof];
+    let mut a6 = Matrix6::zeros();
+    let mut mass = Matrix6::zeros();
+    for quad in &quads {
+        let mut ke = SMatrix::<f64, 12, 12>::zeros();
+        let mut re = SMatrix::<f64, 12, 6>::zeros();
+        for p in &quad.points {
+            let (b, _) = p.operators();
+            let z = p.rigid();
+            let qb = quad.q * b;
+            ke += b.transpose() * qb * p.w;
+            re += qb.transpose() * z * p.w;
+            a6 += z.transpose() * quad.q * z * p.w;
+            let m = quad.rho * p.w;
+            let (x, y) = (p.x, p.y);
+            mass[(0, 0)] += m;
+            mass[(0, 5)] -= m * y;
+            mass[(1, 5)] += m * x;
+            mass[(2, 3)] += m * y;
+            mass[(2, 4)] -= m * x;
+            mass[(3, 3)] += m * y * y;
+            mass[(4, 4)] += m * x * x;
+            mass[(3, 4)] -= m * x * y;
+            mass[(5, 5)] += m * (x * x + y * y);
+        }
+        let dof = |i: usize| 3 * quad.nodes[i / 3] + i % 3;
+        for i in 0..12 {
+            let gi = dof(i);
+            for c in 0..6 {
+                r[gi][c] += re[(i, c)];
+            }
+            let fi = free[gi];
+            if fi == usize::MAX {
+                continue;
+            }
+            for j in 0..12 {
+                let fj = free[dof(j)];
+                if fj != usize::MAX {
+                    triplets.push(Triplet::new(fi, fj, ke[(i, j)]));
+                }
+            }
+        }
+    }
+    mass[(1, 1)] = mass[(0, 0)];
+    mass[(2, 2)] = mass[(0, 0)];
+    for i in 0..6 {
+        for j in 0..i {
+            mass[(i, j)] = mass[(j, i)];
+        }
+    }
+
+    let e = SparseColMat::<usize, f64>::try_new_from_triplets(nfree, nfree, &triplets).map_err(
+        |err| {
+            Error::numerical(format!(
+                "cross-section: assembling the warping matrix: {err:?}"
+            ))
+        },
+    )?;
+    let llt = e.sp_cholesky(Side::Lower).map_err(|err| {
+        Error::numerical(format!(
+            "cross-section: the warping stiffness is not positive definite ({err:?}): a material \
+             without stiffness, or elements not connected to the rest of the section"
+        ))
+    })?;
+    // Solves E w = f on the free components; the held ones stay zero.
+    let solve = |rhs: &[Vec<f64>]| -> Vec<Vec<f64>> {
+        let mut m = Mat::<f64>::zeros(nfree, rhs.len());
+        for (c, col) in rhs.iter().enumerate() {
+            for (k, v) in col.iter().enumerate() {
+                if free[k] != usize::MAX {
+                    m[(free[k], c)] = *v;
+                }
+            }
+        }
+        llt.solve_in_place(m.as_mut());
+        (0..rhs.len())
+            .map(|c| {
+                (0..ndof)
+                    .map(|k| {
+                        if free[k] == usize::MAX {
+                            0.0
+                        } else {
+                            m[(free[k], c)]
+                        }
+                    })
+                    .collect()
+            })
+            .collect()
+    };
+    let r_cols: Vec<Vec<f64>> = (0..6)
+        .map(|c| r.iter().map(|row| row[c]).collect())
+        .collect();
+    let xr = solve(&r_cols);
+    let dot = |u: &[f64], v: &[f64]| u.iter().zip(v).map(|(a, b)| a * b).sum::<f64>();
+    let rt = |v: &[f64]| Vector6::from_fn(|c, _| dot(&r_cols[c], v));
+    let mut schur = a6;
+    for i in 0..6 {
+        for j in 0..6 {
+            schur[(i, j)] -= dot(&r_cols[i], &xr[j]);
+        }
+    }
+    let schur = ((schur + schur.transpose()) * 0.5).cholesky().ok_or_else(|| {
+        Error::numerical("cross-section: the section has no positive stiffness (is a material's stiffness zero?)")
+    })?;
+    // X = x_f − Xr Y with Y = S⁻¹(g − Rᵀ x_f).
+    let column = |xf: Vec<f64>, g: Vector6<f64>| -> (Vec<f64>, Vector6<f64>) {
+        let y = schur.solve(&(g - rt(&xf)));
+        let mut x = xf;
+        for (c, col) in xr.iter().enumerate() {
+            for (k, v) in col.iter().enumerate() {
+                x[k] -= v * y[c];
+            }
+        }
+        (x, y)
+    };
+    let mut xs: Vec<Vec<f64>> = vec![Vec::new(); 6];
+    let mut ys = [Vector6::zeros(); 6];
+    for j in 2..6 {
+        let (x, y) = column(vec![0.0; ndof], Vector6::ith(j, 1.0));
+        xs[j] = x;
+        ys[j] = y;
+    }
+    // The shear columns: their warping's slope is the bending columns' (w' = X Aᵀ T).
+    let slope: [(Vec<f64>, Vector6<f64>); 2] = [
+        (xs[4].iter().map(|v| -v).collect(), -ys[4]),
+        (xs[3].clone(), ys[3]),
+    ];
+    let mut f_rhs = Vec::with_capacity(2);
+    let mut g_rhs = Vec::with_capacity(2);
+    for (j, (xd, yd)) in slope.iter().enumerate() {
+        // f = −(C − Cᵀ) X' + M Y',  g = e_j − Mᵀ X'.
+        let mut f = vec![0.0; ndof];
+        let mut g = Vector6::ith(j, 1.0);
+        for quad in &quads {
+            let ve = gather(xd, &quad.nodes);
+            let mut fe = Vec12::zeros();
+            for p in &quad.points {
+                let (b, s) = p.operators();
+                let z = p.rigid();
+                let qs = quad.q * s * ve;
+                let qb = quad.q * b * ve;
+                fe += (s.transpose() * qb - b.transpose() * qs + s.transpose() * quad.q * z * yd)
+                    * p.w;
+                g -= z.transpose() * qs * p.w;
+            }
+            scatter(&mut f, &quad.nodes, &fe);
+        }
+        f_rhs.push(f);
+        g_rhs.push(g);
+    }
+    let xf = solve(&f_rhs);
+    for (j, (xfj, g)) in xf.into_iter().zip(g_rhs).enumerate() {
+        let (x, y) = column(xfj, g);
+        xs[j] = x;
+        ys[j] = y;
+    }
+
+    // F = ∫εᵀQε over the six unit forces, ε = S_zZ Y + B X + S X'.
+    let zero = vec![0.0; ndof];
+    let neg4: Vec<f64> = xs[4].iter().map(|v| -v).collect();
+    let xd: [&[f64]; 6] = [&neg4, &xs[3], &zero, &zero, &zero, &zero];
+    let mut flex = Matrix6::zeros();
+    for quad in &quads {
+        let xe: [Vec12; 6] = std::array::from_fn(|j| gather(&xs[j], &quad.nodes));
+        let de: [Vec12; 6] = std::array::from_fn(|j| gather(xd[j], &quad.nodes));
+        for p in &quad.points {
+            let (b, s) = p.operators();
+            let z = p.rigid();
+            let mut eps = Matrix6::zeros();
+            for j in 0..6 {
+                let col = z * ys[j] + b * xe[j] + s * de[j];
+                eps.set_column(j, &col);
+            }
+            flex += eps.transpose() * quad.q * eps * p.w;
+        }
+    }
+    let flex = (flex + flex.transpose()) * 0.5;
+    let stiffness = flex.cholesky().map(|c| c.inverse()).ok_or_else(|| {
+        Error::numerical("cross-section: the compliance is not positive definite")
+    })?;
+    let stiffness = (stiffness + stiffness.transpose()) * 0.5;
+    let out = BeamMatrices {
+        stiffness: to_array(&stiffness),
+        mass: to_array(&mass),
+        reference,
+    };
+    if out
+        .stiffness
+        .iter()
+        .flatten()
+        .chain(out.mass.iter().flatten())
+        .any(|v| !v.is_finite())
+    {
+        return Err(Error::numerical(
+            "cross-section: non-finite section matrices",
+        ));
+    }
+    Ok(out)
+}
+
+fn to_array(m: &Matrix6<f64>) -> [[f64; 6]; 6] {
+    std::array::from_fn(|i| std::array::from_fn(|j| m[(i, j)]))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::material::Orthotropic;
+    use super::super::mesh::{graded, Mesh, Ply};
+    use super::*;
+
+    fn channel() -> Mesh {
+        // An unsymmetric section: every coupling of an isotropic beam shows.
+        let xs = graded(&[0.0, 0.01, 0.06], &[2, 6]);
+        let ys = graded(&[0.0, 0.01, 0.07, 0.08], &[2, 6, 2]);
+        Mesh::grid(
+            &xs,
+            &ys,
+            vec![Orthotropic::isotropic(70e9, 0.3, 2700.0)],
+            |c| {
+                (c[0] < 0.01 || c[1] < 0.01 || c[1] > 0.07).then_some(Ply {
+                    material: 0,
+                    fibre_angle: 0.0,
+                    orientation: 0.0,
+                })
+            },
+        )
+        .unwrap()
+    }
+
+    fn max_rel(a: &[[f64; 6]; 6], b: &[[f64; 6]; 6]) -> f64 {
+        let scale = a.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+        a.iter()
+            .flatten()
+            .zip(b.iter().flatten())
+            .fold(0.0, |m, (x, y)| m.max((x - y).abs() / scale))
+    }
+
+    #[test]
+    fn the_matrices_do_not_depend_on_which_warping_nodes_are_held() {
+        let mesh = channel();
+        let a = analyse_pinned(&mesh, [0.02, 0.03], 0).unwrap();
+        let b = analyse_pinned(&mesh, [0.02, 0.03], mesh.nodes.len() / 2).unwrap();
+        let d = max_rel(&a.stiffness, &b.stiffness);
+        assert!(d < 1e-9, "stiffness changed by {d:e} with the held nodes");
+    }
+
+    #[test]
+    fn moving_the_reference_point_is_the_rigid_transform() {
+        let mesh = channel();
+        let a = analyse(&mesh, [0.0, 0.0]).unwrap();
+        let b = analyse(&mesh, [0.03, -0.01]).unwrap();
+        let moved = a.about([0.03, -0.01]);
+        assert!(max_rel(&moved.stiffness, &b.stiffness) < 1e-9);
+        assert!(max_rel(&moved.mass, &b.mass) < 1e-12);
+    }
+
+    #[test]
+    fn the_stiffness_is_symmetric_positive_definite() {
+        let k = analyse(&channel(), [0.0, 0.0]).unwrap().stiffness;
+        let m = Matrix6::from_fn(|i, j| k[i][j]);
+        assert!((m - m.transpose()).abs().max() <= 1e-12 * m.abs().max());
+        assert!(m.cholesky().is_some());
+    }
+
+    #[test]
+    fn a_material_without_stiffness_or_a_bad_point_is_an_error() {
+        let mut mesh = channel();
+        mesh.materials[0].g12 = 0.0;
+        assert!(analyse(&mesh, [0.0, 0.0]).is_err());
+        assert!(analyse(&channel(), [f64::NAN, 0.0]).is_err());
+    }
+}
