@@ -1,4 +1,4 @@
-//! One cross-section analysis by 2-D finite elements (docs/model.md §11.10): a composite box of a
+//! One cross-section analysis by 2-D finite elements (docs/model.md §11.11): a composite box of a
 //! blade spar's proportions, meshed four elements through its walls, about as many elements as
 //! a blade section's layup mesh.
 

@@ -1,4 +1,4 @@
-//! Cross sections by two-dimensional finite elements (docs/model.md §11.10) against closed forms:
+//! Cross sections by two-dimensional finite elements (docs/model.md §11.11) against closed forms:
 //! the solid rectangle (with the torsion and flexure series), the circular tube, the thin
 //! rectangular box (Bredt), the channel's shear centre, and composite boxes against thin-walled
 //! laminate theory and the paper's Table 1.

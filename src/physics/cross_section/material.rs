@@ -1,4 +1,4 @@
-//! The 3-D stiffness of an orthotropic ply, turned into the section's axes (docs/model.md §11.10).
+//! The 3-D stiffness of an orthotropic ply, turned into the section's axes (docs/model.md §11.11).
 //!
 //! Material axes: 1 along the fibre, 2 across it in the ply's plane, 3 normal to the ply. A ply
 //! lies in its layer with the fibre turned by the fibre angle θ about the layer normal, from the

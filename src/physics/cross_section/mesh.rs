@@ -1,4 +1,4 @@
-//! The section mesh (docs/model.md §11.10): nodes in the section plane, 4-node bilinear
+//! The section mesh (docs/model.md §11.11): nodes in the section plane, 4-node bilinear
 //! quadrilaterals, each with its material, fibre angle and layer orientation.
 //!
 //! Coordinates `(x, y)` are in the section plane, `z` along the beam, `x × y = z`. Element nodes

@@ -1,4 +1,4 @@
-//! Cross-section analysis by two-dimensional finite elements (docs/model.md §11.10): the
+//! Cross-section analysis by two-dimensional finite elements (docs/model.md §11.11): the
 //! anisotropic beam theory of Giavotto et al. (1983) as BECAS discretises it (Blasques 2012),
 //! from a meshed section to its 6×6 stiffness and mass matrices and the engineering properties
 //! read from them.

@@ -1,4 +1,4 @@
-//! Engineering properties from a section's 6×6 matrices (docs/model.md §11.10): centres, axial,
+//! Engineering properties from a section's 6×6 matrices (docs/model.md §11.11): centres, axial,
 //! bending, torsion and shear stiffnesses, principal axes, mass and its centre.
 
 use super::solve::BeamMatrices;

@@ -1,4 +1,4 @@
-//! The section's 6×6 stiffness and mass from its mesh (docs/model.md §11.10): Giavotto's
+//! The section's 6×6 stiffness and mass from its mesh (docs/model.md §11.11): Giavotto's
 //! anisotropic beam theory discretised as in BECAS, solved for the warping.
 //!
 //! A point of the section at `(x, y)` moves by the section's rigid motion plus the warping:
