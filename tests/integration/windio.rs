@@ -319,18 +319,10 @@ fn a_reinforcement_centred_on_the_trailing_edge_runs_across_it() {
     let w = read(OLD);
     // The last airfoil position before the tip: FFA-W3-211 unblended.
     let eta = 0.7717438522715817;
-    let shape = &w.blade.outer_shape;
-    let af = w.airfoil("FFA-W3-211").unwrap();
-    let contour = Contour::new(
-        &af.x,
-        &af.y,
-        shape.chord.linear(eta),
-        shape.pitch_axis.linear(eta),
-    )
-    .unwrap();
+    let (contour, twist) = section(&w, eta, "FFA-W3-211");
     let at = Station {
         eta,
-        twist: shape.twist.linear(eta),
+        twist,
         contour: &contour,
     };
     let mut layers = w.blade.structure.layers.clone();

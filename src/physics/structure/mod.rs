@@ -217,8 +217,9 @@ pub trait Structure: Send + Sync {
     }
     /// The modes these coordinates leave out, as a structure of their own (diagonal stiffness,
     /// their motion rows and static load), where the coordinates truncate a larger basis: the
-    /// system adds their static response to the equilibrium, the truncated basis's correction
-    /// (docs/model.md §12.6). None for a complete basis (the paper's blade).
+    /// system adds their static response to the equilibrium and their quasi-static response to
+    /// its state matrix, the truncated basis's correction (docs/model.md §12.6). None for a
+    /// complete basis (the paper's blade).
     fn left_out(&self) -> Option<&dyn Structure> {
         None
     }

@@ -85,7 +85,8 @@ impl TabulatedStructure {
 
     /// This structure with `left_out`, the modes of the same blade beyond its own (from
     /// [`ModalBlade::modes`] at the same rotor speed, ascending), whose static response the
-    /// system adds to the equilibrium (docs/model.md §12.6); none when `left_out` is empty.
+    /// system adds to the equilibrium and its state matrix (docs/model.md §12.6); none when
+    /// `left_out` is empty.
     pub fn with_left_out(
         mut self,
         left_out: Vec<BladeMode>,
