@@ -146,12 +146,12 @@ pub fn settle<T>(
         let left_out = system.left_out_count();
         shape.resize(2 * n + left_out, 0.0);
         let held = system.left_out_unscaled(&shape[2 * n..]);
-        let system = system.with_left_out_at(held);
+        let system = system.with_left_out_at(&held);
         let equilibrium = system.equilibrium().map_err(|e| e.at(context(&b.tag)))?;
         let (system, left_out_scaled) = match system.left_out_response(&equilibrium) {
             Some(p) => {
                 let scaled = system.left_out_scaled(&p);
-                (system.with_left_out_at(p), scaled)
+                (system.with_left_out_at(&p), scaled)
             }
             None => (system, Vec::new()),
         };

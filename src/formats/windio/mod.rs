@@ -92,28 +92,21 @@ pub fn parse(text: &str, file: &str) -> Result<WindIo> {
     let blade_node = components.req("blade", "the blade's outer shape and layup")?;
     let blade = blade::read_blade(&blade_node)?;
 
-    let airfoils_node = root.req("airfoils", "a list of airfoils")?;
-    let airfoil_nodes = airfoils_node.items()?;
-    let airfoils = airfoil_nodes
-        .iter()
-        .map(airfoils::read_airfoil)
-        .collect::<Result<Vec<_>>>()?;
-    unique(
-        &airfoil_nodes,
-        airfoils.iter().map(|a| a.name.as_str()),
+    let airfoils = named_list(
+        &root,
+        "airfoils",
+        "a list of airfoils",
         "airfoil",
+        airfoils::read_airfoil,
+        |a| a.name.as_str(),
     )?;
-
-    let materials_node = root.req("materials", "a list of materials")?;
-    let material_nodes = materials_node.items()?;
-    let materials = material_nodes
-        .iter()
-        .map(materials::read_material)
-        .collect::<Result<Vec<_>>>()?;
-    unique(
-        &material_nodes,
-        materials.iter().map(|m| m.name.as_str()),
+    let materials = named_list(
+        &root,
+        "materials",
+        "a list of materials",
         "material",
+        materials::read_material,
+        |m| m.name.as_str(),
     )?;
 
     let assembly = root.req("assembly", "a mapping with number_of_blades")?;
@@ -133,6 +126,21 @@ pub fn parse(text: &str, file: &str) -> Result<WindIo> {
 }
 
 /// Two entries of one name would make every reference to it ambiguous.
+/// The list at `key` of `root`, each item read by `read` and named by `name`, no name twice.
+fn named_list<T>(
+    root: &Node,
+    key: &str,
+    expected: &str,
+    what: &str,
+    read: impl Fn(&Node) -> Result<T>,
+    name: impl Fn(&T) -> &str,
+) -> Result<Vec<T>> {
+    let nodes = root.req(key, expected)?.items()?;
+    let items = nodes.iter().map(read).collect::<Result<Vec<_>>>()?;
+    unique(&nodes, items.iter().map(name), what)?;
+    Ok(items)
+}
+
 fn unique<'n>(nodes: &[Node], names: impl Iterator<Item = &'n str>, what: &str) -> Result<()> {
     let mut seen: HashMap<&str, usize> = HashMap::new();
     for (i, name) in names.enumerate() {

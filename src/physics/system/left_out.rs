@@ -17,19 +17,21 @@ pub(super) struct LeftOut {
     rows: Vec<[DVector<f64>; RATES]>,
     /// The same at the tip.
     tip_rows: [DVector<f64>; RATES],
-    /// `1/ω_j²`: each mode's static flexibility.
-    flexibility: DVector<f64>,
+    /// `ω_j²`: each mode's stiffness.
+    stiffness: DVector<f64>,
     /// Their share of the structure's own static load (the centrifugal pull on a curved axis).
     static_load: DVector<f64>,
+    /// Their static response to it, `[φ, u, v]` at each station: the part of every offset the
+    /// strip loads do not change.
+    fixed: Vec<[f64; RATES]>,
     /// Per mode, the largest twist (rad) or flap over `reach` (m/m) it gives at a station per
     /// unit coordinate: the scale on which the operating point's passes compare coordinates.
     scale: DVector<f64>,
 }
 
-/// The left-out modes' static coordinates and the motion they give.
+/// The motion the left-out modes' static coordinates give.
 #[derive(Clone)]
 pub(super) struct Offsets {
-    pub coordinates: DVector<f64>,
     /// `[φ, u, v]` at each station from the structure's own static load (which the
     /// equilibrium's load continuation never ramps) …
     pub fixed: Vec<[f64; RATES]>,
@@ -49,12 +51,8 @@ impl LeftOut {
             let r = rest.motion_rows(x);
             [r.twist, r.flap, r.edge]
         };
-        let stiffness = rest.stiffness();
-        let flexibility = DVector::from_iterator(
-            stiffness.nrows(),
-            stiffness.diagonal().iter().map(|k| 1.0 / k),
-        );
-        if !flexibility.iter().all(|f| f.is_finite() && *f > 0.0) {
+        let stiffness = rest.stiffness().diagonal();
+        if !stiffness.iter().all(|k| k.is_finite() && *k > 0.0) {
             return Err(Error::numerical(
                 "the truncated basis's static correction: a left-out mode has no stiffness",
             ));
@@ -67,30 +65,37 @@ impl LeftOut {
         }
         let rows: Vec<_> = stations.iter().map(|s| motion(s.x)).collect();
         let reach = structure.hub_radius() + structure.length();
-        let scale = DVector::from_fn(flexibility.len(), |j, _| {
+        let scale = DVector::from_fn(stiffness.len(), |j, _| {
             rows.iter().fold(0.0, |m: f64, [twist, flap, _]| {
                 m.max(twist[j].abs()).max(flap[j].abs() / reach)
             })
         });
+        let own = static_load.component_div(&stiffness);
+        let fixed = rows.iter().map(|r| motion_of(r, &own)).collect();
         Ok(Some(LeftOut {
-            rows,
             tip_rows: motion(structure.length()),
-            flexibility,
+            rows,
+            stiffness,
             static_load,
+            fixed,
             scale,
         }))
     }
 
     /// The motion coordinates `p` give at the stations and the tip.
-    pub fn offsets(&self, p: DVector<f64>) -> Offsets {
-        let fixed = self.static_load.component_mul(&self.flexibility);
-        let loaded = &p - &fixed;
-        let at = |rows: &[DVector<f64>; RATES], p: &DVector<f64>| rows.each_ref().map(|r| r.dot(p));
+    pub fn offsets(&self, p: &DVector<f64>) -> Offsets {
         Offsets {
-            fixed: self.rows.iter().map(|r| at(r, &fixed)).collect(),
-            loaded: self.rows.iter().map(|r| at(r, &loaded)).collect(),
-            tip: at(&self.tip_rows, &p),
-            coordinates: p,
+            loaded: (self.rows.iter().zip(&self.fixed))
+                .map(|(r, fixed)| {
+                    let mut d = motion_of(r, p);
+                    for (d, f) in d.iter_mut().zip(fixed) {
+                        *d -= f;
+                    }
+                    d
+                })
+                .collect(),
+            fixed: self.fixed.clone(),
+            tip: motion_of(&self.tip_rows, p),
         }
     }
 
@@ -112,7 +117,7 @@ impl LeftOut {
     }
 
     pub fn len(&self) -> usize {
-        self.flexibility.len()
+        self.stiffness.len()
     }
 
     /// The generalised load on the left-out modes before any strip: the structure's own.
@@ -133,12 +138,17 @@ impl LeftOut {
     }
 
     /// `ω_j²` of each left-out mode.
-    pub fn stiffness(&self) -> DVector<f64> {
-        self.flexibility.map(|f| 1.0 / f)
+    pub fn stiffness(&self) -> &DVector<f64> {
+        &self.stiffness
     }
 
     /// The static coordinates under generalised load `force`.
     pub fn coordinates(&self, force: DVector<f64>) -> DVector<f64> {
-        force.component_mul(&self.flexibility)
+        force.component_div(&self.stiffness)
     }
+}
+
+/// `[φ, u, v]` of coordinates `p` on `rows`.
+fn motion_of(rows: &[DVector<f64>; RATES], p: &DVector<f64>) -> [f64; RATES] {
+    rows.each_ref().map(|r| r.dot(p))
 }

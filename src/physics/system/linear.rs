@@ -1,8 +1,8 @@
 //! The system linearised about its equilibrium (docs/model.md §6): the state matrix.
 
-use super::{check_finite, System};
+use super::{check_finite, StripScratch, System};
 use crate::error::{Error, Result};
-use crate::physics::aero::{StripEval, LOADS, RATES};
+use crate::physics::aero::{LOADS, RATES};
 use crate::physics::structure::Structure;
 use nalgebra::{DMatrix, DVector};
 use std::sync::Arc;
@@ -57,18 +57,13 @@ impl System {
         let inputs = 2 * nq + na;
         // ∂Q_R/∂[q, q̇, z] (m × inputs), ∂Q_R/∂p, ∂Q/∂p, ∂G/∂p.
         let mut qr = DMatrix::zeros(m, inputs);
-        let mut qr_p = DMatrix::from_diagonal(&left_out.stiffness());
+        let mut qr_p = DMatrix::from_diagonal(left_out.stiffness());
         let mut qk_p = DMatrix::zeros(nq, m);
         let mut g_p = DMatrix::zeros(na, m);
         let (q, v, z) = self.split(x);
-        let mut eval = StripEval::new(ns);
-        let mut zs = Vec::with_capacity(ns);
+        let mut scratch = StripScratch::new(ns);
         for (si, s) in self.stations.iter().enumerate() {
-            let k = self.kinematics(si, q, v, 1.0);
-            zs.clear();
-            zs.extend(z.rows(si * ns, ns).iter());
-            eval.clear();
-            self.model.evaluate(s, &k, &zs, &mut eval, true);
+            let eval = self.evaluate_station(si, (q, v, z), 1.0, true, &mut scratch);
             let (rows, left) = (self.kinematic_rows(si), left_out.rows_at(si));
             let w = s.weight;
             for l in 0..LOADS {

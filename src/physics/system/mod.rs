@@ -263,14 +263,7 @@ impl System {
 
     // ---- internals ----
 
-    fn split<'a>(
-        &self,
-        x: &'a DVector<f64>,
-    ) -> (
-        nalgebra::DVectorView<'a, f64>,
-        nalgebra::DVectorView<'a, f64>,
-        nalgebra::DVectorView<'a, f64>,
-    ) {
+    fn split<'a>(&self, x: &'a DVector<f64>) -> StateViews<'a> {
         let nq = self.nq();
         (x.rows(0, nq), x.rows(nq, nq), x.rows(2 * nq, self.n_aero()))
     }
@@ -318,6 +311,26 @@ impl System {
         }
     }
 
+    /// Station `si`'s strip at coordinates, rates and aerodynamic states `(q, v, z)` (`ramp`:
+    /// [`System::position_at`]), with its derivatives when `want_jac`.
+    fn evaluate_station<'s>(
+        &self,
+        si: usize,
+        (q, v, z): StateViews,
+        ramp: f64,
+        want_jac: bool,
+        scratch: &'s mut StripScratch,
+    ) -> &'s StripEval {
+        let k = self.kinematics(si, q, v, ramp);
+        scratch.z.clear();
+        scratch.z.extend(z.rows(si * self.ns, self.ns).iter());
+        scratch.eval.clear();
+        let s = &self.stations[si];
+        self.model
+            .evaluate(s, &k, &scratch.z, &mut scratch.eval, want_jac);
+        &scratch.eval
+    }
+
     fn kinematic_rows(&self, si: usize) -> &[DVector<f64>; RATES] {
         &self.rows[si]
     }
@@ -350,14 +363,9 @@ impl System {
             gv: sized(want_all, na, nq),
             gz: sized(want_all, na, na),
         };
-        let mut eval = StripEval::new(ns);
-        let mut zs = Vec::with_capacity(ns);
+        let mut scratch = StripScratch::new(ns);
         for (si, s) in self.stations.iter().enumerate() {
-            let k = self.kinematics(si, q, v, ramp);
-            zs.clear();
-            zs.extend(z.rows(si * ns, ns).iter());
-            eval.clear();
-            self.model.evaluate(s, &k, &zs, &mut eval, want_jac);
+            let eval = self.evaluate_station(si, (q, v, z), ramp, want_jac, &mut scratch);
             let rows = self.kinematic_rows(si);
             let w = s.weight;
             for (load, row) in eval.loads.iter().zip(rows) {
@@ -417,14 +425,9 @@ impl System {
         let left_out = self.left_out.as_deref()?;
         let (q, v, z) = self.split(x);
         let mut force = left_out.own_load();
-        let mut eval = StripEval::new(self.ns);
-        let mut zs = Vec::with_capacity(self.ns);
+        let mut scratch = StripScratch::new(self.ns);
         for (si, s) in self.stations.iter().enumerate() {
-            let k = self.kinematics(si, q, v, 1.0);
-            zs.clear();
-            zs.extend(z.rows(si * self.ns, self.ns).iter());
-            eval.clear();
-            self.model.evaluate(s, &k, &zs, &mut eval, false);
+            let eval = self.evaluate_station(si, (q, v, z), 1.0, false, &mut scratch);
             left_out.add_strip(&mut force, si, s.weight, &eval.loads);
         }
         Some(left_out.coordinates(force))
@@ -432,17 +435,12 @@ impl System {
 
     /// This system with the left-out modes held at static coordinates `p` (from
     /// [`System::left_out_response`]); unchanged where the structure leaves none out.
-    pub fn with_left_out_at(mut self, p: DVector<f64>) -> System {
+    pub fn with_left_out_at(mut self, p: &DVector<f64>) -> System {
         if let Some(left_out) = self.left_out.as_deref() {
             debug_assert_eq!(p.len(), left_out.len());
             self.offsets = Some(left_out.offsets(p));
         }
         self
-    }
-
-    /// The left-out modes' coordinates the system holds (none without a correction).
-    pub fn left_out_coordinates(&self) -> Option<&DVector<f64>> {
-        self.offsets.as_ref().map(|o| &o.coordinates)
     }
 
     /// How many modes the structure leaves out (0 for a complete basis).
@@ -461,6 +459,28 @@ impl System {
         self.left_out
             .as_deref()
             .map_or_else(|| DVector::zeros(0), |l| l.unscaled(scaled))
+    }
+}
+
+/// The coordinates, their rates and the aerodynamic states of one state vector.
+type StateViews<'a> = (
+    nalgebra::DVectorView<'a, f64>,
+    nalgebra::DVectorView<'a, f64>,
+    nalgebra::DVectorView<'a, f64>,
+);
+
+/// What evaluating one station's strip at a time reuses.
+struct StripScratch {
+    eval: StripEval,
+    z: Vec<f64>,
+}
+
+impl StripScratch {
+    fn new(states: usize) -> StripScratch {
+        StripScratch {
+            eval: StripEval::new(states),
+            z: Vec::with_capacity(states),
+        }
     }
 }
 
