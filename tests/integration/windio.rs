@@ -363,3 +363,114 @@ fn the_current_iea15_ontology_reads_in_milliseconds() {
     eprintln!("IEA 15MW ontology: {:.1} ms per read", each * 1e3);
     assert!(each < 0.5, "{each} s per read");
 }
+
+/// The largest distance across the contour between the two surfaces' points of the same
+/// parameter (suction point j against pressure point j), in chord units.
+fn shape_thickness(x: &[f64], y: &[f64]) -> f64 {
+    let n = (x.len() - 1) / 2;
+    (0..=n)
+        .map(|j| (y[n - j] - y[n + j]).abs())
+        .fold(0.0, f64::max)
+}
+
+/// Distance from `p` to the polyline `(x, y)`.
+fn off_line(x: &[f64], y: &[f64], p: [f64; 2]) -> f64 {
+    (0..x.len() - 1)
+        .map(|i| {
+            let (a, b) = ([x[i], y[i]], [x[i + 1], y[i + 1]]);
+            let d = [b[0] - a[0], b[1] - a[1]];
+            let len2 = d[0] * d[0] + d[1] * d[1];
+            let t = if len2 > 0.0 {
+                (((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1]) / len2).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            (p[0] - a[0] - t * d[0]).hypot(p[1] - a[1] - t * d[1])
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+#[test]
+fn a_station_at_a_listed_airfoil_has_that_airfoils_shape() {
+    let w = read(CURRENT);
+    for (eta, name) in STATIONS {
+        let b = w.thickness_blend(eta);
+        let af = w.airfoil(name).unwrap();
+        assert!(
+            (b.thickness - af.relative_thickness).abs() < 1e-12,
+            "{eta}: {}",
+            b.thickness
+        );
+        let listed = if b.weight == 0.0 {
+            b.thinner
+        } else {
+            b.thicker
+        };
+        assert!(b.weight == 0.0 || b.weight == 1.0, "{eta}: {}", b.weight);
+        assert_eq!(listed.name, name);
+        let (x, y) = w.station_shape(eta, CURRENT).unwrap();
+        assert_eq!(x.len(), 2 * windio::thickness::SURFACE_POINTS + 1);
+        let worst = x
+            .iter()
+            .zip(&y)
+            .map(|(&px, &py)| off_line(&af.x, &af.y, [px, py]))
+            .fold(0.0, f64::max);
+        assert!(
+            worst < 1e-12,
+            "{eta} {name}: a point {worst:e} off the contour"
+        );
+        // The leading edge is the sample in the middle, the ends the trailing edge's.
+        let least = af.x.iter().copied().fold(f64::INFINITY, f64::min);
+        assert!((x[x.len() / 2] - least).abs() < 1e-12);
+        assert_eq!((x[0], y[0]), (af.x[0], af.y[0]));
+        let last = af.x.len() - 1;
+        assert_eq!((x[x.len() - 1], y[y.len() - 1]), (af.x[last], af.y[last]));
+    }
+}
+
+#[test]
+fn stations_between_listed_airfoils_blend_them_in_relative_thickness() {
+    for (file, thinnest) in [(CURRENT, 0.211), (OLD, 0.18)] {
+        let w = read(file);
+        let mut previous = f64::INFINITY;
+        let mut worst: f64 = 0.0;
+        for i in 0..=200 {
+            let eta = i as f64 / 200.0;
+            let b = w.thickness_blend(eta);
+            // The IEA 15MW thins monotonically from its cylinder to the tip airfoil.
+            assert!(b.thickness <= previous + 1e-15, "{file} {eta}");
+            assert!((thinnest - 1e-12..=1.0 + 1e-12).contains(&b.thickness));
+            previous = b.thickness;
+            let (lo, hi) = (b.thinner.relative_thickness, b.thicker.relative_thickness);
+            assert!(lo <= b.thickness + 1e-12 && b.thickness <= hi + 1e-12);
+            if hi > lo {
+                assert!((lo + b.weight * (hi - lo) - b.thickness).abs() < 1e-12);
+            }
+            // The blended shape is as thick as the station is said to be, and its contour
+            // places every layer and web of the layup.
+            let (x, y) = w.station_shape(eta, file).unwrap();
+            let t = shape_thickness(&x, &y);
+            worst = worst.max((t / b.thickness - 1.0).abs());
+            let shape = &w.blade.outer_shape;
+            let contour = Contour::new(
+                &x,
+                &y,
+                shape.chord.linear(eta),
+                shape.pitch_axis.linear(eta),
+            )
+            .unwrap_or_else(|e| panic!("{file} {eta}: {e}"));
+            let at = Station {
+                eta,
+                twist: shape.twist.linear(eta),
+                contour: &contour,
+            };
+            place_layers(&w.blade.structure.layers, &at, file)
+                .unwrap_or_else(|e| panic!("{file} {eta}: {e}"));
+            for web in &w.blade.structure.webs {
+                place_web(web, &at, file).unwrap_or_else(|e| panic!("{file} {eta}: {e}"));
+            }
+        }
+        eprintln!("{file}: thickness within {worst:.4}");
+        assert!(worst < 0.03, "{file}: shape thickness off by {worst}");
+    }
+}

@@ -21,6 +21,7 @@ pub mod arc;
 pub mod blade;
 pub mod distribution;
 pub mod materials;
+pub mod thickness;
 mod yaml;
 
 pub use airfoils::{Airfoil, Polar};
@@ -30,6 +31,7 @@ pub use blade::{
 };
 pub use distribution::Distribution;
 pub use materials::{Elastic, Material};
+pub use thickness::ThicknessBlend;
 
 use super::text::read_text;
 use crate::error::Result;
