@@ -2,6 +2,7 @@
 //! blade spar's proportions, meshed four elements through its walls, about as many elements as
 //! a blade section's layup mesh.
 
+use flutterscope::physics::blade::windio::LayupBlade;
 use flutterscope::physics::cross_section::mesh::graded;
 use flutterscope::physics::cross_section::{analyse, Mesh, Orthotropic, Ply};
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -60,4 +61,14 @@ fn spar_box(along: f64) -> Mesh {
 fn composite_box(b: divan::Bencher, along: f64) {
     let mesh = spar_box(along);
     b.bench(|| analyse(divan::black_box(&mesh), [0.0, 0.0]).unwrap());
+}
+
+/// Every station of the IEA 15MW from its WindIO layup (50 sections, about 1 000–1 700
+/// elements each), meshed and analysed in parallel on all cores. Target < 50 ms on two cores.
+#[divan::bench(sample_count = 10)]
+fn iea15mw_blade_from_its_layup(b: divan::Bencher) {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("presets/blades/iea15mw-windio/IEA-15-240-RWT.yaml");
+    let w = std::sync::Arc::new(flutterscope::formats::windio::read(&path).unwrap());
+    b.bench(|| LayupBlade::new(w.clone(), None, None).unwrap());
 }

@@ -108,3 +108,32 @@ fn solve_and_start_stream(bencher: divan::Bencher, model: &str) {
         (s.solved.is_ok(), s.stream.is_ok())
     });
 }
+
+/// The bend–twist-coupled IEA 15MW from its WindIO layup (`iea15mw-btc`): a key that turns the
+/// spar caps a degree further (a ply angle never analysed before, as a drag gives) → the turned
+/// stations' sections (21 of 50, r/R 0.6–1.0) → beam → modal basis → operating point →
+/// eigen-analysis → 160×48 frame. Target < 150 ms.
+#[divan::bench(sample_count = 10, sample_size = 1)]
+fn ply_angle_to_solved_frame_160x48_iea15mw_btc(bencher: divan::Bencher) {
+    let p = Preset::load("iea15mw-btc", &[]).expect("iea15mw-btc loads");
+    let mut state = settled_state(
+        "iea15mw-btc",
+        p,
+        &Physics,
+        ViewKind::Main,
+        MarkerKind::Braille,
+    );
+    state.focus = PARAMS.iter().position(|p| p.label == "ply angle").unwrap();
+    let mut terminal = Terminal::new(TestBackend::new(160, 48)).unwrap();
+    bencher.bench_local(|| {
+        for effect in update(&mut state, Msg::Action(Action::Increase)) {
+            if let Effect::Solve { gen, preset } = effect {
+                let (solved, stream) = runner::solve(&Physics, gen, &preset, &Cancel::never());
+                update(&mut state, solved);
+                divan::black_box(stream.is_ok());
+            }
+        }
+        assert!(!state.solving());
+        terminal.draw(|f| ui::render(&state, f)).unwrap();
+    });
+}

@@ -12,7 +12,7 @@ fn main() {
 fn preset(shape: ContourShape) -> ValidPreset {
     let mut p = Preset::default();
     p.section.contour.shape = shape;
-    p.section.ply_angle = 30.0;
+    p.section.ply_angle = Some(30.0);
     p.validate().unwrap()
 }
 

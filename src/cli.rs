@@ -215,8 +215,11 @@ pub enum Command {
         #[command(flatten)]
         preset: PresetArgs,
         /// Tabulate over a key, e.g. section.ply_angle=0:90:15.
-        #[arg(long, value_name = "KEY=A:B:STEP")]
+        #[arg(long, value_name = "KEY=A:B:STEP", conflicts_with = "at")]
         vary: Option<String>,
+        /// A WindIO blade's section at this span fraction, from its layup (e.g. 0.7).
+        #[arg(long, value_name = "ETA")]
+        at: Option<f64>,
         #[arg(long)]
         json: bool,
         #[arg(long, value_name = "FILE")]

@@ -74,9 +74,17 @@ pub fn run(command: Command) -> Result<()> {
         } => simulate::run(&preset.load()?, json, csv, plot.as_deref()),
         Command::Section {
             preset,
+            at: Some(eta),
+            json,
+            plot,
+            ..
+        } => section::run_at(&preset.load_for_layup()?, eta, json, plot.as_deref()),
+        Command::Section {
+            preset,
             vary,
             json,
             plot,
+            ..
         } => section::run(
             &preset.load_for_layup()?,
             vary.as_deref(),

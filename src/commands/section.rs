@@ -5,6 +5,8 @@
 use crate::commands::{parse_vary, print_json, print_text};
 use crate::error::{Error, Result};
 use crate::model::section::layup_input;
+use crate::physics::blade::windio::layup_section as layup_station;
+use crate::physics::cross_section::SectionProperties;
 use crate::physics::laminate::{layup_section, LayupSection, Stiffness3, WallLaminate};
 use crate::physics::section::SectionProps;
 use crate::preset::{key_spec, ContourShape, SectionSource, ValidPreset};
@@ -277,4 +279,141 @@ fn shown_c23(p: &SectionProps) -> f64 {
     } else {
         p.c23
     }
+}
+
+/// A WindIO blade's section at a span fraction, as its layup gives it (docs/model.md §11.12).
+#[derive(Serialize)]
+struct LayupStationReport<'a> {
+    preset: &'a str,
+    file: &'a str,
+    /// Span fraction.
+    eta: f64,
+    /// The fibre angle the preset's ply turn gives here (deg), `None`: the ontology's own.
+    ply_angle_deg: Option<f64>,
+    turned_layers: Vec<String>,
+    /// Elements of the section mesh and the mass the mesher cut where the walls meet (kg/m).
+    elements: usize,
+    clipped_mass: f64,
+    /// About the reference (pitch) axis, BeamDyn's section axes (x₁ toward the suction side,
+    /// x₂ toward the trailing edge).
+    stiffness: [[f64; 6]; 6],
+    mass_matrix: [[f64; 6]; 6],
+    properties: SectionProperties,
+    /// The bend–twist coupling over √(EI_flap·GJ) (positive: downwind bending twists toward
+    /// feather).
+    coupling_ratio: f64,
+}
+
+/// `section --at ETA` on a WindIO blade: the section at span fraction `eta` from the layup, with
+/// the preset's ply turn; `--plot` draws its mesh coloured by material.
+pub fn run_at(p: &ValidPreset, eta: f64, json: bool, plot: Option<&Path>) -> Result<()> {
+    let layup = p
+        .tabulated_blade()
+        .and_then(|b| b.layup.clone())
+        .ok_or_else(|| {
+            Error::usage(format!(
+                "section --at draws a WindIO blade's section from its layup; {} has blade.source \
+                 = \"{}\" (without --at, section evaluates the paper's layup keys)",
+                p.display_name(),
+                p.blade.source.name()
+            ))
+        })?;
+    if !(0.0..=1.0).contains(&eta) {
+        return Err(Error::usage(format!(
+            "section --at {eta}: expected a span fraction in [0, 1]"
+        )));
+    }
+    if let Some(path) = plot {
+        crate::plot::format_for(path)?;
+    }
+    let turn = layup
+        .turn
+        .as_ref()
+        .filter(|t| (t.span[0]..=t.span[1]).contains(&eta));
+    let s = layup_station(&layup.windio, eta, turn, None)?;
+    let props = s.properties;
+    let report = LayupStationReport {
+        preset: p.display_name(),
+        file: &layup.windio.path,
+        eta,
+        ply_angle_deg: turn.map(|t| t.angle.to_degrees()),
+        turned_layers: turn.map(|t| t.layers.clone()).unwrap_or_default(),
+        elements: s.mesh.mesh.elements.len(),
+        clipped_mass: s.mesh.clipped_mass,
+        stiffness: s.matrices.stiffness,
+        mass_matrix: s.matrices.mass,
+        coupling_ratio: s.flap_twist_ratio(),
+        properties: props,
+    };
+    if let Some(path) = plot {
+        let names: Vec<&str> = layup
+            .windio
+            .materials
+            .iter()
+            .map(|m| m.name.as_str())
+            .collect();
+        let fig =
+            crate::plot::from_results::layup_section(p.display_name(), eta, &s.mesh.mesh, &names);
+        crate::plot::write(&fig, path)?;
+        eprintln!("plot written to {}", path.display());
+    }
+    if json {
+        print_json(&report)
+    } else {
+        print_text(&station_text(&report))
+    }
+}
+
+fn station_text(r: &LayupStationReport) -> String {
+    let p = &r.properties;
+    let c = p.bending_torsion;
+    let mut out = format!(
+        "{} — section at {:.1} % span from the layup of {}\n",
+        r.preset,
+        100.0 * r.eta,
+        r.file
+    );
+    match r.ply_angle_deg {
+        Some(a) => {
+            out += &format!(
+                "  fibres of {} turned to {a:+.2}°\n",
+                r.turned_layers.join(", ")
+            )
+        }
+        None => out += "  the ontology's own fibre angles\n",
+    }
+    out += &format!(
+        "  mesh: {} elements; mass cut where the walls meet {:.3} kg/m\n\n",
+        r.elements, r.clipped_mass
+    );
+    out += &format!("  mass per length     {:>12.4} kg/m\n", p.mass);
+    out += &format!("  EA                  {:>12.5e} N\n", p.ea);
+    out += &format!("  EI flap (about x₂)  {:>12.5e} N·m²\n", c[1][1]);
+    out += &format!("  EI edge (about x₁)  {:>12.5e} N·m²\n", c[0][0]);
+    out += &format!("  GJ                  {:>12.5e} N·m²\n", p.gj);
+    out += &format!(
+        "  flap–twist coupling {:>12.5e} N·m²   g/√(EI_flap·GJ) = {:+.4} (+: feather under downwind bending)\n",
+        c[1][2], r.coupling_ratio
+    );
+    out += &format!(
+        "  principal EI        {:>12.5e} {:.5e} N·m², first axis at {:+.2}° from x₁\n",
+        p.ei_principal[0],
+        p.ei_principal[1],
+        p.principal_angle.to_degrees()
+    );
+    let at =
+        |name: &str, v: [f64; 2]| format!("  {name:<19} x₁ {:+.4} m  x₂ {:+.4} m\n", v[0], v[1]);
+    out += "\n  centres from the pitch axis (x₁ toward the suction side, x₂ toward the trailing edge):\n";
+    out += &at("elastic centre", p.elastic_centre);
+    out += &at("shear centre", p.shear_centre);
+    out += &at("centre of mass", p.centre_of_mass);
+    out += "\n  6×6 stiffness about the pitch axis (BeamDyn order: shear x₁, x₂, extension, bending x₁, x₂, torsion):\n";
+    for row in &r.stiffness {
+        out += "   ";
+        for v in row {
+            out += &format!(" {v:>12.4e}");
+        }
+        out += "\n";
+    }
+    out
 }

@@ -17,11 +17,14 @@ use super::htc::htc_files;
 use super::kept::Kept;
 use crate::error::{Error, Result};
 use crate::formats::text_file::TextFile;
+use crate::formats::windio::{self, WindIo};
 use crate::physics::blade::source::{
-    read_twist, BeamDynFiles, BladeFiles, Hawc2Files, TabulatedBlade,
+    read_twist, BeamDynFiles, BladeFiles, Hawc2Files, TabulatedBlade, TurnRequest, WindIoFiles,
 };
 use crate::physics::rotor::bem::AeroStation;
-use crate::physics::rotor::files::{read_aerodyn, read_hawc2, read_htc_aero, read_prebend, AePc};
+use crate::physics::rotor::files::{
+    read_aerodyn, read_hawc2, read_htc_aero, read_prebend, read_windio_aero, AePc,
+};
 use crate::physics::rotor::schedule::Table as ScheduleTable;
 use crate::physics::rotor::AeroBlade;
 use crate::preset::files::BladeFile;
@@ -106,6 +109,9 @@ struct BladeKeys {
     st_subset: usize,
     /// `htc_file`, `htc_body`, `htc_root`.
     htc: [String; 3],
+    /// A WindIO blade's ply turn (`section.ply_angle`, `section.rotate_layers`,
+    /// `section.rotate_span`).
+    turn: Option<TurnRequest>,
 }
 
 impl Tabulated {
@@ -124,8 +130,8 @@ impl Tabulated {
         &self.keys.file
     }
 
-    /// Whether this was read from what `blade` now names.
-    fn read_from(&self, blade: &Blade) -> bool {
+    /// Whether this was read from what `blade` now names, turned by `turn`.
+    fn read_from(&self, blade: &Blade, turn: &Option<TurnRequest>) -> bool {
         let k = &self.keys;
         k.source == blade.source
             && k.file == blade.file
@@ -133,6 +139,7 @@ impl Tabulated {
             && (k.source != BladeSource::Hawc2
                 || (k.st_set, k.st_subset, &k.twist_file)
                     == (blade.st_set, blade.st_subset, &blade.twist_file))
+            && &k.turn == turn
     }
 }
 
@@ -177,7 +184,8 @@ pub fn read_tabulated(p: &Preset, held: Option<&Tabulated>) -> Result<Option<Tab
     if !b.source.is_tabulated() {
         return Ok(None);
     }
-    if let Some(t) = held.filter(|t| t.read_from(b)) {
+    let turn = ply_turn(p);
+    if let Some(t) = held.filter(|t| t.read_from(b, &turn)) {
         return Ok(Some(t.clone()));
     }
     let file = base.resolve(&b.file);
@@ -196,6 +204,14 @@ pub fn read_tabulated(p: &Preset, held: Option<&Tabulated>) -> Result<Option<Tab
         ),
         _ => String::new(),
     };
+    if b.source == BladeSource::Windio {
+        let keys = format!("blade.file = \"{}\"", b.file);
+        let blade = windio_blade(&file, &turn, held).map_err(|e| file_error(p, &keys, e))?;
+        return Ok(Some(Tabulated {
+            keys: blade_keys(b, turn),
+            blade,
+        }));
+    }
     let files: Box<dyn BladeFiles> = match twist {
         _ if b.from_htc() => Box::new(htc_files(b, base)),
         Some(twist) => Box::new(Hawc2Files {
@@ -216,16 +232,80 @@ pub fn read_tabulated(p: &Preset, held: Option<&Tabulated>) -> Result<Option<Tab
     };
     let blade = files.read().map_err(|e| file_error(p, &keys, e))?;
     Ok(Some(Tabulated {
-        keys: BladeKeys {
-            source: b.source,
-            file: b.file.clone(),
-            twist_file: b.twist_file.clone(),
-            st_set: b.st_set,
-            st_subset: b.st_subset,
-            htc: b.htc_keys(),
-        },
+        keys: blade_keys(b, turn),
         blade: Arc::new(blade),
     }))
+}
+
+fn blade_keys(b: &Blade, turn: Option<TurnRequest>) -> BladeKeys {
+    BladeKeys {
+        source: b.source,
+        file: b.file.clone(),
+        twist_file: b.twist_file.clone(),
+        st_set: b.st_set,
+        st_subset: b.st_subset,
+        htc: b.htc_keys(),
+        turn,
+    }
+}
+
+/// WindIO files as parsed, by name and a hash of their text: a preset loaded again (a sweep's
+/// points, a `--set`, the explorer's presets) parses its file once.
+static WINDIO_FILES: Kept<(String, u64), WindIo> = Kept::new();
+
+/// WindIO blades as analysed, by file name, text hash and ply turn: the analysis of 50 layup
+/// sections is the cost of loading such a blade (docs/model.md §11.12), and the same blade is
+/// asked for again by every preset that names it.
+static LAYUP_BLADES: Kept<(String, u64, Option<TurnRequest>), TabulatedBlade> = Kept::new();
+
+/// The WindIO blade of `file` turned by `turn`: kept from before, or analysed now, its
+/// unturned stations lent by `held` (the blade the preset had) or by the newest kept blade of
+/// the same file.
+fn windio_blade(
+    file: &BladeFile,
+    turn: &Option<TurnRequest>,
+    held: Option<&Tabulated>,
+) -> Result<Arc<TabulatedBlade>> {
+    use std::hash::{Hash, Hasher};
+    let name = file.display();
+    let text = file.read()?;
+    let mut hasher = std::collections::hash_map::DefaultHasher::new();
+    text.hash(&mut hasher);
+    let hash = hasher.finish();
+    LAYUP_BLADES.get_or_build((name.clone(), hash, turn.clone()), 8, || {
+        let windio =
+            WINDIO_FILES.get_or_build((name.clone(), hash), 2, || windio::parse(&text, &name))?;
+        let kept = LAYUP_BLADES.newest(|k| k.0 == name && k.1 == hash);
+        let lender = held
+            .map(|t| Arc::clone(&t.blade))
+            .into_iter()
+            .chain(kept)
+            .find(|b| {
+                b.layup
+                    .as_ref()
+                    .is_some_and(|l| Arc::ptr_eq(&l.windio, &windio))
+            });
+        WindIoFiles {
+            windio,
+            turn: turn.clone(),
+            held: lender.as_ref().and_then(|b| b.layup.as_deref()),
+        }
+        .read()
+    })
+}
+
+/// A WindIO blade's ply turn as the preset asks for it: `section.ply_angle` when set (unset, the
+/// ontology's angles stand).
+fn ply_turn(p: &Preset) -> Option<TurnRequest> {
+    let s = &p.section;
+    match (p.blade.source, s.ply_angle) {
+        (BladeSource::Windio, Some(angle_deg)) => Some(TurnRequest {
+            angle_deg,
+            layers: s.rotate_layers.clone(),
+            span: s.rotate_span,
+        }),
+        _ => None,
+    }
 }
 
 /// The preset's read files: `tabulated` ([`read_tabulated`]) with the aerodynamic description
@@ -301,6 +381,10 @@ fn rotor_keys(p: &Preset) -> ((Vec<String>, String), String) {
     ];
     aero.extend(a.airfoils.iter().cloned());
     aero.extend(p.blade.htc_keys());
+    // A WindIO blade's file is its aerodynamic description too.
+    if p.blade.source == BladeSource::Windio {
+        aero.push(p.blade.file.clone());
+    }
     let table = match p.operating.schedule {
         Schedule::Table => p.operating.schedule_file.clone(),
         _ => String::new(),
@@ -322,6 +406,11 @@ fn read_aero_blade(p: &Preset) -> Result<Option<AeroBlade>> {
     let (a, base) = (&p.aero, &p.base);
     let blade = if p.blade.from_htc() {
         read_htc_blade_aero(p)?
+    } else if p.blade.source == BladeSource::Windio {
+        Some(
+            read_windio_aero(&base.resolve(&p.blade.file))
+                .map_err(|e| file_error(p, &format!("blade.file = \"{}\"", p.blade.file), e))?,
+        )
     } else if !a.blade_file.is_empty() {
         let airfoils: Vec<BladeFile> = a.airfoils.iter().map(|f| base.resolve(f)).collect();
         Some(

@@ -19,6 +19,15 @@ impl<K: PartialEq, V> Kept<K, V> {
         Kept(Mutex::new(Vec::new()))
     }
 
+    /// The newest build whose key satisfies `like`, if one is kept.
+    pub fn newest(&self, like: impl Fn(&K) -> bool) -> Option<Arc<V>> {
+        let kept = self.0.lock().unwrap_or_else(|e| e.into_inner());
+        kept.iter()
+            .rev()
+            .find(|(k, _)| like(k))
+            .map(|(_, v)| v.clone())
+    }
+
     /// The build kept under `key`, or a new one from `build`, kept in place of the oldest
     /// when `capacity` are. A poisoned lock only means another thread panicked mid-push: the
     /// list is still whole.

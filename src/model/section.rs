@@ -16,7 +16,7 @@ pub fn section_properties(p: &ValidPreset) -> Result<SectionProps> {
             let s = &p.section;
             with_preset_mass(p, [s.c22, s.c23, s.c33])
         }
-        SectionSource::Table => with_preset_mass(p, table1_stiffness(p.section.ply_angle)),
+        SectionSource::Table => with_preset_mass(p, table1_stiffness(p.section.paper_ply_angle())),
         SectionSource::Layup => layup_section_props(&layup_input(p))?,
     };
     checked(props)
@@ -55,7 +55,7 @@ pub fn layup_input(p: &ValidPreset) -> LayupInput {
         density: l.density,
         ply_thickness: l.ply_thickness,
         plies: l.plies,
-        ply_angle: s.ply_angle,
+        ply_angle: s.paper_ply_angle(),
         nonstructural_mass: l.nonstructural_mass,
         nonstructural_position: l.nonstructural_position,
         contour: contour(p),

@@ -8,6 +8,7 @@ use crate::analysis::flutter::{BoundaryKind, Search};
 use crate::analysis::response::Response;
 use crate::analysis::simulate::RunStatus;
 use crate::analysis::sweep::{FailedPoint, SweepRow, TrackedMode, TrackedSweep};
+use crate::physics::cross_section::Mesh;
 use crate::physics::laminate::LayupSection;
 
 /// "key (unit)" for a preset key, or the bare key when it has no unit or is unknown.
@@ -405,4 +406,46 @@ pub fn power_curve(
                 .titled("(b) rotor thrust")
                 .with_series(Series::line_points("thrust", series(thrust, 1e-3))),
         )
+}
+
+/// A layup section's mesh at span fraction `eta`: every element's outline, coloured by its
+/// material (`materials` names them in the mesh's order), drawn in the chord frame (x₂ toward
+/// the trailing edge to the right, x₁ toward the suction side up) on equal scales.
+pub fn layup_section(preset: &str, eta: f64, mesh: &Mesh, materials: &[&str]) -> Figure {
+    let mut panel = Panel::new(
+        "x₂, toward the trailing edge (m)",
+        "x₁, toward the suction side (m)",
+    );
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for (m, name) in materials.iter().enumerate() {
+        // One series per material: each element's outline closed, elements apart by a gap
+        // (NaN) so that the line does not run from one to the next.
+        let mut points = Vec::new();
+        for e in mesh.elements.iter().filter(|e| e.ply.material == m) {
+            let c = mesh.corners(e);
+            for k in [0, 1, 2, 3, 0] {
+                let (x, y) = (c[k][1], c[k][0]);
+                lo = [lo[0].min(x), lo[1].min(y)];
+                hi = [hi[0].max(x), hi[1].max(y)];
+                points.push((x, y));
+            }
+            points.push((f64::NAN, f64::NAN));
+        }
+        if !points.is_empty() {
+            panel = panel.with_series(
+                Series::line(name.to_string(), points).with_color(PALETTE[m % PALETTE.len()]),
+            );
+        }
+    }
+    // Equal scales: the wider extent sets both ranges, as the figure is drawn 3:2.
+    let half = ((hi[0] - lo[0]) / 2.0).max(0.75 * (hi[1] - lo[1])) * 1.05;
+    let mid = [(lo[0] + hi[0]) / 2.0, (lo[1] + hi[1]) / 2.0];
+    let panel = panel
+        .with_x_range(mid[0] - half, mid[0] + half)
+        .with_y_range(mid[1] - half / 1.5, mid[1] + half / 1.5);
+    Figure::new(format!(
+        "{preset}: the section at {:.1} % span, meshed from its layup",
+        100.0 * eta
+    ))
+    .with_panel(panel)
 }

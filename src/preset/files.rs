@@ -13,6 +13,10 @@ use std::path::PathBuf;
 /// `presets/`.
 pub static BUILTIN_FILES: &[(&str, &str)] = &[
     (
+        "blades/iea15mw-windio/IEA-15-240-RWT.yaml",
+        include_str!("../../presets/blades/iea15mw-windio/IEA-15-240-RWT.yaml"),
+    ),
+    (
         "blades/nrel5mw/NRELOffshrBsline5MW_BeamDyn.dat",
         include_str!("../../presets/blades/nrel5mw/NRELOffshrBsline5MW_BeamDyn.dat"),
     ),

@@ -2,6 +2,7 @@
 //! presets and `--set` overrides, and names the numeric parameters that sweeps, flutter searches
 //! and the explorer vary; every out-of-range message is built here ([`KeySpec::check`]).
 
+use super::schema::section::PAPER_PLY_ANGLE;
 use super::schema::Preset;
 use crate::error::{Error, Result};
 
@@ -136,7 +137,19 @@ pub static KEYS: &[KeySpec] = &[
     int!("blade.st_set", 1, 1000, blade.st_set),
     int!("blade.st_subset", 1, 1000, blade.st_subset),
     real!("blade.bend_twist_coupling", "", -0.3, 0.3, open = false, blade.bend_twist_coupling),
-    real!("section.ply_angle", "deg", 0.0, 90.0, open = false, section.ply_angle),
+    KeySpec {
+        key: "section.ply_angle",
+        unit: "deg",
+        min: -90.0,
+        max: 90.0,
+        min_open: false,
+        integer: false,
+        // Unset, the paper's blade reads its default angle and a WindIO blade 0 (the angle a
+        // knob starts turning from; the ontology's own angles stand until it does).
+        get: |p| p.section.ply_angle.unwrap_or(if p.blade.source.is_tabulated() { 0.0 } else { PAPER_PLY_ANGLE }),
+        set: |p, v| p.section.ply_angle = Some(v),
+        unset: |p| p.section.ply_angle.is_none(),
+    },
     real!("section.mass_per_length", "kg/m", 0.0, 1e5, open = true, section.mass_per_length),
     real!("section.polar_inertia", "kg·m", 0.0, 1e5, open = true, section.polar_inertia),
     real!("section.ka2", "m²", 0.0, 100.0, open = false, section.ka2),
@@ -221,6 +234,7 @@ pub static KEYS: &[KeySpec] = &[
     real!("view.rotor_speed_max", "rpm", 0.0, 5000.0, open = true, view.rotor_speed_max),
     real!("view.tunnel_speed_max", "m/s", 0.0, 1000.0, open = true, view.tunnel_speed_max),
     real!("view.wind_speed_max", "m/s", 0.0, 200.0, open = true, view.wind_speed_max),
+    real!("view.section_at", "", 0.0, 1.0, open = false, view.section_at),
 ];
 
 /// The spec of a numeric key, or a usage error listing what exists.

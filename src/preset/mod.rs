@@ -50,8 +50,16 @@ pub static BUILTIN: &[(&str, &str)] = &[
         include_str!("../../presets/iea15mw-btc.toml"),
     ),
     (
+        "iea15mw-btc-st2019",
+        include_str!("../../presets/iea15mw-btc-st2019.toml"),
+    ),
+    (
         "iea15mw-htc",
         include_str!("../../presets/iea15mw-htc.toml"),
+    ),
+    (
+        "iea15mw-windio",
+        include_str!("../../presets/iea15mw-windio.toml"),
     ),
 ];
 

@@ -32,6 +32,35 @@ pub fn check_blade_keys(p: &Preset) -> Result<()> {
              a BeamDyn primary file or \"hawc2\" for a HAWC2 st file",
             b.file
         ),
+        (BladeSource::Windio, true) => "blade.source = \"windio\" needs blade.file: the WindIO \
+             ontology file (.yaml) of the turbine, relative to the preset file"
+            .to_string(),
+        (source, _) if source != BladeSource::Windio && turn_keys_given(p) => format!(
+            "section.rotate_layers and section.rotate_span turn the layers of a WindIO blade's \
+             layup (blade.source = \"windio\"); blade.source = \"{}\" has no layup",
+            source.name()
+        ),
+        (BladeSource::Windio, false)
+            if !p
+                .section
+                .rotate_span
+                .iter()
+                .all(|s| (0.0..=1.0).contains(s))
+                || p.section.rotate_span[0] > p.section.rotate_span[1] =>
+        {
+            format!(
+                "section.rotate_span = [{}, {}]: expected span fractions [from, to] with \
+             0 ≤ from ≤ to ≤ 1",
+                p.section.rotate_span[0], p.section.rotate_span[1]
+            )
+        }
+        (BladeSource::Uniform, _) if !(0.0..=90.0).contains(&p.section.paper_ply_angle()) => {
+            format!(
+                "section.ply_angle = {}: the paper's blade takes a ply angle in [0, 90] deg (its \
+             Table 1 and its CAS layup; a negative angle is the mirrored layup)",
+                p.section.paper_ply_angle()
+            )
+        }
         (source @ (BladeSource::Beamdyn | BladeSource::Hawc2), true) => format!(
             "blade.source = \"{}\" needs blade.file: the {}, relative to the preset file",
             source.name(),
@@ -47,9 +76,10 @@ pub fn check_blade_keys(p: &Preset) -> Result<()> {
                  AeroDyn 15 blade file whose BlTwist turns the sections (a HAWC2 st file carries \
                  no twist; HAWC2 takes it from the htc's c2_def), relative to the preset file"
                 .to_string(),
-            (BladeSource::Uniform | BladeSource::Beamdyn, false) => format!(
+            (BladeSource::Uniform | BladeSource::Beamdyn | BladeSource::Windio, false) => format!(
                 "blade.twist_file = \"{}\" does not apply to blade.source = \"{}\" (only a \
-                 HAWC2 st file takes its twist from another file; a BeamDyn file has its own)",
+                 HAWC2 st file takes its twist from another file; BeamDyn and WindIO files have \
+                 their own)",
                 b.twist_file,
                 b.source.name()
             ),
@@ -60,6 +90,11 @@ pub fn check_blade_keys(p: &Preset) -> Result<()> {
         origin: p.origin.clone(),
         message,
     })
+}
+
+/// Whether the preset turns layers other than by the defaults (spar caps, whole span).
+fn turn_keys_given(p: &Preset) -> bool {
+    !p.section.rotate_layers.is_empty() || p.section.rotate_span != [0.0, 1.0]
 }
 
 /// How the htc keys clash with the others: an htc blade takes its st file, set, twist and
@@ -122,6 +157,7 @@ pub fn not_acting(p: &Preset, key: &str) -> Option<String> {
     };
     let tabulated = source.is_tabulated();
     let reason = match key {
+        "section.ply_angle" if source == BladeSource::Windio => return None,
         "section.ply_angle" if tabulated => format!(
             "does not apply to blade.source = \"{}\": the sections come from {file}; the \
              coupling added to them is blade.bend_twist_coupling",

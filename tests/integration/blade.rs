@@ -852,7 +852,7 @@ fn banded_modes_equal_a_dense_decomposition() {
     for (preset, meshes) in [
         ("nrel5mw", &[60, 120, 400][..]),
         ("iea15mw", &[60, 120][..]),
-        ("iea15mw-btc", &[120][..]),
+        ("iea15mw-btc-st2019", &[120][..]),
     ] {
         let p = Preset::load(preset, &[]).unwrap();
         let blade = p.tabulated_blade().unwrap();

@@ -232,7 +232,7 @@ fn set_without_equals_is_a_usage_error() {
 fn out_of_range_ply_angle_names_range() {
     assert_fails_naming(
         &run(&["modes", "--set", "section.ply_angle=120"]),
-        &["section.ply_angle", "120", "[0, 90] deg", "liu2017"],
+        &["section.ply_angle", "120", "[-90, 90] deg", "liu2017"],
     );
 }
 

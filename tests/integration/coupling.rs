@@ -27,7 +27,7 @@ fn tip_under_load(p: &ValidPreset) -> (f64, f64) {
 
 #[test]
 fn zero_coupling_is_the_files_blade() {
-    for name in ["nrel5mw", "iea15mw-btc"] {
+    for name in ["nrel5mw", "iea15mw-btc-st2019"] {
         let p = with_alpha(name, 0.0);
         let built = blade_structure(&p).unwrap().unwrap();
         let file = &p.tabulated_blade().unwrap().table;
@@ -42,11 +42,11 @@ fn zero_coupling_is_the_files_blade() {
 /// α adds `α√(EI_flap·GJ)` at every station, on top of the file's coupling.
 #[test]
 fn alpha_adds_to_every_station() {
-    let p = with_alpha("iea15mw-btc", 0.2);
+    let p = with_alpha("iea15mw-btc-st2019", 0.2);
     let built = blade_structure(&p).unwrap().unwrap();
     let file = &p.tabulated_blade().unwrap().table;
     let ratios: Vec<f64> = file.sections.iter().map(coupling_ratio).collect();
-    eprintln!("iea15mw-btc g/√(EI_flap·GJ) by station: {ratios:.3?}");
+    eprintln!("iea15mw-btc-st2019 g/√(EI_flap·GJ) by station: {ratios:.3?}");
     for (a, b) in built.table.sections.iter().zip(&file.sections) {
         let added = a.flap_twist - b.flap_twist;
         let expected = 0.2 * (b.ei_flap * b.gj).sqrt();
@@ -66,9 +66,11 @@ fn positive_coupling_twists_toward_feather_as_the_btc_blade_does() {
         .collect();
     let btc: Vec<(f64, f64)> = [-0.1, 0.0, 0.1]
         .iter()
-        .map(|&a| tip_under_load(&with_alpha("iea15mw-btc", a)))
+        .map(|&a| tip_under_load(&with_alpha("iea15mw-btc-st2019", a)))
         .collect();
-    eprintln!("tip (flap m, twist rad) at α = -0.1, 0, 0.1: nrel5mw {nrel:?}; iea15mw-btc {btc:?}");
+    eprintln!(
+        "tip (flap m, twist rad) at α = -0.1, 0, 0.1: nrel5mw {nrel:?}; iea15mw-btc-st2019 {btc:?}"
+    );
     assert!(nrel.iter().all(|(flap, _)| *flap > 0.0));
     assert!(nrel[1].1.abs() < 1e-12, "{nrel:?}");
     assert!(nrel[2].1 > 1e-4 && nrel[0].1 < -1e-4, "{nrel:?}");
@@ -132,7 +134,7 @@ fn a_sweep_varies_the_coupling() {
         .args([
             "sweep",
             "--preset",
-            "iea15mw-btc",
+            "iea15mw-btc-st2019",
             "--vary",
             "blade.bend_twist_coupling=-0.3:0.3:0.3",
             "--json",

@@ -311,16 +311,16 @@ fn arrows_adjust_the_focused_parameter_with_fine_and_coarse_steps() {
     assert_eq!(PARAMS[s.focus].label, "rotor speed");
     s.focus = 0;
     assert_eq!(PARAMS[s.focus].label, "ply angle");
-    let ply0 = s.preset.section.ply_angle;
+    let ply0 = s.preset.section.paper_ply_angle();
     let e = update(&mut s, key(KeyCode::Right, KeyModifiers::NONE));
-    assert_eq!(s.preset.section.ply_angle, ply0 + 1.0);
+    assert_eq!(s.preset.section.ply_angle, Some(ply0 + 1.0));
     assert_eq!(solve_gens(&e), vec![s.gen]);
     let e = update(&mut s, key(KeyCode::Char('H'), KeyModifiers::SHIFT));
     // Coarse steps snap to the coarse grid: 46 → 45.
-    assert_eq!(s.preset.section.ply_angle, 45.0);
+    assert_eq!(s.preset.section.ply_angle, Some(45.0));
     assert_eq!(solve_gens(&e).len(), 1);
     update(&mut s, key(KeyCode::Left, KeyModifiers::SHIFT));
-    assert_eq!(s.preset.section.ply_angle, 40.0);
+    assert_eq!(s.preset.section.ply_angle, Some(40.0));
     // vi keys: j selects the next parameter, l increases it.
     update(&mut s, key(KeyCode::Char('j'), KeyModifiers::NONE));
     assert_eq!(PARAMS[s.focus].label, "wind speed");
@@ -328,7 +328,10 @@ fn arrows_adjust_the_focused_parameter_with_fine_and_coarse_steps() {
     update(&mut s, key(KeyCode::Char('l'), KeyModifiers::NONE));
     assert_eq!(s.preset.operating.wind_speed, w0 + 0.5);
     // The base preset is untouched (reset goes back to it).
-    assert_eq!(s.presets[s.preset_index].preset.section.ply_angle, ply0);
+    assert_eq!(
+        s.presets[s.preset_index].preset.section.paper_ply_angle(),
+        ply0
+    );
 }
 
 #[test]
@@ -1219,7 +1222,7 @@ fn view_select_can_open_on_the_coupling() {
         (PARAMS[s.focus].label, s.boundary_key)
     };
     assert_eq!(
-        open("iea15mw-btc"),
+        open("iea15mw-btc-st2019"),
         ("bend–twist α", "blade.bend_twist_coupling")
     );
     assert_eq!(open("liu2017"), ("ply angle", "section.ply_angle"));
@@ -1597,7 +1600,7 @@ fn the_coupling_margin_is_the_nearest_crossing_either_way() {
 /// (2 m/s steps) rather than the explorer's 23 to keep the suite fast; it is the same code.
 #[test]
 fn snapshot_the_real_blades_main_and_wind_campbell_views() {
-    for name in ["nrel5mw", "iea15mw", "iea15mw-btc"] {
+    for name in ["nrel5mw", "iea15mw", "iea15mw-btc-st2019"] {
         let p = Preset::load(name, &[]).unwrap();
         let mut s = settled_state(name, p, &Physics, ViewKind::Main, MarkerKind::Braille);
         for (cols, rows) in [(80, 24), (160, 48)] {
@@ -1747,14 +1750,14 @@ fn an_error_line_wraps_instead_of_being_cut() {
     assert!(lines.iter().all(|l| l.chars().count() <= 80));
 }
 
-/// Numbers in the explorer carry the precision of what they stand for: on iea15mw-btc at a
+/// Numbers in the explorer carry the precision of what they stand for: on iea15mw-btc-st2019 at a
 /// coupling of −0.1 the margin's search upward used to end at α = 0.30000000000000004, out of
 /// the key's range, and the status line said so (`error: boundary search: … = 0.30000000000000004
 /// is out of range`); the search now ends at 0.3 and finds its margin.
 #[test]
 fn a_margin_search_ends_at_the_slider_end_and_prints_no_float_noise() {
     let frame = snapshot_command(
-        "iea15mw-btc",
+        "iea15mw-btc-st2019",
         &[
             "view.select=\"bend-twist-coupling\"",
             "blade.bend_twist_coupling=-0.1",

@@ -38,7 +38,7 @@ fn box_preset(width: f64, height: f64, angle: f64) -> Preset {
     p.section.contour.shape = ContourShape::Box;
     p.section.contour.width = width;
     p.section.contour.height = height;
-    p.section.ply_angle = angle;
+    p.section.ply_angle = Some(angle);
     p
 }
 
@@ -109,7 +109,7 @@ fn isotropic_tube_matches_bredt_and_thin_tube_bending() {
     let bending = PI * r.powi(3) * e * t;
     // Isotropic walls: the ply angle must not matter.
     for angle in [0.0, 30.0, 90.0] {
-        p.section.ply_angle = angle;
+        p.section.ply_angle = Some(angle);
         let s = layup_section_props(&layup_input(&valid(&p))).unwrap();
         assert!(
             rel(s.c22, bredt) < CONTOUR_TOLERANCE,
@@ -218,7 +218,7 @@ fn contour_integrals_converge_to_the_stated_tolerance() {
         let q = ply_stiffness(&layup_input(&valid(&p)).material);
         let f = cas_stiffness(
             &q,
-            p.section.ply_angle.to_radians(),
+            p.section.paper_ply_angle().to_radians(),
             6,
             0.127e-3,
             &reference,

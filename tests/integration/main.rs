@@ -17,6 +17,7 @@ mod hostile;
 mod htc;
 mod identify;
 mod laminate;
+mod layup_blade;
 mod modes;
 mod onera;
 mod paper_figures;

@@ -608,7 +608,7 @@ fn iea15mw_presets_read_their_hawc2_files() {
         let twist = modes(&v)[0]["shape"]["twist"].as_array().unwrap().clone();
         twist.last().unwrap().as_f64().unwrap()
     };
-    let (btc, baseline) = (tip_twist("iea15mw-btc"), tip_twist("iea15mw"));
+    let (btc, baseline) = (tip_twist("iea15mw-btc-st2019"), tip_twist("iea15mw"));
     assert!(
         btc > 1.3 * baseline && baseline > 0.0,
         "{btc} vs {baseline}"

@@ -20,7 +20,7 @@ fn liu2017_is_the_papers_blade() {
     assert_eq!(p.operating.wind_speed, 20.0);
     assert_eq!(p.operating.rotor_speed, 60.0);
     assert_eq!(p.section.source, SectionSource::Table);
-    assert_eq!(p.section.ply_angle, 45.0);
+    assert_eq!(p.section.paper_ply_angle(), 45.0);
     assert_eq!(p.section.mass_per_length, 0.06377);
     assert_eq!(p.section.polar_inertia, 2.3e-6);
     assert_eq!(p.section.ka2, 3.6e-5);

@@ -200,7 +200,11 @@ fn tip_rows_of_a_tabulated_blade_read_its_mode_shapes_at_the_tip() {
 #[test]
 fn the_files_six_by_six_matrices_stay_with_their_sections() {
     use flutterscope::physics::blade::classical::reduce;
-    for (name, from_file) in [("nrel5mw", true), ("iea15mw-btc", true), ("iea15mw", false)] {
+    for (name, from_file) in [
+        ("nrel5mw", true),
+        ("iea15mw-btc-st2019", true),
+        ("iea15mw", false),
+    ] {
         let p = Preset::load(name, &[]).unwrap();
         let table = &p.tabulated_blade().unwrap().table;
         if !from_file {

@@ -236,7 +236,7 @@ fn a_real_blade_drags_its_coupling_shows_its_modes_and_quits_cleanly() {
         "tui --preset nrel5mw --set blade.bend_twist_coupling=0.1",
     );
     let coupling_row = |screen: &str| row(screen, "bend–twist α");
-    let screen = s.wait_for_all(&["STABLE", "nrel5mw [5/8]", "bend–twist α"]);
+    let screen = s.wait_for_all(&["STABLE", "nrel5mw [5/10]", "bend–twist α"]);
     assert!(coupling_row(&screen).contains("0.10"), "{screen}");
     assert!(!screen.contains("ply angle"), "{screen}");
 
@@ -263,9 +263,9 @@ fn a_real_blade_drags_its_coupling_shows_its_modes_and_quits_cleanly() {
 
     // Away and back: the starting preset keeps its --set.
     s.keys(&["]"]);
-    s.wait_for("iea15mw [6/8]");
+    s.wait_for("iea15mw [6/10]");
     s.keys(&["["]);
-    let screen = s.wait_for("nrel5mw [5/8]");
+    let screen = s.wait_for("nrel5mw [5/10]");
     assert!(coupling_row(&screen).contains("0.10"), "{screen}");
 
     s.quit_cleanly();
@@ -281,7 +281,7 @@ fn a_real_blade_moves_along_its_schedule_and_shows_its_campbell_against_wind() {
         return;
     }
     let s = Session::explorer(160, 48, "tui --preset iea15mw");
-    let screen = s.wait_for_all(&["STABLE", "iea15mw [6/8]", "↻ 7.56 rpm"]);
+    let screen = s.wait_for_all(&["STABLE", "iea15mw [6/10]", "↻ 7.56 rpm"]);
     assert!(row(&screen, "wind speed").contains("10.7 m/s"), "{screen}");
     // Up to the wind speed; coarse steps down the schedule: 10 m/s, then 5 m/s at 5 rpm.
     s.keys(&["Up", "H"]);

@@ -117,7 +117,7 @@ pub fn param_bounds(p: &ValidPreset, key: &str) -> (f64, f64) {
     let Ok(spec) = key_spec(key) else {
         return (f64::NEG_INFINITY, f64::INFINITY);
     };
-    let (lo, mut hi) = (spec.min, spec.max);
+    let (mut lo, mut hi) = (spec.min, spec.max);
     let cur = (spec.get)(p);
     // Along a schedule the wind runs where the turbine operates, cut-in to cut-out.
     if key == WIND_SPEED_KEY {
@@ -129,6 +129,9 @@ pub fn param_bounds(p: &ValidPreset, key: &str) -> (f64, f64) {
         "operating.rotor_speed" => hi = p.view.rotor_speed_max.max(cur),
         "operating.wind_speed" => hi = p.view.wind_speed_max.max(cur),
         "operating.tunnel_speed" => hi = p.view.tunnel_speed_max.max(cur),
+        // The paper's blade turns its CAS plies over [0°, 90°] (Table 1's range); a WindIO
+        // blade's fibres either way.
+        "section.ply_angle" if !p.blade.source.is_tabulated() => lo = 0.0,
         _ => {}
     }
     (lo, hi)

@@ -16,8 +16,17 @@ use ratatui::Frame;
 /// where the column is tall enough to keep the modes pane's rows: 30 rows and up), plus borders.
 pub fn height(p: &ValidPreset, available: u16) -> u16 {
     let beam = u16::from(p.tabulated_blade().is_some() && available >= BEAM_ROW_FROM);
-    offered_rows(p).len() as u16 + 5 + beam + 2
+    let layup =
+        if p.tabulated_blade().is_some_and(|b| b.layup.is_some()) && available >= BEAM_ROW_FROM {
+            LAYUP_ROWS
+        } else {
+            0
+        };
+    offered_rows(p).len() as u16 + 5 + beam + layup + 2
 }
+
+/// Rows of a WindIO blade's section at `view.section_at`: a header and four stiffnesses.
+const LAYUP_ROWS: u16 = 5; // keep in step with the rows `render` pushes
 
 /// Column height from which a tabulated blade's pane also shows its beam.
 const BEAM_ROW_FROM: u16 = 30;
@@ -92,6 +101,28 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
         lines.push(row("stations", blade.table.sections.len().to_string()));
         if let Some(beam) = crate::model::blade::beam(&state.preset) {
             lines.push(row("beam", beam.title().to_string()));
+        }
+        // A WindIO blade's section as its layup gives it, live with the ply angle.
+        let room = usize::from(area.height).saturating_sub(2);
+        if let Some(layup) = blade.layup.as_ref().filter(|_| room >= lines.len() + 5) {
+            let s = layup.nearest(state.preset.view.section_at);
+            let p = &s.properties;
+            let c = p.bending_torsion;
+            lines.push(Line::styled(
+                format!("section at {:.0} % span", 100.0 * s.eta),
+                theme.dim(),
+            ));
+            let unit = |name: &str, v: f64| {
+                Line::from(vec![
+                    Span::raw(format!("  {name:<9}")),
+                    Span::raw(format!("{:>10}", sig(v, 4))),
+                    Span::styled(" N·m²", theme.dim()),
+                ])
+            };
+            lines.push(unit("EI flap", c[1][1]));
+            lines.push(unit("EI edge", c[0][0]));
+            lines.push(unit("GJ", p.gj));
+            lines.push(row("g/√EI·GJ", format!("{:+.4}", s.flap_twist_ratio())));
         }
         frame.render_widget(Paragraph::new(lines).block(block), area);
         return;

@@ -129,6 +129,12 @@ impl Contour {
         })
     }
 
+    /// The contour's points from s = 0 to s = 1 (a closed loop: the last is the first), m,
+    /// chord frame.
+    pub fn points(&self) -> &[[f64; 2]] {
+        &self.points
+    }
+
     /// Perimeter, m.
     pub fn length(&self) -> f64 {
         self.arc[self.arc.len() - 1]

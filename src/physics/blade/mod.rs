@@ -19,6 +19,7 @@ pub mod hermite;
 pub mod modal;
 pub mod pitch_range;
 pub mod source;
+pub mod windio;
 
 use crate::error::{Error, Result};
 use axis::CurvedAxis;

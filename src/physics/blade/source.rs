@@ -17,10 +17,12 @@ use super::fem::Mesh;
 use super::hawc2::{from_hawc2_st, C2Line, ChordTwist};
 use super::modal::{BladeMode, ModalBlade, StiffnessFactors};
 use super::pitch_range::{snapshot_pitches, PitchRangeBlade};
+use super::windio::{LayupBlade, PlyTurn};
 use super::BladeTable;
 use crate::error::{Error, Result};
 use crate::formats::htc::{self, HtcBlade, HtcDamping, Named};
 use crate::formats::text_file::{ModelRoot, TextFile};
+use crate::formats::windio::WindIo;
 use crate::formats::{aerodyn, beamdyn, elastodyn, hawc2_st};
 use std::sync::Arc;
 
@@ -31,6 +33,8 @@ pub enum BladeFormat {
     Beamdyn,
     /// A HAWC2 st file.
     Hawc2,
+    /// A WindIO ontology file: the sections analysed from its layup.
+    Windio,
 }
 
 impl BladeFormat {
@@ -39,6 +43,7 @@ impl BladeFormat {
         match self {
             BladeFormat::Beamdyn => "BeamDyn",
             BladeFormat::Hawc2 => "HAWC2",
+            BladeFormat::Windio => "WindIO",
         }
     }
 }
@@ -65,6 +70,9 @@ pub struct TabulatedBlade {
     /// The files read, as errors name them (a BeamDyn blade: the primary file, then its blade
     /// file).
     pub files: Vec<String>,
+    /// A WindIO blade's layup and the sections analysed from it (`None` for a blade read from
+    /// section tables).
+    pub layup: Option<Arc<LayupBlade>>,
 }
 
 impl TabulatedBlade {
@@ -253,6 +261,7 @@ pub fn read_beamdyn(file: &impl TextFile) -> Result<TabulatedBlade> {
         table,
         damping,
         files: vec![name, blade_name],
+        layup: None,
     })
 }
 
@@ -275,7 +284,50 @@ pub fn read_hawc2(
         table,
         damping: SourceDamping::None,
         files: vec![name],
+        layup: None,
     })
+}
+
+/// A WindIO blade (docs/model.md §11.12): its parsed file's layup with the ply turn, each
+/// station's section analysed; `held`, a blade of the same parsed file analysed before, lends
+/// the stations the turn leaves as they were. The file states no damping.
+pub struct WindIoFiles<'a> {
+    pub windio: Arc<WindIo>,
+    pub turn: Option<TurnRequest>,
+    pub held: Option<&'a LayupBlade>,
+}
+
+/// A preset's ply turn: the angle (deg) for the layers named (empty: the spar caps) over the span
+/// fractions.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TurnRequest {
+    pub angle_deg: f64,
+    pub layers: Vec<String>,
+    pub span: [f64; 2],
+}
+
+impl BladeFiles for WindIoFiles<'_> {
+    fn read(&self) -> Result<TabulatedBlade> {
+        let windio = self.windio.clone();
+        let name = windio.path.clone();
+        let turn = self.turn.as_ref().map(|t| PlyTurn {
+            angle: t.angle_deg.to_radians(),
+            layers: if t.layers.is_empty() {
+                PlyTurn::spar_caps(&windio)
+            } else {
+                t.layers.clone()
+            },
+            span: t.span,
+        });
+        let layup = LayupBlade::new(windio, turn, self.held)?;
+        Ok(TabulatedBlade {
+            format: BladeFormat::Windio,
+            table: layup.table()?,
+            damping: SourceDamping::None,
+            files: vec![name],
+            layup: Some(Arc::new(layup)),
+        })
+    }
 }
 
 /// The chord twist a HAWC2 blade takes from an AeroDyn 15 blade file's `BlTwist`.

@@ -96,7 +96,21 @@ impl Mesh {
                 )));
             }
             let p = self.corners(e);
+            // A quadrilateral with one edge collapsed (two neighbouring corners the same node)
+            // is a triangle: the bilinear map stays positive inside, zero only at that edge.
+            let collapsed: Vec<usize> = (0..4)
+                .filter(|&c| e.nodes[c] == e.nodes[(c + 1) % 4])
+                .collect();
+            if collapsed.len() > 1 {
+                return Err(invalid(format!(
+                    "element {k} (nodes {:?}) has more than one collapsed edge",
+                    e.nodes
+                )));
+            }
             for c in 0..4 {
+                if collapsed.iter().any(|&d| c == d || c == (d + 1) % 4) {
+                    continue;
+                }
                 let j = corner_jacobian(&p, c);
                 if j.is_nan() || j <= 1e-14 * scale * scale {
                     return Err(invalid(format!(
@@ -327,8 +341,19 @@ mod tests {
         assert!(m.validate().is_err(), "clockwise element accepted");
         let mut m = good.clone();
         let n = m.elements[0].nodes;
-        m.elements[0].nodes = [n[0], n[1], n[1], n[3]];
-        assert!(m.validate().is_err(), "collapsed element accepted");
+        m.elements[0].nodes = [n[0], n[1], n[1], n[0]];
+        assert!(
+            m.validate().is_err(),
+            "element collapsed to a line accepted"
+        );
+        let mut m = good.clone();
+        m.elements[0].nodes = [n[0], n[0], n[2], n[3]];
+        assert!(
+            m.validate().is_ok(),
+            "a triangle (one collapsed edge) refused"
+        );
+        m.elements[0].nodes = [n[0], n[0], n[3], n[2]];
+        assert!(m.validate().is_err(), "a clockwise triangle accepted");
         let mut m = good.clone();
         m.nodes[2][0] = f64::NAN;
         assert!(m.validate().is_err(), "NaN node accepted");

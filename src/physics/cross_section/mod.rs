@@ -4,13 +4,14 @@
 //! read from them.
 //!
 //! The chain is [`material`] (each ply's 3-D stiffness in the section's axes) → [`mesh`] (4-node
-//! quadrilaterals with their plies) → [`solve`] (the warping and the 6×6 matrices about a chosen
+//! quadrilaterals with their plies; [`layup`] meshes a section from its layers and webs) → [`solve`] (the warping and the 6×6 matrices about a chosen
 //! point) → [`properties`] (centres, principal axes, stiffnesses, mass). Inputs and outputs are
 //! plain numbers: the section's own plane `(x, y)` with `z` along the beam, right-handed; the
 //! matrices are in BeamDyn's order (shear x, shear y, extension, bending about x, about y,
 //! torsion), so a mesh drawn in BeamDyn's section axes (x₁ toward the suction side, x₂ toward the
 //! trailing edge) gives a blade file's matrices directly.
 
+pub mod layup;
 pub mod material;
 pub mod mesh;
 pub mod properties;

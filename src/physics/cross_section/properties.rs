@@ -6,7 +6,7 @@ use crate::error::{Error, Result};
 use nalgebra::{Matrix2, Matrix3, Matrix6, Vector2};
 
 /// A section's properties; positions in the mesh's coordinates (m), angles in rad.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct SectionProperties {
     /// Axial stiffness with every other force and moment zero, the axial force through the
     /// elastic centre (N): `1/F₃₃` there.

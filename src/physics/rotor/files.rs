@@ -10,6 +10,9 @@
 //!   taken. So `ac_ahead = (PitchAxis − ¼) c`.
 //! - HAWC2: the reference axis is the half-chord line `c2_def` (§11.6) and HAWC2 applies the
 //!   aerodynamic forces at the quarter chord: `ac_ahead = ¼ c`.
+//! - WindIO: the reference axis is the pitch axis, at `pitch_axis` of the chord from the leading
+//!   edge, and each airfoil states its aerodynamic centre (the quarter chord where it does not):
+//!   `ac_ahead = (pitch_axis − ac) c`.
 
 use super::{AeroBlade, AeroNode};
 use crate::error::{Error, Result};
@@ -18,6 +21,7 @@ use crate::formats::airfoil::{self, AirfoilFile, PolarColumns};
 use crate::formats::elastodyn::{self, ElastoDynBlade};
 use crate::formats::hawc2_aero::{self, AeFile, PcFile, PcProfile, PcSet};
 use crate::formats::text_file::TextFile;
+use crate::formats::windio::{self, WindIo};
 use crate::physics::aero::polar::{Polar, UnsteadyBlock, UnsteadyConstants};
 use crate::physics::blade::hawc2::ChordTwist;
 use crate::physics::blade::source::{c2_line, HtcFiles};
@@ -428,4 +432,80 @@ fn profile_polar(p: &PcProfile, origin: &str) -> Result<Polar> {
         p.cm.clone(),
         origin,
     )
+}
+
+/// The aerodynamic blade of a WindIO file (docs/model.md §12.1): at every point of the chord's
+/// grid the chord, the twist and the pitch axis, the polars of the two airfoils that bracket the
+/// station's relative thickness blended in it (as its shape is, §11.12), and the prebend from
+/// the reference axis's `x` (downwind positive, as `BlCrvAC`).
+pub fn read_windio_aero(file: &impl TextFile) -> Result<AeroBlade> {
+    let name = file.display();
+    windio_aero(&windio::parse(&file.read()?, &name)?)
+}
+
+/// [`read_windio_aero`] on a parsed file.
+pub fn windio_aero(w: &WindIo) -> Result<AeroBlade> {
+    let shape = &w.blade.outer_shape;
+    let axis = &shape.reference_axis;
+    let root = axis.z.linear(0.0);
+    let polar_of = |a: &windio::Airfoil| -> Result<Polar> {
+        let p = &a.polars[0];
+        let alpha = p.c_l.grid.clone();
+        let on_lift = |d: &windio::Distribution| alpha.iter().map(|&x| d.linear(x)).collect();
+        Polar::new(
+            alpha.clone(),
+            p.c_l.values.clone(),
+            on_lift(&p.c_d),
+            on_lift(&p.c_m),
+            &format!("{}: airfoil {} (line {}), polar 1", w.path, a.name, a.line),
+        )
+    };
+    let mut made: Vec<(String, String, f64, Arc<Polar>)> = Vec::new();
+    let mut nodes = Vec::with_capacity(shape.chord.grid.len());
+    for &eta in &shape.chord.grid {
+        let b = w.thickness_blend(eta);
+        let polar = match made
+            .iter()
+            .find(|(a, c, t, _)| *a == b.thinner.name && *c == b.thicker.name && *t == b.weight)
+        {
+            Some((_, _, _, p)) => Arc::clone(p),
+            None => {
+                let thin = polar_of(b.thinner)?;
+                let polar = if b.weight > 0.0 {
+                    thin.blend(&polar_of(b.thicker)?, b.weight, &w.path)?
+                } else {
+                    thin
+                };
+                let polar = Arc::new(polar);
+                made.push((
+                    b.thinner.name.clone(),
+                    b.thicker.name.clone(),
+                    b.weight,
+                    Arc::clone(&polar),
+                ));
+                polar
+            }
+        };
+        let centre = |a: &windio::Airfoil| a.aerodynamic_center.unwrap_or(0.25);
+        let ac = (1.0 - b.weight) * centre(b.thinner) + b.weight * centre(b.thicker);
+        let chord = shape.chord.linear(eta);
+        nodes.push(AeroNode {
+            span: axis.z.linear(eta) - root,
+            chord,
+            twist: shape.twist.linear(eta),
+            ac_ahead: (shape.pitch_axis.linear(eta) - ac) * chord,
+            polar,
+        });
+    }
+    let prebend = shape
+        .chord
+        .grid
+        .iter()
+        .map(|&eta| (axis.z.linear(eta) - root, axis.x.linear(eta)))
+        .collect();
+    Ok(AeroBlade {
+        nodes,
+        prebend,
+        origin: w.path.clone(),
+    })
 }

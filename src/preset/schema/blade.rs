@@ -15,6 +15,9 @@ pub enum BladeSource {
     /// A HAWC2 blade: a model's htc file (`blade.htc_file`, body `blade.htc_body`), or an st
     /// file, subset `blade.st_subset` of set `blade.st_set`, twisted by `blade.twist_file`.
     Hawc2,
+    /// A WindIO ontology file: the sections from its layup (docs/model.md §11.12), the ply
+    /// angle turning the layers `section.rotate_layers` names.
+    Windio,
 }
 
 impl BladeSource {
@@ -23,6 +26,7 @@ impl BladeSource {
             BladeSource::Uniform => "uniform",
             BladeSource::Beamdyn => "beamdyn",
             BladeSource::Hawc2 => "hawc2",
+            BladeSource::Windio => "windio",
         }
     }
 
@@ -32,6 +36,7 @@ impl BladeSource {
             BladeSource::Uniform => "uniform",
             BladeSource::Beamdyn => "BeamDyn",
             BladeSource::Hawc2 => "HAWC2",
+            BladeSource::Windio => "WindIO",
         }
     }
 

@@ -26,8 +26,16 @@ impl SectionSource {
 #[serde(deny_unknown_fields, default)]
 pub struct Section {
     pub source: SectionSource,
-    /// CAS ply angle θ (deg): `[θ]` upper wall, `[−θ]` lower wall (table and layup sources).
-    pub ply_angle: f64,
+    /// Ply angle θ (deg). The paper's blade: the CAS angle, `[θ]` upper wall, `[−θ]` lower wall
+    /// (table and layup sources; unset: [`PAPER_PLY_ANGLE`]). A WindIO blade: the fibre angle
+    /// given to the layers `rotate_layers` over `rotate_span` (unset: the ontology's own
+    /// angles stand), docs/model.md §11.12.
+    pub ply_angle: Option<f64>,
+    /// The WindIO layers `ply_angle` turns, by name (empty: the spar caps, every shell layer
+    /// whose name has "spar" and "cap").
+    pub rotate_layers: Vec<String>,
+    /// The span fractions `[from, to]` over which `ply_angle` turns them (inclusive).
+    pub rotate_span: [f64; 2],
     /// m (kg/m). Ignored by the layup source, which computes it from the contour.
     pub mass_per_length: f64,
     /// I (kg·m), polar mass moment about the elastic axis per length.
@@ -95,11 +103,24 @@ pub struct Contour {
     pub b: f64,
 }
 
+/// The paper's blade's ply angle (deg) unless a preset sets one: the angle of the paper's
+/// figures and of Table 1's middle column.
+pub const PAPER_PLY_ANGLE: f64 = 45.0;
+
+impl Section {
+    /// The paper's blade's ply angle (deg): the preset's, else [`PAPER_PLY_ANGLE`].
+    pub fn paper_ply_angle(&self) -> f64 {
+        self.ply_angle.unwrap_or(PAPER_PLY_ANGLE)
+    }
+}
+
 impl Default for Section {
     fn default() -> Self {
         Section {
             source: SectionSource::Table,
-            ply_angle: 45.0,
+            ply_angle: None,
+            rotate_layers: Vec::new(),
+            rotate_span: [0.0, 1.0],
             mass_per_length: 0.06377,
             polar_inertia: 2.3e-6,
             ka2: 3.6e-5,

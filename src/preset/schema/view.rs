@@ -15,6 +15,9 @@ pub struct View {
     /// The parameter the explorer selects when it opens this preset, and so the one its first
     /// boundary search runs along.
     pub select: Selected,
+    /// The span fraction whose layup section the parameters pane shows (WindIO blades): the
+    /// station nearest it.
+    pub section_at: f64,
 }
 
 /// An explorer parameter a preset can select at start (`view.select`).
@@ -51,6 +54,7 @@ impl Default for View {
             wind_speed_max: 40.0,
             tunnel_speed_max: 200.0,
             select: Selected::RotorSpeed,
+            section_at: 0.8,
         }
     }
 }
