@@ -74,19 +74,30 @@ fn key_to_solved_frame_160x48_iea15mw(bencher: divan::Bencher, case: &str) {
 
 /// One key press on parameter row `row`, its solve (what the worker's solver thread runs) and the
 /// 160×48 frame drawn from the result.
-fn key_to_frame(bencher: divan::Bencher, mut state: AppState, row: &str) {
-    state.focus = PARAMS.iter().position(|p| p.label == row).unwrap();
-    let mut terminal = Terminal::new(TestBackend::new(160, 48)).unwrap();
-    let mut up = true;
-    bencher.bench_local(|| {
-        // Alternate up and down so the operating point stays put over the run.
-        let action = if up {
+fn key_to_frame(bencher: divan::Bencher, state: AppState, row: &str) {
+    // Alternate up and down so the operating point stays put over the run.
+    let mut up = false;
+    keys_to_frames(bencher, state, row, move || {
+        up = !up;
+        if up {
             Action::Increase
         } else {
             Action::Decrease
-        };
-        up = !up;
-        for effect in update(&mut state, Msg::Action(action)) {
+        }
+    });
+}
+
+/// Key presses on parameter row `row`, each `next()`, with their solves and frames.
+fn keys_to_frames(
+    bencher: divan::Bencher,
+    mut state: AppState,
+    row: &str,
+    mut next: impl FnMut() -> Action,
+) {
+    state.focus = PARAMS.iter().position(|p| p.label == row).unwrap();
+    let mut terminal = Terminal::new(TestBackend::new(160, 48)).unwrap();
+    bencher.bench_local(|| {
+        for effect in update(&mut state, Msg::Action(next())) {
             if let Effect::Solve { gen, preset } = effect {
                 let (solved, stream) = runner::solve(&Physics, gen, &preset, &Cancel::never());
                 update(&mut state, solved);
@@ -116,24 +127,12 @@ fn solve_and_start_stream(bencher: divan::Bencher, model: &str) {
 #[divan::bench(sample_count = 10, sample_size = 1)]
 fn ply_angle_to_solved_frame_160x48_iea15mw_btc(bencher: divan::Bencher) {
     let p = Preset::load("iea15mw-btc", &[]).expect("iea15mw-btc loads");
-    let mut state = settled_state(
+    let state = settled_state(
         "iea15mw-btc",
         p,
         &Physics,
         ViewKind::Main,
         MarkerKind::Braille,
     );
-    state.focus = PARAMS.iter().position(|p| p.label == "ply angle").unwrap();
-    let mut terminal = Terminal::new(TestBackend::new(160, 48)).unwrap();
-    bencher.bench_local(|| {
-        for effect in update(&mut state, Msg::Action(Action::Increase)) {
-            if let Effect::Solve { gen, preset } = effect {
-                let (solved, stream) = runner::solve(&Physics, gen, &preset, &Cancel::never());
-                update(&mut state, solved);
-                divan::black_box(stream.is_ok());
-            }
-        }
-        assert!(!state.solving());
-        terminal.draw(|f| ui::render(&state, f)).unwrap();
-    });
+    keys_to_frames(bencher, state, "ply angle", || Action::Increase);
 }

@@ -326,10 +326,7 @@ pub fn run_at(p: &ValidPreset, eta: f64, json: bool, plot: Option<&Path>) -> Res
     if let Some(path) = plot {
         crate::plot::format_for(path)?;
     }
-    let turn = layup
-        .turn
-        .as_ref()
-        .filter(|t| (t.span[0]..=t.span[1]).contains(&eta));
+    let turn = layup.turn.as_ref().filter(|t| t.acts_at(eta));
     let s = layup_station(&layup.windio, eta, turn, None)?;
     let props = s.properties;
     let report = LayupStationReport {

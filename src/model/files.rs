@@ -23,7 +23,7 @@ use crate::physics::blade::source::{
 };
 use crate::physics::rotor::bem::AeroStation;
 use crate::physics::rotor::files::{
-    read_aerodyn, read_hawc2, read_htc_aero, read_prebend, read_windio_aero, AePc,
+    read_aerodyn, read_hawc2, read_htc_aero, read_prebend, windio_aero, AePc,
 };
 use crate::physics::rotor::schedule::Table as ScheduleTable;
 use crate::physics::rotor::AeroBlade;
@@ -258,6 +258,26 @@ static WINDIO_FILES: Kept<(String, u64), WindIo> = Kept::new();
 /// asked for again by every preset that names it.
 static LAYUP_BLADES: Kept<(String, u64, Option<TurnRequest>), TabulatedBlade> = Kept::new();
 
+/// The WindIO file as parsed: kept from before (by its name and text), or parsed now. The
+/// structure and the aerodynamic description of a WindIO blade share one parse.
+fn windio_file(file: &BladeFile) -> Result<Arc<WindIo>> {
+    let (name, hash, text) = windio_text(file)?;
+    parsed(&name, hash, &text)
+}
+
+/// A WindIO file's name, the hash of its text, and the text.
+fn windio_text(file: &BladeFile) -> Result<(String, u64, String)> {
+    use std::hash::{Hash, Hasher};
+    let text = file.read()?;
+    let mut hasher = std::collections::hash_map::DefaultHasher::new();
+    text.hash(&mut hasher);
+    Ok((file.display(), hasher.finish(), text))
+}
+
+fn parsed(name: &str, hash: u64, text: &str) -> Result<Arc<WindIo>> {
+    WINDIO_FILES.get_or_build((name.to_string(), hash), 2, || windio::parse(text, name))
+}
+
 /// The WindIO blade of `file` turned by `turn`: kept from before, or analysed now, its
 /// unturned stations lent by `held` (the blade the preset had) or by the newest kept blade of
 /// the same file.
@@ -266,15 +286,9 @@ fn windio_blade(
     turn: &Option<TurnRequest>,
     held: Option<&Tabulated>,
 ) -> Result<Arc<TabulatedBlade>> {
-    use std::hash::{Hash, Hasher};
-    let name = file.display();
-    let text = file.read()?;
-    let mut hasher = std::collections::hash_map::DefaultHasher::new();
-    text.hash(&mut hasher);
-    let hash = hasher.finish();
+    let (name, hash, text) = windio_text(file)?;
     LAYUP_BLADES.get_or_build((name.clone(), hash, turn.clone()), 8, || {
-        let windio =
-            WINDIO_FILES.get_or_build((name.clone(), hash), 2, || windio::parse(&text, &name))?;
+        let windio = parsed(&name, hash, &text)?;
         let kept = LAYUP_BLADES.newest(|k| k.0 == name && k.1 == hash);
         let lender = held
             .map(|t| Arc::clone(&t.blade))
@@ -408,7 +422,8 @@ fn read_aero_blade(p: &Preset) -> Result<Option<AeroBlade>> {
         read_htc_blade_aero(p)?
     } else if p.blade.source == BladeSource::Windio {
         Some(
-            read_windio_aero(&base.resolve(&p.blade.file))
+            windio_file(&base.resolve(&p.blade.file))
+                .and_then(|w| windio_aero(&w))
                 .map_err(|e| file_error(p, &format!("blade.file = \"{}\"", p.blade.file), e))?,
         )
     } else if !a.blade_file.is_empty() {

@@ -126,9 +126,7 @@ pub fn station_layup(w: &WindIo, eta: f64, turn: Option<&PlyTurn>) -> Result<Lay
     };
     let fibre = |l: &crate::formats::windio::Layer| -> f64 {
         match turn {
-            Some(t) if t.layers.contains(&l.name) && (t.span[0]..=t.span[1]).contains(&eta) => {
-                t.angle
-            }
+            Some(t) if t.layers.contains(&l.name) && t.acts_at(eta) => t.angle,
             _ => l.fiber_orientation.as_ref().map_or(0.0, |d| d.linear(eta)),
         }
     };
@@ -218,7 +216,7 @@ pub struct LayupBlade {
 
 impl PlyTurn {
     /// Whether the turn changes anything at span fraction `eta`.
-    fn acts_at(&self, eta: f64) -> bool {
+    pub fn acts_at(&self, eta: f64) -> bool {
         (self.span[0]..=self.span[1]).contains(&eta)
     }
 }

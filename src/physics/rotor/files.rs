@@ -438,12 +438,6 @@ fn profile_polar(p: &PcProfile, origin: &str) -> Result<Polar> {
 /// grid the chord, the twist and the pitch axis, the polars of the two airfoils that bracket the
 /// station's relative thickness blended in it (as its shape is, §11.12), and the prebend from
 /// the reference axis's `x` (downwind positive, as `BlCrvAC`).
-pub fn read_windio_aero(file: &impl TextFile) -> Result<AeroBlade> {
-    let name = file.display();
-    windio_aero(&windio::parse(&file.read()?, &name)?)
-}
-
-/// [`read_windio_aero`] on a parsed file.
 pub fn windio_aero(w: &WindIo) -> Result<AeroBlade> {
     let shape = &w.blade.outer_shape;
     let axis = &shape.reference_axis;
