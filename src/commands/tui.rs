@@ -32,10 +32,11 @@ pub fn run(args: &TuiArgs) -> Result<()> {
         )));
     }
     let first = preset.load()?;
-    let (entries, index) = preset_entries(&preset.preset, first);
+    let (entries, index) = preset_entries(&preset.preset, &first);
     let state = AppState::new(
         entries,
         index,
+        first,
         Options {
             color: display.color,
             marker: display.marker,

@@ -10,7 +10,7 @@ use crate::explorer::keys::Action;
 use crate::explorer::runner;
 use crate::explorer::state::update::update;
 use crate::explorer::state::{AppState, Effect, Msg, Options, PresetEntry};
-use crate::preset::{builtin_names, Preset, ValidPreset};
+use crate::preset::{builtin_names, ValidPreset};
 use ratatui::backend::TestBackend;
 use ratatui::buffer::CellWidth;
 use ratatui::Terminal;
@@ -38,6 +38,7 @@ pub fn settle(state: &mut AppState, engine: &dyn Engine, effects: Vec<Effect>) {
                 };
                 vec![solved, samples]
             }
+            Effect::Check { id, check } => vec![runner::check(*id, check)],
             // No running simulation to kick or pause between headless frames.
             Effect::Kick { .. } | Effect::Pause(_) | Effect::Quit => Vec::new(),
             job => runner::job(engine, job, &Cancel::never())
@@ -58,40 +59,30 @@ pub fn press(state: &mut AppState, engine: &dyn Engine, actions: &[Action]) {
     }
 }
 
-/// The presets `[`/`]` cycle through: the built-ins, with `first` (a loaded file or a built-in
-/// with `--set` overrides) in its built-in's place or in front. Returns the entries and the index
-/// of `first`.
-pub fn preset_entries(first_name: &str, first: ValidPreset) -> (Vec<PresetEntry>, usize) {
-    let mut entries = Vec::new();
-    let mut index = None;
-    for name in builtin_names() {
-        if name == first_name {
-            index = Some(entries.len());
-            entries.push(PresetEntry {
-                name: name.to_string(),
-                preset: first.clone(),
-            });
-        } else if let Ok(p) = Preset::load(name, &[]) {
-            entries.push(PresetEntry {
-                name: name.to_string(),
-                preset: p,
-            });
-        }
-    }
-    let index = match index {
-        Some(i) => i,
+/// The presets `[`/`]` cycle through: the built-ins (checked when first opened), with `first` (a
+/// loaded file or a built-in with `--set` overrides) in its built-in's place or in front. Returns
+/// the entries and the index of `first`, for [`AppState::new`].
+pub fn preset_entries(first_name: &str, first: &ValidPreset) -> (Vec<PresetEntry>, usize) {
+    let mut entries: Vec<PresetEntry> = builtin_names()
+        .iter()
+        .map(|name| PresetEntry {
+            name: name.to_string(),
+            preset: None,
+        })
+        .collect();
+    match entries.iter().position(|e| e.name == first_name) {
+        Some(i) => (entries, i),
         None => {
             entries.insert(
                 0,
                 PresetEntry {
                     name: first.display_name().to_string(),
-                    preset: first,
+                    preset: None,
                 },
             );
-            0
+            (entries, 0)
         }
-    };
-    (entries, index)
+    }
 }
 
 /// A settled explorer on `preset` in `view`, as the snapshot command and the tests see it.
@@ -102,12 +93,12 @@ pub fn settled_state(
     view: ViewKind,
     marker: MarkerKind,
 ) -> AppState {
-    let (entries, index) = preset_entries(name, preset);
+    let (entries, index) = preset_entries(name, &preset);
     let opts = Options {
         color: ColorMode::None,
         marker,
     };
-    let mut state = AppState::new(entries, index, opts);
+    let mut state = AppState::new(entries, index, preset, opts);
     let effects = state.start();
     settle(&mut state, engine, effects);
     match view {

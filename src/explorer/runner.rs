@@ -7,7 +7,7 @@
 
 use crate::analysis::cancel::Cancel;
 use crate::explorer::engine::{Engine, Stream};
-use crate::explorer::state::{Effect, Msg};
+use crate::explorer::state::{Check, Effect, Msg};
 use crate::preset::ValidPreset;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
@@ -59,6 +59,19 @@ pub fn solve(
             Err(Msg::SimFailed { gen, error }),
         ),
     }
+}
+
+/// Carry out a check: the preset it gives, or why not, as the [`Msg::Checked`] of `id`.
+pub fn check(id: u64, check: &Check) -> Msg {
+    let result = match check {
+        Check::Edit { base, key, value } => guarded(&format!("{key} = {value}"), || {
+            base.with(key, *value).map(Box::new)
+        }),
+        Check::Open { name } => guarded(&format!("preset {name}"), || {
+            crate::preset::Preset::load(name, &[]).map(Box::new)
+        }),
+    };
+    Msg::Checked { id, result }
 }
 
 /// The next `samples` samples of a simulation as a [`Msg::Samples`], or the [`Msg::SimFailed`]

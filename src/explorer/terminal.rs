@@ -11,7 +11,7 @@ use crate::explorer::engine::Engine;
 use crate::explorer::keys::action_for;
 use crate::explorer::state::update::update;
 use crate::explorer::state::{AppState, Effect, Msg};
-use crate::explorer::worker::{Worker, JOBS_THREAD, SOLVER_THREAD};
+use crate::explorer::worker::Worker;
 use crossbeam_channel::{unbounded, Receiver, RecvTimeoutError, Sender};
 use crossterm::cursor::{Hide, Show};
 use crossterm::event::{self, Event};
@@ -56,14 +56,15 @@ impl Guard {
     }
 }
 
-/// A panic on the UI thread restores the terminal before the message is printed (so it is
-/// readable). Panics on the worker threads are caught there and shown in the status line; they
-/// must not print over the screen or restore the terminal under the running explorer.
+/// A panic on the UI thread (the one installing the hook) restores the terminal before the
+/// message is printed (so it is readable). Panics anywhere else (the worker threads and the
+/// thread pools their parallel loops run on) are caught by the worker and shown in the status
+/// line; they must not print over the screen or restore the terminal under the running explorer.
 fn install_panic_hook() {
     let previous = std::panic::take_hook();
+    let ui = std::thread::current().id();
     std::panic::set_hook(Box::new(move |info| {
-        let name = std::thread::current().name().map(str::to_owned);
-        if matches!(name.as_deref(), Some(SOLVER_THREAD) | Some(JOBS_THREAD)) {
+        if std::thread::current().id() != ui {
             return;
         }
         restore();

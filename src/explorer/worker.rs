@@ -5,9 +5,11 @@
 //! - the **solver** solves the latest parameters (pending requests are drained and only the newest
 //!   is solved), then restarts the tip simulation from them and streams sample batches in real
 //!   time, at most one batch per frame interval; paused, or after the response diverged, it blocks
-//!   on its channel (no polling);
+//!   on its channel (no polling). It also runs the latest check of a preset whose blade is
+//!   analysed again (a WindIO ply angle) or that is opened for the first time, so the event loop
+//!   never waits for one;
 //! - the **jobs** thread runs the latest boundary search and the latest Campbell sweep, once the
-//!   requests have settled for a moment.
+//!   requests have settled for a moment, on its own thread pool.
 //!
 //! Effects become messages through [`crate::explorer::runner`] (errors and panics included), as
 //! in the headless explorer. If a thread dies anyway, the next send spawns it again and the state
@@ -17,14 +19,14 @@ use crate::analysis::cancel::Cancel;
 use crate::analysis::simulate::RunStatus;
 use crate::explorer::engine::{Engine, Stream};
 use crate::explorer::runner;
-use crate::explorer::state::{Effect, Msg};
+use crate::explorer::state::{Check, Effect, Msg};
 use crate::preset::ValidPreset;
 use crossbeam_channel::{unbounded, Receiver, RecvTimeoutError, Sender};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-/// Thread names; the terminal's panic hook keeps quiet for these (their panics are caught and
-/// shown in the status line instead of being printed over the screen).
+/// Thread names (the jobs' pool threads take the jobs thread's with a number), as a debugger or
+/// `top -H` shows them.
 pub const SOLVER_THREAD: &str = "flutterscope-solver";
 pub const JOBS_THREAD: &str = "flutterscope-jobs";
 
@@ -46,6 +48,10 @@ enum SolverReq {
         gen: u64,
         twist: f64,
         flap: f64,
+    },
+    Check {
+        id: u64,
+        check: Check,
     },
     Pause(bool),
     Quit,
@@ -114,6 +120,7 @@ impl Worker {
                 twist: twist_rad,
                 flap: flap_m,
             }),
+            Effect::Check { id, check } => self.send_solver(SolverReq::Check { id, check }),
             Effect::Pause(p) => {
                 self.paused = p;
                 self.send_solver(SolverReq::Pause(p));
@@ -213,7 +220,17 @@ fn spawn_jobs(engine: Arc<dyn Engine>, out: Sender<Msg>) -> Sender<Job> {
     let (tx, rx) = unbounded();
     let spawned = std::thread::Builder::new()
         .name(JOBS_THREAD.into())
-        .spawn(move || run_jobs(&*engine, &out, &rx));
+        .spawn(move || {
+            // The jobs' parallel loops get their own threads: in the shared pool a search's
+            // long tasks would queue ahead of the solver's, and a key would wait for them.
+            match rayon::ThreadPoolBuilder::new()
+                .thread_name(|i| format!("{JOBS_THREAD}-{i}"))
+                .build()
+            {
+                Ok(pool) => pool.install(|| run_jobs(&*engine, &out, &rx)),
+                Err(_) => run_jobs(&*engine, &out, &rx),
+            }
+        });
     if let Err(e) = spawned {
         eprintln!("flutterscope: cannot start the background-job thread: {e}");
     }
@@ -261,10 +278,14 @@ impl Solver {
             };
             let mut reqs: Vec<SolverReq> = first.into_iter().collect();
             reqs.extend(rx.try_iter());
-            // Latest wins: only the newest solve runs; kicks meant for a replaced simulation go.
+            // Latest wins: only the newest solve and the newest check run; kicks meant for a
+            // replaced simulation go.
             let newest = reqs
                 .iter()
                 .rposition(|r| matches!(r, SolverReq::Solve { .. }));
+            let newest_check = reqs
+                .iter()
+                .rposition(|r| matches!(r, SolverReq::Check { .. }));
             for (i, req) in reqs.into_iter().enumerate() {
                 match req {
                     SolverReq::Quit => return,
@@ -280,6 +301,12 @@ impl Solver {
                         cancel,
                     } if Some(i) == newest => self.solve(gen, &preset, &cancel),
                     SolverReq::Solve { .. } => {}
+                    SolverReq::Check { id, check } if Some(i) == newest_check => {
+                        if self.out.send(runner::check(id, &check)).is_err() {
+                            return;
+                        }
+                    }
+                    SolverReq::Check { .. } => {}
                     SolverReq::Kick { gen, twist, flap } => {
                         if newest.is_some_and(|n| i < n) {
                             continue;

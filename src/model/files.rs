@@ -63,6 +63,15 @@ impl ReadFiles {
         self.tabulated.as_ref().map(|t| &t.blade)
     }
 
+    /// Whether checking `p` against these files reads (or analyses) its tabulated blade again:
+    /// a key it was read from changed.
+    pub fn reads_blade_again(&self, p: &Preset) -> bool {
+        match &self.tabulated {
+            Some(t) => !t.read_from(&p.blade, &ply_turn(p)),
+            None => p.blade.source.is_tabulated(),
+        }
+    }
+
     /// The tabulated blade with the keys it was read from, for the rules that check a preset
     /// against its files.
     pub fn tabulated(&self) -> Option<&Tabulated> {

@@ -111,6 +111,14 @@ impl ValidPreset {
         p.validated(Some(&self.files), None)
     }
 
+    /// Whether [`Self::with`] would read or analyse the blade again (a WindIO blade's ply angle,
+    /// say): an edit worth checking off the thread that waits for it. A value that cannot be set
+    /// is not: its error comes at once.
+    pub fn with_reads_blade(&self, key: &str, value: f64) -> bool {
+        let mut p = self.preset.clone();
+        p.acts(key).is_ok() && p.set(key, value).is_ok() && self.files.reads_blade_again(&p)
+    }
+
     /// This preset changed by `edit` (for the keys that are not numbers), validated again; the
     /// files are read again only if a key they were read from changed.
     pub fn edited(&self, edit: impl FnOnce(&mut Preset)) -> Result<ValidPreset> {

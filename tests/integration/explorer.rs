@@ -17,10 +17,11 @@ use flutterscope::explorer::headless::{
     self, parse_size, preset_entries, render_text, settle, settled_state,
 };
 use flutterscope::explorer::keys::{action_for, Action, BINDINGS};
+use flutterscope::explorer::runner;
 use flutterscope::explorer::state::jobs::CampbellAxis;
 use flutterscope::explorer::state::params::PARAMS;
 use flutterscope::explorer::state::update::update;
-use flutterscope::explorer::state::{AppState, Effect, Msg, Options, ViewMode};
+use flutterscope::explorer::state::{AppState, Check, Effect, Msg, Options, ViewMode};
 use flutterscope::explorer::worker::Worker;
 use flutterscope::explorer::{Engine, Physics, Solve, Solved, Stream};
 use flutterscope::physics::section::SectionProps;
@@ -247,8 +248,9 @@ fn default_preset() -> ValidPreset {
 }
 
 fn fresh_state() -> (AppState, Vec<Effect>) {
-    let (entries, index) = preset_entries(DEFAULT_PRESET, default_preset());
-    let mut s = AppState::new(entries, index, Options::default());
+    let p = default_preset();
+    let (entries, index) = preset_entries(DEFAULT_PRESET, &p);
+    let mut s = AppState::new(entries, index, p, Options::default());
     let effects = s.start();
     (s, effects)
 }
@@ -328,10 +330,7 @@ fn arrows_adjust_the_focused_parameter_with_fine_and_coarse_steps() {
     update(&mut s, key(KeyCode::Char('l'), KeyModifiers::NONE));
     assert_eq!(s.preset.operating.wind_speed, w0 + 0.5);
     // The base preset is untouched (reset goes back to it).
-    assert_eq!(
-        s.presets[s.preset_index].preset.section.paper_ply_angle(),
-        ply0
-    );
+    assert_eq!(s.opened.section.paper_ply_angle(), ply0);
 }
 
 #[test]
@@ -423,9 +422,9 @@ fn aero_key_cycles_models_and_reset_restores_the_preset() {
     }
     assert_eq!(s.preset.aero.model, m0);
     update(&mut s, Msg::Action(Action::IncreaseCoarse));
-    assert_ne!(s.preset, s.presets[s.preset_index].preset);
+    assert_ne!(s.preset, s.opened);
     let e = update(&mut s, key(KeyCode::Char('r'), KeyModifiers::NONE));
-    assert_eq!(s.preset, s.presets[s.preset_index].preset);
+    assert_eq!(s.preset, s.opened);
     assert_eq!(solve_gens(&e), vec![s.gen]);
 }
 
@@ -586,7 +585,8 @@ fn preset_keys_cycle_through_the_builtins() {
     headless::press(&mut s, &engine, &[Action::NextPreset]);
     if BUILTIN.len() > 1 {
         assert_eq!(s.preset_index, 1 % BUILTIN.len());
-        assert_eq!(s.preset, s.presets[s.preset_index].preset);
+        assert_eq!(s.preset, s.opened);
+        assert_eq!(s.presets[s.preset_index].preset.as_ref(), Some(&s.opened));
         headless::press(&mut s, &engine, &[Action::PrevPreset]);
         assert_eq!(s.preset_index, 0);
     } else {
@@ -618,7 +618,7 @@ fn a_preset_file_joins_the_cycle_in_front() {
     let p = default_preset()
         .edited(|p| p.meta.name = "my blade".into())
         .unwrap();
-    let (entries, index) = preset_entries("blades/mine.toml", p);
+    let (entries, index) = preset_entries("blades/mine.toml", &p);
     assert_eq!(index, 0);
     assert_eq!(entries[0].name, "my blade");
     assert_eq!(entries.len(), BUILTIN.len() + 1);
@@ -1172,8 +1172,8 @@ fn the_parameters_pane_offers_what_applies_and_dims_what_waits() {
 fn the_coupling_knob_is_selected_and_dragged_on_a_real_blade() {
     let engine = TestEngine::default();
     let p = Preset::load("nrel5mw", &[]).unwrap();
-    let (entries, index) = preset_entries("nrel5mw", p);
-    let mut s = AppState::new(entries, index, Options::default());
+    let (entries, index) = preset_entries("nrel5mw", &p);
+    let mut s = AppState::new(entries, index, p, Options::default());
     let e = s.start();
     settle(&mut s, &engine, e);
     assert_eq!(PARAMS[s.focus].label, "rotor speed");
@@ -1217,8 +1217,8 @@ fn the_coupling_knob_is_selected_and_dragged_on_a_real_blade() {
 fn view_select_can_open_on_the_coupling() {
     let open = |name: &str| {
         let p = Preset::load(name, &["view.select=bend-twist-coupling".into()]).unwrap();
-        let (entries, index) = preset_entries(name, p);
-        let s = AppState::new(entries, index, Options::default());
+        let (entries, index) = preset_entries(name, &p);
+        let s = AppState::new(entries, index, p, Options::default());
         (PARAMS[s.focus].label, s.boundary_key)
     };
     assert_eq!(
@@ -1385,7 +1385,7 @@ fn rotor_speed_and_pitch_follow_the_schedule_until_overridden() {
     headless::press(&mut s, &Physics, &[Action::FollowSchedule]);
     assert_eq!(row(&s, "rotor speed"), "↻ 7.56 rpm");
     // Nothing reads as changed by hand any more (no `*`).
-    let start = &s.presets[s.preset_index].preset;
+    let start = &s.opened;
     assert_eq!(s.preset.operating.rotor_speed, start.operating.rotor_speed);
     let solved = s.solved.as_ref().unwrap();
     assert!((solved.setting.unwrap().0 - 7.56).abs() < 1e-3);
@@ -1402,8 +1402,8 @@ fn rotor_speed_and_pitch_follow_the_schedule_until_overridden() {
 fn state_on(name: &str, overrides: &[&str], engine: &dyn Engine) -> AppState {
     let ov: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
     let p = Preset::load(name, &ov).unwrap();
-    let (entries, index) = preset_entries(name, p);
-    let mut s = AppState::new(entries, index, Options::default());
+    let (entries, index) = preset_entries(name, &p);
+    let mut s = AppState::new(entries, index, p, Options::default());
     let e = s.start();
     settle(&mut s, engine, e);
     s
@@ -1776,4 +1776,148 @@ fn a_margin_search_ends_at_the_slider_end_and_prints_no_float_noise() {
                 .is_some_and(|(_, decimals)| decimals.len() >= 10)
         });
     assert!(!noisy, "{frame}");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Checks off the event loop: a WindIO blade's ply angle, presets opened on first use.
+// ---------------------------------------------------------------------------------------------
+
+/// The checks among `effects`, as (id, what they check).
+fn checks(effects: &[Effect]) -> Vec<(u64, Check)> {
+    effects
+        .iter()
+        .filter_map(|e| match e {
+            Effect::Check { id, check } => Some((*id, check.clone())),
+            _ => None,
+        })
+        .collect()
+}
+
+/// On a WindIO blade the ply angle analyses the blade's sections again: the key asks for a check
+/// (run off the event loop) instead of analysing in the key handler. The row shows the new angle
+/// at once and the status line says what runs; a second key steps on from it and replaces the
+/// check; the answer of an older check is ignored, the newest one's is solved.
+#[test]
+fn a_ply_angle_key_on_a_windio_blade_is_checked_off_the_event_loop() {
+    let engine = TestEngine::default();
+    let mut s = state_on("iea15mw-btc", &["view.select=ply-angle"], &engine);
+    assert_eq!(PARAMS[s.focus].label, "ply angle");
+    assert_eq!(s.preset.section.ply_angle, Some(8.0));
+    let gen0 = s.gen;
+    let e1 = update(&mut s, Msg::Action(Action::Increase));
+    assert!(solve_gens(&e1).is_empty(), "no solve before the check");
+    let c1 = checks(&e1);
+    assert_eq!(c1.len(), 1);
+    assert_eq!(s.gen, gen0, "the parameters have not changed yet");
+    assert_eq!(s.preset.section.ply_angle, Some(8.0));
+    assert_eq!(s.param_text(&PARAMS[s.focus]), "9.0 deg");
+    let text = render_text(&s, 160, 48);
+    assert!(
+        text.contains("analysing the blade at ply angle 9.0 deg…"),
+        "{text}"
+    );
+    // A second key steps from the angle asked for.
+    let e2 = update(&mut s, Msg::Action(Action::Increase));
+    let c2 = checks(&e2);
+    assert_eq!(s.param_text(&PARAMS[s.focus]), "10.0 deg");
+    let Check::Edit { value, .. } = &c2[0].1 else {
+        panic!("an edit check: {:?}", c2[0].1)
+    };
+    assert_eq!(*value, 10.0);
+    // The first check's answer comes late: ignored.
+    let late = runner::check(c1[0].0, &c1[0].1);
+    assert!(update(&mut s, late).is_empty());
+    assert_eq!(s.preset.section.ply_angle, Some(8.0));
+    // The second's is applied and solved.
+    let answer = runner::check(c2[0].0, &c2[0].1);
+    let e3 = update(&mut s, answer);
+    assert_eq!(solve_gens(&e3), vec![gen0 + 1]);
+    assert_eq!(s.preset.section.ply_angle, Some(10.0));
+    assert!(s.checking.is_none());
+    assert_eq!(s.param_text(&PARAMS[s.focus]), "10.0 deg");
+    assert!(!render_text(&s, 160, 48).contains("analysing the blade"));
+}
+
+/// Another parameter moved while the blade was analysed: the ply angle lands on the parameters
+/// as they are now, and neither edit is lost. Other keys never wait for a check.
+#[test]
+fn an_edit_made_while_the_blade_is_analysed_is_kept() {
+    let engine = TestEngine::default();
+    let mut s = state_on("iea15mw-btc", &["view.select=ply-angle"], &engine);
+    let asked = checks(&update(&mut s, Msg::Action(Action::Decrease)));
+    update(&mut s, Msg::Action(Action::FocusNext));
+    let focused = PARAMS[s.focus].label;
+    let key = match PARAMS[s.focus].kind {
+        flutterscope::explorer::state::params::ParamKind::Number { key, .. } => key,
+        _ => panic!("a number row after the ply angle, not {focused}"),
+    };
+    let before = s.preset.get(key).unwrap();
+    let e = update(&mut s, Msg::Action(Action::IncreaseCoarse));
+    assert_eq!(solve_gens(&e), vec![s.gen], "{focused} is solved at once");
+    let moved = s.preset.get(key).unwrap();
+    assert_ne!(moved, before);
+    let answer = runner::check(asked[0].0, &asked[0].1);
+    let e = update(&mut s, answer);
+    assert_eq!(solve_gens(&e), vec![s.gen]);
+    assert_eq!(s.preset.section.ply_angle, Some(7.0));
+    assert_eq!(s.preset.get(key).unwrap(), moved);
+}
+
+/// A check that fails (here a preset whose file is gone) leaves the explorer where it was, with
+/// the reason in the status line.
+#[test]
+fn a_check_that_fails_is_shown_and_changes_nothing() {
+    let engine = TestEngine::default();
+    let mut s = state_on("iea15mw-btc", &["view.select=ply-angle"], &engine);
+    let before = s.preset.clone();
+    let asked = checks(&update(&mut s, Msg::Action(Action::Increase)));
+    let e = update(
+        &mut s,
+        Msg::Checked {
+            id: asked[0].0,
+            result: Err("section.ply_angle = 9: the layup failed".into()),
+        },
+    );
+    assert!(e.is_empty());
+    assert_eq!(s.preset, before);
+    assert!(s.checking.is_none());
+    let text = render_text(&s, 160, 48);
+    assert!(text.contains("the layup failed"), "{text}");
+}
+
+/// The explorer starts on its preset alone: the other built-ins are checked when first opened
+/// (off the event loop), then kept; opening one shows it from a fresh start.
+#[test]
+fn presets_are_checked_when_first_opened() {
+    let engine = TestEngine::default();
+    let mut s = settled(&engine);
+    let loaded: Vec<&str> = s
+        .presets
+        .iter()
+        .filter(|e| e.preset.is_some())
+        .map(|e| e.name.as_str())
+        .collect();
+    assert_eq!(loaded, vec![DEFAULT_PRESET]);
+    let e = update(&mut s, Msg::Action(Action::NextPreset));
+    let asked = checks(&e);
+    assert!(matches!(&asked[..], [(_, Check::Open { name })] if *name == s.presets[1].name));
+    assert_eq!(
+        s.preset_index, 0,
+        "still on the first until the check answers"
+    );
+    let text = render_text(&s, 160, 48);
+    assert!(
+        text.contains(&format!("opening {}…", s.presets[1].name)),
+        "{text}"
+    );
+    let e = update(&mut s, runner::check(asked[0].0, &asked[0].1));
+    assert_eq!(solve_gens(&e), vec![s.gen]);
+    assert_eq!(s.preset_index, 1);
+    assert!(s.presets[1].preset.is_some());
+    // Back and forth again: both are kept, nothing to check.
+    for a in [Action::PrevPreset, Action::NextPreset] {
+        let e = update(&mut s, Msg::Action(a));
+        assert!(checks(&e).is_empty());
+        assert_eq!(solve_gens(&e), vec![s.gen]);
+    }
 }

@@ -38,7 +38,41 @@ pub const KICK_FLAP_SPAN_FRACTION: f64 = 0.01;
 #[derive(Debug, Clone)]
 pub struct PresetEntry {
     pub name: String,
-    pub preset: ValidPreset,
+    /// The preset as checked; `None` for a built-in not opened yet (checked when first opened,
+    /// so starting the explorer never waits for presets it may not show).
+    pub preset: Option<ValidPreset>,
+}
+
+/// A check running off the event loop: an edit that reads or analyses the blade again (a
+/// WindIO blade's ply angle), or a preset being opened. The newest replaces any older one.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Pending {
+    pub id: u64,
+    /// The generation of the parameters when it was asked for: an edit checked on parameters
+    /// that have moved since is made again on the current ones.
+    pub gen: u64,
+    pub what: PendingWhat,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub enum PendingWhat {
+    /// `key` set to `value` on the parameters being explored.
+    Edit { key: &'static str, value: f64 },
+    /// Preset entry `index`.
+    Open { index: usize },
+}
+
+/// What a [`Effect::Check`] checks.
+#[derive(Debug, Clone)]
+pub enum Check {
+    /// `base` with `key` set to `value`.
+    Edit {
+        base: Arc<ValidPreset>,
+        key: &'static str,
+        value: f64,
+    },
+    /// The built-in preset `name`.
+    Open { name: String },
 }
 
 /// Display options from the command line.
@@ -82,6 +116,13 @@ pub struct AppState {
     pub preset_index: usize,
     /// The parameters being explored.
     pub preset: ValidPreset,
+    /// The current entry's preset as it opened: what `r` resets to and what the parameters pane
+    /// marks changes against.
+    pub opened: ValidPreset,
+    /// The check running off the event loop, if any (the last one asked for).
+    pub checking: Option<Pending>,
+    /// The id of the last check asked for.
+    pub check_id: u64,
     pub focus: usize,
     /// Bumped on every parameter change; results of older generations are ignored.
     pub gen: u64,
@@ -157,6 +198,11 @@ pub enum Msg {
         gen: u64,
         seconds: f64,
     },
+    /// The check `id` is done: the preset it gave, or why it failed.
+    Checked {
+        id: u64,
+        result: Result<Box<ValidPreset>, String>,
+    },
     /// The worker died and was restarted (or could not be).
     WorkerFailed(String),
     /// Terminal input failed (e.g. stdin closed): the explorer cannot be driven, so it quits.
@@ -184,6 +230,11 @@ pub enum Effect {
         key: &'static str,
         grid: Vec<f64>,
     },
+    /// Check a preset off the event loop; the answer is [`Msg::Checked`] with this `id`.
+    Check {
+        id: u64,
+        check: Check,
+    },
     /// Kick the running simulation of generation `gen`.
     Kick {
         gen: u64,
@@ -195,20 +246,31 @@ pub enum Effect {
 }
 
 impl AppState {
-    /// A state showing `presets[index]`; call [`AppState::start`] for the first effects.
-    pub fn new(presets: Vec<PresetEntry>, index: usize, opts: Options) -> AppState {
-        assert!(
-            !presets.is_empty(),
-            "the explorer needs at least one preset"
-        );
+    /// A state showing `preset` as entry `index` of `presets` (the entry is given `preset`; with
+    /// no entries it is the only one); call [`AppState::start`] for the first effects.
+    pub fn new(
+        mut presets: Vec<PresetEntry>,
+        index: usize,
+        preset: ValidPreset,
+        opts: Options,
+    ) -> AppState {
+        if presets.is_empty() {
+            presets.push(PresetEntry {
+                name: preset.display_name().to_string(),
+                preset: None,
+            });
+        }
         let index = index.min(presets.len() - 1);
-        let preset = presets[index].preset.clone();
+        presets[index].preset = Some(preset.clone());
         let focus = param_index(&preset, preset.view.select.key());
         let start = opening_key(&preset, focus);
         AppState {
             presets,
             preset_index: index,
+            opened: preset.clone(),
             preset,
+            checking: None,
+            check_id: 0,
             focus,
             gen: 0,
             solved_gen: 0,
@@ -246,15 +308,43 @@ impl AppState {
         &PARAMS[self.focus]
     }
 
+    /// The value an edit being checked gives `key`, if one is.
+    pub fn pending_value(&self, key: &str) -> Option<f64> {
+        match self.checking.as_ref()?.what {
+            PendingWhat::Edit { key: k, value } if k == key => Some(value),
+            _ => None,
+        }
+    }
+
+    /// What the check running off the event loop is doing, for the status line.
+    pub fn checking_text(&self) -> Option<String> {
+        Some(match self.checking.as_ref()?.what {
+            PendingWhat::Edit { key, value } => {
+                let label = PARAMS
+                    .iter()
+                    .find(|p| matches!(p.kind, ParamKind::Number { key: k, .. } if k == key))
+                    .map_or(key, |p| p.label);
+                format!("analysing the blade at {label} {}…", value_text(key, value))
+            }
+            PendingWhat::Open { index } => {
+                format!("opening {}…", self.presets.get(index)?.name)
+            }
+        })
+    }
+
     /// The value of a parameter row as text with its unit.
     pub fn param_text(&self, param: &Param) -> String {
         match param.kind {
             ParamKind::Aero => self.preset.aero.model.name().to_string(),
-            ParamKind::Number { key, .. } => match self.scheduled_value(key) {
-                // ↻: the schedule sets it at this wind speed.
-                Some(v) => format!("↻ {}", value_text(key, v)),
-                None => value_text(key, self.preset.get(key).unwrap_or(f64::NAN)),
-            },
+            ParamKind::Number { key, .. } => {
+                match (self.pending_value(key), self.scheduled_value(key)) {
+                    // The value asked for shows at once, while its check runs.
+                    (Some(v), _) => value_text(key, v),
+                    // ↻: the schedule sets it at this wind speed.
+                    (None, Some(v)) => format!("↻ {}", value_text(key, v)),
+                    (None, None) => value_text(key, self.preset.get(key).unwrap_or(f64::NAN)),
+                }
+            }
         }
     }
 

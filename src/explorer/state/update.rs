@@ -12,7 +12,8 @@ use crate::explorer::state::jobs::{
 };
 use crate::explorer::state::params::{offered_rows, param_bounds, param_index, steps, ParamKind};
 use crate::explorer::state::{
-    frequency_order, AppState, Effect, Msg, Response, ViewMode, SOLVE_BUDGET_S, TRAIL_LEN,
+    frequency_order, AppState, Check, Effect, Msg, Pending, PendingWhat, Response, ViewMode,
+    SOLVE_BUDGET_S, TRAIL_LEN,
 };
 use crate::preset::ValidPreset;
 use std::sync::Arc;
@@ -37,7 +38,7 @@ impl AppState {
             return Vec::new();
         }
         // Back to the starting preset's own values too, so nothing reads as changed by hand.
-        let start = &self.presets[self.preset_index].preset.operating;
+        let start = &self.opened.operating;
         let (rpm, pitch) = (start.rotor_speed, start.pitch);
         let edited = p.edited(|q| {
             q.follow_schedule();
@@ -54,10 +55,26 @@ impl AppState {
         vec![self.solve_effect()]
     }
 
-    /// Load preset entry `index` (or the current one again for reset).
+    /// Open preset entry `index` (or the current one again for reset): at once when it has been
+    /// checked, else once its check comes back.
     fn load_entry(&mut self, index: usize) -> Vec<Effect> {
+        let Some(entry) = self.presets.get(index) else {
+            return Vec::new();
+        };
+        match entry.preset.clone() {
+            Some(p) => self.open(index, p),
+            None => {
+                let name = entry.name.clone();
+                self.check(PendingWhat::Open { index }, Check::Open { name })
+            }
+        }
+    }
+
+    /// Show `preset` as entry `index`, from a fresh start.
+    fn open(&mut self, index: usize, preset: ValidPreset) -> Vec<Effect> {
         self.preset_index = index;
-        self.preset = self.presets[index].preset.clone();
+        self.opened = preset.clone();
+        self.preset = preset;
         // Each preset opens on the parameter it selects (`view.select`).
         self.focus = param_index(&self.preset, self.preset.view.select.key());
         self.boundary_key = opening_key(&self.preset, self.focus);
@@ -69,6 +86,44 @@ impl AppState {
         self.prev_modes.clear();
         self.fresh = true;
         self.changed()
+    }
+
+    /// Ask for `check` off the event loop; it replaces any check still running.
+    fn check(&mut self, what: PendingWhat, check: Check) -> Vec<Effect> {
+        self.check_id += 1;
+        let id = self.check_id;
+        self.checking = Some(Pending {
+            id,
+            gen: self.gen,
+            what,
+        });
+        vec![Effect::Check { id, check }]
+    }
+
+    /// A check came back: apply the edit, or open the preset.
+    fn on_checked(&mut self, result: Result<Box<ValidPreset>, String>) -> Vec<Effect> {
+        let Some(pending) = self.checking.take() else {
+            return Vec::new();
+        };
+        match (pending.what, result) {
+            // The parameters moved on meanwhile (another key): the edit is made on them now,
+            // its blade kept from the check.
+            (PendingWhat::Edit { key, value }, Ok(_)) if pending.gen != self.gen => {
+                let edited = self.preset.with(key, value);
+                self.apply(edited)
+            }
+            (PendingWhat::Edit { .. }, Ok(p)) => self.apply(Ok(*p)),
+            (PendingWhat::Open { index }, Ok(p)) => {
+                if let Some(entry) = self.presets.get_mut(index) {
+                    entry.preset = Some((*p).clone());
+                }
+                self.open(index, *p)
+            }
+            (_, Err(e)) => {
+                self.notice = Some(e);
+                Vec::new()
+            }
+        }
     }
 
     /// A boundary search along the current boundary key, once the verdict is known.
@@ -201,7 +256,8 @@ impl AppState {
                 let step = if coarse { coarse_step } else { fine };
                 // A scheduled value steps from where the schedule has it.
                 let Some(v) = self
-                    .scheduled_value(key)
+                    .pending_value(key)
+                    .or_else(|| self.scheduled_value(key))
                     .or_else(|| self.preset.get(key).ok())
                 else {
                     return Vec::new();
@@ -225,6 +281,17 @@ impl AppState {
                         self.param_text(self.focused())
                     ));
                     return Vec::new();
+                }
+                // A blade analysed again (a WindIO blade's ply angle) is checked off the event
+                // loop; the row shows the new value meanwhile.
+                if self.preset.with_reads_blade(key, next) {
+                    let base = Arc::new(self.preset.clone());
+                    let check = Check::Edit {
+                        base,
+                        key,
+                        value: next,
+                    };
+                    return self.check(PendingWhat::Edit { key, value: next }, check);
                 }
                 let edited = self.preset.with(key, next);
                 self.apply(edited)
@@ -282,7 +349,7 @@ impl AppState {
                 self.paused = !self.paused;
                 vec![Effect::Pause(self.paused)]
             }
-            Action::Reset => self.load_entry(self.preset_index),
+            Action::Reset => self.open(self.preset_index, self.opened.clone()),
             Action::FollowSchedule => self.follow_schedule(),
             Action::Kick => {
                 if self.response.diverging {
@@ -431,6 +498,7 @@ pub fn update(s: &mut AppState, msg: Msg) -> Vec<Effect> {
                 && *gen == s.gen
         }
         Msg::Campbell { gen, .. } => s.campbell.as_ref().is_some_and(|c| c.gen == *gen),
+        Msg::Checked { id, .. } => s.checking.as_ref().is_some_and(|c| c.id == *id),
     };
     if !visible {
         // A stale result: the parameters moved on since it was asked for.
@@ -487,6 +555,7 @@ pub fn update(s: &mut AppState, msg: Msg) -> Vec<Effect> {
             }
             Vec::new()
         }
+        Msg::Checked { result, .. } => s.on_checked(result),
         Msg::SolveTime { seconds, .. } => {
             s.solve_seconds = seconds;
             Vec::new()

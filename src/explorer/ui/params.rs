@@ -63,11 +63,9 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
         let value = state.param_text(p);
         let changed = match p.kind {
             ParamKind::Number { key, .. } => {
-                state.preset.get(key).ok() != state.presets[state.preset_index].preset.get(key).ok()
+                state.preset.get(key).ok() != state.opened.get(key).ok()
             }
-            ParamKind::Aero => {
-                state.preset.aero.model != state.presets[state.preset_index].preset.aero.model
-            }
+            ParamKind::Aero => state.preset.aero.model != state.opened.aero.model,
         };
         let text = format!(
             "{marker}{:<label_w$}{}{value:>value_w$}",

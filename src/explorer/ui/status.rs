@@ -277,7 +277,10 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
             .unwrap_or_default(),
         _ => Vec::new(),
     };
-    let solving = (state.solving() && state.solved.is_some()).then(|| solving_text(state));
+    let solving = state
+        .checking_text()
+        .map(|t| format!("  {t}"))
+        .or_else(|| (state.solving() && state.solved.is_some()).then(|| solving_text(state)));
     let fixed = badge.chars().count() + solving.as_ref().map_or(0, |t| t.chars().count());
     // The badge and the margin always, the margin in the longest form that fits (its
     // "margin along" dropped before its details); the least-damped mode in the room left.
