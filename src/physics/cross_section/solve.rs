@@ -29,9 +29,13 @@
 use super::material::section_stiffness;
 use super::mesh::Mesh;
 use crate::error::{Error, Result};
-use faer::linalg::solvers::Solve;
-use faer::sparse::{SparseColMat, Triplet};
-use faer::{Mat, Side};
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::sparse::linalg::cholesky::{
+    factorize_symbolic_cholesky, CholeskySymbolicParams, SymmetricOrdering,
+};
+use faer::sparse::linalg::SupernodalThreshold;
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
+use faer::{Conj, Mat, Par, Side};
 use nalgebra::{Matrix6, SMatrix, Vector6};
 
 /// The section's matrices about `reference` (m, `[x, y]` in the mesh's plane), BeamDyn's
@@ -48,7 +52,6 @@ pub struct BeamMatrices {
     pub reference: [f64; 2],
 }
 
-type Mat6x12 = SMatrix<f64, 6, 12>;
 type Vec12 = SMatrix<f64, 12, 1>;
 
 const GAUSS: f64 = 0.577_350_269_189_625_8;
@@ -74,38 +77,98 @@ struct Quad {
     nodes: [usize; 4],
 }
 
+/// The two nonzero rows of `B`'s column for warping component `c` (x, y, z) of a node with
+/// derivatives `(dx, dy)`, Voigt (xx, yy, zz, yz, xz, xy): `B` is sparse, and the element
+/// matrices are built from these pairs rather than from dense products.
+#[inline]
+fn b_rows(c: usize, dx: f64, dy: f64) -> [(usize, f64); 2] {
+    match c {
+        0 => [(0, dx), (5, dy)],
+        1 => [(1, dy), (5, dx)],
+        _ => [(3, dy), (4, dx)],
+    }
+}
+
 impl Point {
-    /// `B` (in-plane derivatives of the warping) and `S` (its `∂/∂z` factor), Voigt
-    /// (xx, yy, zz, yz, xz, xy), warping components (x, y, z) node by node.
-    fn operators(&self) -> (Mat6x12, Mat6x12) {
-        let mut b = Mat6x12::zeros();
-        let mut s = Mat6x12::zeros();
+    /// `B v`: the in-plane derivatives' strains of the element warping `v`.
+    #[inline]
+    fn b(&self, v: &Vec12) -> Vector6<f64> {
+        let mut e = Vector6::zeros();
         for a in 0..4 {
-            let c = 3 * a;
-            b[(0, c)] = self.dx[a];
-            b[(1, c + 1)] = self.dy[a];
-            b[(3, c + 2)] = self.dy[a];
-            b[(4, c + 2)] = self.dx[a];
-            b[(5, c)] = self.dy[a];
-            b[(5, c + 1)] = self.dx[a];
-            s[(2, c + 2)] = self.n[a];
-            s[(3, c + 1)] = self.n[a];
-            s[(4, c)] = self.n[a];
+            let (dx, dy) = (self.dx[a], self.dy[a]);
+            let (u, w, z) = (v[3 * a], v[3 * a + 1], v[3 * a + 2]);
+            e[0] += dx * u;
+            e[1] += dy * w;
+            e[3] += dy * z;
+            e[4] += dx * z;
+            e[5] += dy * u + dx * w;
         }
-        (b, s)
+        e
     }
 
-    /// `S_z Z`: the strains of the section's strains `ψ` at this point.
-    fn rigid(&self) -> Matrix6<f64> {
-        let mut z = Matrix6::zeros();
-        z[(2, 2)] = 1.0;
-        z[(2, 3)] = self.y;
-        z[(2, 4)] = -self.x;
-        z[(3, 1)] = 1.0;
-        z[(3, 5)] = self.x;
-        z[(4, 0)] = 1.0;
-        z[(4, 5)] = -self.y;
-        z
+    /// `S v`: the strains of the warping's slope `v` along the beam.
+    #[inline]
+    fn s(&self, v: &Vec12) -> Vector6<f64> {
+        let mut e = Vector6::zeros();
+        for a in 0..4 {
+            let n = self.n[a];
+            e[2] += n * v[3 * a + 2];
+            e[3] += n * v[3 * a + 1];
+            e[4] += n * v[3 * a];
+        }
+        e
+    }
+
+    /// `(S_z Z) ψ`: the strains of the section's strains `ψ` at this point.
+    #[inline]
+    fn z(&self, psi: &Vector6<f64>) -> Vector6<f64> {
+        Vector6::new(
+            0.0,
+            0.0,
+            psi[2] + self.y * psi[3] - self.x * psi[4],
+            psi[1] + self.x * psi[5],
+            psi[0] - self.y * psi[5],
+            0.0,
+        )
+    }
+
+    /// `Bᵀ σ`.
+    #[inline]
+    fn bt(&self, s: &Vector6<f64>) -> Vec12 {
+        let mut f = Vec12::zeros();
+        for a in 0..4 {
+            let (dx, dy) = (self.dx[a], self.dy[a]);
+            f[3 * a] = dx * s[0] + dy * s[5];
+            f[3 * a + 1] = dy * s[1] + dx * s[5];
+            f[3 * a + 2] = dy * s[3] + dx * s[4];
+        }
+        f
+    }
+
+    /// `Sᵀ σ`.
+    #[inline]
+    fn st(&self, s: &Vector6<f64>) -> Vec12 {
+        let mut f = Vec12::zeros();
+        for a in 0..4 {
+            let n = self.n[a];
+            f[3 * a] = n * s[4];
+            f[3 * a + 1] = n * s[3];
+            f[3 * a + 2] = n * s[2];
+        }
+        f
+    }
+
+    /// `(S_z Z)ᵀ σ`.
+    #[inline]
+    fn zt(&self, s: &Vector6<f64>) -> Vector6<f64> {
+        Vector6::new(
+            s[4],
+            s[3],
+            s[2],
+            self.y * s[2],
+            -self.x * s[2],
+            self.x * s[3] - self.y * s[4],
+        )
     }
 }
 
@@ -192,6 +255,78 @@ fn scatter(out: &mut [f64], nodes: &[usize; 4], add: &Vec12) {
     }
 }
 
+/// The sparsity of the warping matrix `E` on the free components (lower triangle, by columns)
+/// and where each element's entries go in it: built from which nodes share an element, so the
+/// matrix is assembled in place rather than from sorted triplets.
+struct Pattern {
+    col_ptr: Vec<usize>,
+    row_idx: Vec<usize>,
+    /// For element `k`, `slots[k][i * 12 + j]` is the value index of the entry that the
+    /// element's components `i` and `j` make, when `i`'s free index is at or below `j`'s in the
+    /// matrix (else, or for a held component, `usize::MAX`).
+    slots: Vec<[usize; 144]>,
+}
+
+impl Pattern {
+    fn new(quads: &[Quad], nodes: usize, free: &[usize], nfree: usize) -> Pattern {
+        // Each node's neighbours (itself included), sorted.
+        let mut near: Vec<Vec<usize>> = vec![Vec::with_capacity(9); nodes];
+        for q in quads {
+            for &a in &q.nodes {
+                near[a].extend_from_slice(&q.nodes);
+            }
+        }
+        for list in &mut near {
+            list.sort_unstable();
+            list.dedup();
+        }
+        // Column f (a free component of node a) holds the free components of a's neighbours
+        // at or below it; free indices grow with the component index, so they come sorted.
+        let mut col_ptr = Vec::with_capacity(nfree + 1);
+        let mut row_idx = Vec::new();
+        col_ptr.push(0);
+        for (g, &f) in free.iter().enumerate() {
+            if f == usize::MAX {
+                continue;
+            }
+            for &b in &near[g / 3] {
+                for c in 0..3 {
+                    let r = free[3 * b + c];
+                    if r != usize::MAX && r >= f {
+                        row_idx.push(r);
+                    }
+                }
+            }
+            col_ptr.push(row_idx.len());
+        }
+        let slots = quads
+            .iter()
+            .map(|q| {
+                let mut s = [usize::MAX; 144];
+                let dof = |i: usize| free[3 * q.nodes[i / 3] + i % 3];
+                for i in 0..12 {
+                    for j in 0..12 {
+                        let (fi, fj) = (dof(i), dof(j));
+                        if fi == usize::MAX || fj == usize::MAX || fi < fj {
+                            continue;
+                        }
+                        let rows = &row_idx[col_ptr[fj]..col_ptr[fj + 1]];
+                        if let Ok(at) = rows.binary_search(&fi) {
+                            s[i * 12 + j] = col_ptr[fj] + at;
+                        }
+                    }
+                }
+                s
+            })
+            .collect();
+        Pattern {
+            col_ptr,
+            row_idx,
+            slots,
+        }
+    }
+}
+
 /// Six warping components held at zero to take out the rigid motions: both in-plane components
 /// at `first`, the one across the line to the node farthest from it, and the axial component at
 /// those two and at the node farthest from their line (a plane through three points that are not
@@ -260,24 +395,60 @@ pub(crate) fn analyse_pinned(
             nfree += 1;
         }
     }
+    let pattern = Pattern::new(&quads, mesh.nodes.len(), &free, nfree);
 
-    // E (sparse, free components), R (dense columns), 𝒜 and the mass.
-    let mut triplets = Vec::with_capacity(quads.len() * 144);
+    // E (sparse, free components, lower triangle), R (dense columns), 𝒜 and the mass.
+    let mut values = vec![0.0; pattern.row_idx.len()];
     let mut r = vec![[0.0; 6]; ndof];
     let mut a6 = Matrix6::zeros();
     let mut mass = Matrix6::zeros();
-    for quad in &quads {
-        let mut ke = SMatrix::<f64, 12, 12>::zeros();
-        let mut re = SMatrix::<f64, 12, 6>::zeros();
+    for (quad, slots) in quads.iter().zip(&pattern.slots) {
+        let q = &quad.q;
         for p in &quad.points {
-            let (b, _) = p.operators();
-            let z = p.rigid();
-            let qb = quad.q * b;
-            ke += b.transpose() * qb * p.w;
-            re += qb.transpose() * z * p.w;
-            a6 += z.transpose() * quad.q * z * p.w;
-            let m = quad.rho * p.w;
+            // Q times B's columns, and Q times S_zZ's: each a sum of at most two of Q's columns.
+            let mut qb = [Vector6::<f64>::zeros(); 12];
+            let mut rows = [[(0usize, 0.0); 2]; 12];
+            for i in 0..12 {
+                let (a, c) = (i / 3, i % 3);
+                rows[i] = b_rows(c, p.dx[a], p.dy[a]);
+                let [(r1, v1), (r2, v2)] = rows[i];
+                qb[i] = q.column(r1) * v1 + q.column(r2) * v2;
+            }
             let (x, y) = (p.x, p.y);
+            let qz = [
+                q.column(4).into_owned(),
+                q.column(3).into_owned(),
+                q.column(2).into_owned(),
+                q.column(2) * y,
+                q.column(2) * -x,
+                q.column(3) * x - q.column(4) * y,
+            ];
+            for i in 0..12 {
+                let [(r1, v1), (r2, v2)] = rows[i];
+                for j in 0..=i {
+                    // The pair lands below the diagonal in one order; in both when the two are
+                    // one component (a triangle's repeated node).
+                    let (below, above) = (slots[i * 12 + j], slots[j * 12 + i]);
+                    let v = (v1 * qb[j][r1] + v2 * qb[j][r2]) * p.w;
+                    if below != usize::MAX {
+                        values[below] += v;
+                    }
+                    if i != j && above != usize::MAX {
+                        values[above] += v;
+                    }
+                }
+                let g = 3 * quad.nodes[i / 3] + i % 3;
+                for (c, qzc) in qz.iter().enumerate() {
+                    r[g][c] += (v1 * qzc[r1] + v2 * qzc[r2]) * p.w;
+                }
+            }
+            for (c, qzc) in qz.iter().enumerate() {
+                let col = p.zt(qzc) * p.w;
+                for k in 0..6 {
+                    a6[(k, c)] += col[k];
+                }
+            }
+            let m = quad.rho * p.w;
             mass[(0, 0)] += m;
             mass[(0, 5)] -= m * y;
             mass[(1, 5)] += m * x;
@@ -288,23 +459,6 @@ pub(crate) fn analyse_pinned(
             mass[(3, 4)] -= m * x * y;
             mass[(5, 5)] += m * (x * x + y * y);
         }
-        let dof = |i: usize| 3 * quad.nodes[i / 3] + i % 3;
-        for i in 0..12 {
-            let gi = dof(i);
-            for c in 0..6 {
-                r[gi][c] += re[(i, c)];
-            }
-            let fi = free[gi];
-            if fi == usize::MAX {
-                continue;
-            }
-            for j in 0..12 {
-                let fj = free[dof(j)];
-                if fj != usize::MAX {
-                    triplets.push(Triplet::new(fi, fj, ke[(i, j)]));
-                }
-            }
-        }
     }
     mass[(1, 1)] = mass[(0, 0)];
     mass[(2, 2)] = mass[(0, 0)];
@@ -314,19 +468,40 @@ pub(crate) fn analyse_pinned(
         }
     }
 
-    let e = SparseColMat::<usize, f64>::try_new_from_triplets(nfree, nfree, &triplets).map_err(
-        |err| {
-            Error::numerical(format!(
-                "cross-section: assembling the warping matrix: {err:?}"
-            ))
-        },
-    )?;
-    let llt = e.sp_cholesky(Side::Lower).map_err(|err| {
+    let structure =
+        SymbolicSparseColMat::new_checked(nfree, nfree, pattern.col_ptr, None, pattern.row_idx);
+    let e = SparseColMatRef::new(structure.as_ref(), &values);
+    let not_definite = |err: String| {
         Error::numerical(format!(
-            "cross-section: the warping stiffness is not positive definite ({err:?}): a material \
+            "cross-section: the warping stiffness is not positive definite ({err}): a material \
              without stiffness, or elements not connected to the rest of the section"
         ))
-    })?;
+    };
+    let symbolic = factorize_symbolic_cholesky(
+        structure.as_ref(),
+        Side::Lower,
+        SymmetricOrdering::Amd,
+        CholeskySymbolicParams {
+            supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+            ..Default::default()
+        },
+    )
+    .map_err(|err| not_definite(format!("{err:?}")))?;
+    let mut factor = vec![0.0; symbolic.len_val()];
+    let par = Par::Seq;
+    let llt = symbolic
+        .factorize_numeric_llt(
+            &mut factor,
+            e,
+            Side::Lower,
+            Default::default(),
+            par,
+            MemStack::new(&mut MemBuffer::new(
+                symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()),
+            )),
+            Default::default(),
+        )
+        .map_err(|err| not_definite(format!("{err:?}")))?;
     // Solves E w = f on the free components; the held ones stay zero.
     let solve = |rhs: &[Vec<f64>]| -> Vec<Vec<f64>> {
         let mut m = Mat::<f64>::zeros(nfree, rhs.len());
@@ -337,7 +512,14 @@ pub(crate) fn analyse_pinned(
                 }
             }
         }
-        llt.solve_in_place(m.as_mut());
+        llt.solve_in_place_with_conj(
+            Conj::No,
+            m.as_mut(),
+            par,
+            MemStack::new(&mut MemBuffer::new(
+                llt.solve_in_place_scratch::<f64>(rhs.len(), par),
+            )),
+        );
         (0..rhs.len())
             .map(|c| {
                 (0..ndof)
@@ -400,13 +582,11 @@ pub(crate) fn analyse_pinned(
             let ve = gather(xd, &quad.nodes);
             let mut fe = Vec12::zeros();
             for p in &quad.points {
-                let (b, s) = p.operators();
-                let z = p.rigid();
-                let qs = quad.q * s * ve;
-                let qb = quad.q * b * ve;
-                fe += (s.transpose() * qb - b.transpose() * qs + s.transpose() * quad.q * z * yd)
-                    * p.w;
-                g -= z.transpose() * qs * p.w;
+                let qs = quad.q * p.s(&ve);
+                let qb = quad.q * p.b(&ve);
+                let qz = quad.q * p.z(yd);
+                fe += (p.st(&(qb + qz)) - p.bt(&qs)) * p.w;
+                g -= p.zt(&qs) * p.w;
             }
             scatter(&mut f, &quad.nodes, &fe);
         }
@@ -429,14 +609,15 @@ pub(crate) fn analyse_pinned(
         let xe: [Vec12; 6] = std::array::from_fn(|j| gather(&xs[j], &quad.nodes));
         let de: [Vec12; 6] = std::array::from_fn(|j| gather(xd[j], &quad.nodes));
         for p in &quad.points {
-            let (b, s) = p.operators();
-            let z = p.rigid();
             let mut eps = Matrix6::zeros();
             for j in 0..6 {
-                let col = z * ys[j] + b * xe[j] + s * de[j];
+                let mut col = p.z(&ys[j]) + p.b(&xe[j]);
+                if j < 2 {
+                    col += p.s(&de[j]);
+                }
                 eps.set_column(j, &col);
             }
-            flex += eps.transpose() * quad.q * eps * p.w;
+            flex += eps.transpose() * (quad.q * eps) * p.w;
         }
     }
     let flex = (flex + flex.transpose()) * 0.5;
