@@ -45,6 +45,26 @@ impl SymmetricBand {
         SymmetricBand { n, band, lower }
     }
 
+    /// The `n × n` zero matrix with room for entries `band` places off the diagonal.
+    pub fn zeros(n: usize, band: usize) -> SymmetricBand {
+        SymmetricBand {
+            n,
+            band,
+            lower: vec![0.0; n * (band + 1)],
+        }
+    }
+
+    /// Add `v` to entry `(i, j)` of the lower band and so to `(j, i)` (`j ≤ i ≤ j + band`).
+    pub fn add_lower(&mut self, i: usize, j: usize, v: f64) {
+        debug_assert!(j <= i && i - j <= self.band, "({i}, {j}) outside the lower band");
+        self.lower[i * (self.band + 1) + j + self.band - i] += v;
+    }
+
+    /// Whether every entry is finite.
+    pub fn is_finite(&self) -> bool {
+        self.lower.iter().all(|v| v.is_finite())
+    }
+
     pub fn size(&self) -> usize {
         self.n
     }

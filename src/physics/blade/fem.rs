@@ -22,6 +22,7 @@
 use super::axis::AxisPoint;
 use super::hermite::hermite;
 use super::{BeamSection, BladeTable};
+use crate::numeric::banded::SymmetricBand;
 use crate::error::{Error, Result};
 use crate::physics::basis::gauss_legendre;
 use nalgebra::{DMatrix, DVector};
@@ -167,19 +168,20 @@ impl Mesh {
     }
 }
 
-/// The assembled structure of one blade at one pitch: `M`, `K₀`, `K_Ω` (free dofs only).
+/// The assembled structure of one blade at one pitch: `M`, `K₀`, `K_Ω` (free dofs only), dense
+/// ([`assemble`]) or as their bands ([`assemble_banded`], what the modal bases are built from).
 #[derive(Debug, Clone)]
-pub struct BladeMatrices {
+pub struct BladeMatrices<M = DMatrix<f64>> {
     /// The table the matrices came from: the offsets that carry a mode shape from the shear
     /// centre to the reference axis ([`BladeMatrices::reference_axis_at`]).
     pub table: BladeTable,
     pub mesh: Mesh,
     /// Pitch the section frames were turned by (rad).
     pub pitch: f64,
-    pub mass: DMatrix<f64>,
-    pub k0: DMatrix<f64>,
+    pub mass: M,
+    pub k0: M,
     /// Per Ω² (rad/s)⁻²: `K(Ω) = K₀ + Ω² K_Ω`.
-    pub k_omega: DMatrix<f64>,
+    pub k_omega: M,
     /// The beam the elements model; where each family's dofs sit is its
     /// [`layout`](Beam::layout).
     pub beam: Beam,
@@ -361,6 +363,44 @@ pub fn assemble(table: &BladeTable, mesh: &Mesh, pitch: f64) -> Result<BladeMatr
     assemble_with(table, mesh, pitch, None)
 }
 
+/// [`assemble`] into the matrices' bands: what the modal bases take, without the dense
+/// matrices (on a 120-element blade three of 5.7 MB each, zeroed and scanned for nothing).
+pub fn assemble_banded(
+    table: &BladeTable,
+    mesh: &Mesh,
+    pitch: f64,
+) -> Result<BladeMatrices<SymmetricBand>> {
+    assemble_with(table, mesh, pitch, None)
+}
+
+/// Where the assembly adds the element matrices: a dense matrix, or the lower band of a
+/// symmetric one (the element matrices are symmetric).
+pub trait Storage: Sized {
+    fn zeros(n: usize, band: usize) -> Self;
+    fn add(&mut self, i: usize, j: usize, v: f64);
+}
+
+impl Storage for DMatrix<f64> {
+    fn zeros(n: usize, _band: usize) -> Self {
+        DMatrix::zeros(n, n)
+    }
+    fn add(&mut self, i: usize, j: usize, v: f64) {
+        self[(i, j)] += v;
+    }
+}
+
+impl Storage for SymmetricBand {
+    fn zeros(n: usize, band: usize) -> Self {
+        SymmetricBand::zeros(n, band)
+    }
+    fn add(&mut self, i: usize, j: usize, v: f64) {
+        // Each off-diagonal pair comes twice, once from each side; the lower one is kept.
+        if i >= j {
+            self.add_lower(i, j, v);
+        }
+    }
+}
+
 /// Factors on the section stiffness per strain `(γ_ξ, γ_η, κ_ξ, κ_η, φ')`: a coupling term
 /// between two strains takes the mean of theirs (docs/model.md §11.4, stiffness-proportional
 /// damping).
@@ -373,24 +413,25 @@ pub fn scaled_stiffness(
     mesh: &Mesh,
     pitch: f64,
     factors: StrainFactors,
-) -> Result<DMatrix<f64>> {
+) -> Result<SymmetricBand> {
     Ok(assemble_with(table, mesh, pitch, Some(factors))?.k0)
 }
 
-fn assemble_with(
+fn assemble_with<M: Storage>(
     table: &BladeTable,
     mesh: &Mesh,
     pitch: f64,
     factors: Option<StrainFactors>,
-) -> Result<BladeMatrices> {
+) -> Result<BladeMatrices<M>> {
     if mesh.nodes.len() < 2 {
         return Err(Error::numerical("blade mesh needs at least one element"));
     }
     let beam = Beam::of(table);
     let n = beam.layout().dofs(mesh.elements());
-    let mut mass = DMatrix::zeros(n, n);
-    let mut k0 = DMatrix::zeros(n, n);
-    let mut k_omega = DMatrix::zeros(n, n);
+    let band = element_band(beam, mesh.elements());
+    let mut mass = M::zeros(n, band);
+    let mut k0 = M::zeros(n, band);
+    let mut k_omega = M::zeros(n, band);
     let mut curve_loads = [DVector::zeros(n), DVector::zeros(n)];
     let curved = !table.axis.is_straight();
     let (gauss_s, gauss_w) = gauss_legendre(GAUSS_POINTS);
@@ -533,24 +574,26 @@ fn assemble_with(
                 }
             }
         }
+        // Checked element by element: a scan of the assembled matrices costs more than the
+        // assembly on a long blade.
+        for (name, a) in [
+            ("mass", &me),
+            ("stiffness", &ke),
+            ("rotational stiffness", &kw),
+        ] {
+            if a.iter().flatten().any(|v| !v.is_finite()) {
+                return Err(Error::numerical(format!(
+                    "{}: blade {name} matrix has non-finite entries (element {e}, z = {za}–{zb} m)",
+                    table.origin
+                )));
+            }
+        }
         let dofs = beam.element_dofs(e);
         scatter(&mut mass, &me, &dofs);
         scatter(&mut k0, &ke, &dofs);
         scatter(&mut k_omega, &kw, &dofs);
         for (global, local) in curve_loads.iter_mut().zip(&le) {
             scatter_load(global, local, &dofs);
-        }
-    }
-    for (name, a) in [
-        ("mass", &mass),
-        ("stiffness", &k0),
-        ("rotational stiffness", &k_omega),
-    ] {
-        if a.iter().any(|v| !v.is_finite()) {
-            return Err(Error::numerical(format!(
-                "{}: blade {name} matrix has non-finite entries",
-                table.origin
-            )));
         }
     }
     Ok(BladeMatrices {
@@ -630,14 +673,27 @@ fn propeller(inertia: [f64; 3], m: f64, cg: [f64; 2], shear: [f64; 2], theta: f6
 
 /// Add an element matrix into the global one at the element's free dofs (a clamped dof has
 /// none; two local dofs may share one).
-fn scatter(global: &mut DMatrix<f64>, local: &ElementMatrix, dofs: &[Option<usize>; ELEMENT]) {
+fn scatter<M: Storage>(global: &mut M, local: &ElementMatrix, dofs: &[Option<usize>; ELEMENT]) {
     for (row, gi) in local.iter().zip(dofs) {
         let Some(gi) = *gi else { continue };
         for (value, gj) in row.iter().zip(dofs) {
             let Some(gj) = *gj else { continue };
-            global[(gi, gj)] += value;
+            global.add(gi, gj, *value);
         }
     }
+}
+
+/// The widest distance between two free dofs of one element: no entry of the matrices lies
+/// further from the diagonal.
+fn element_band(beam: Beam, elements: usize) -> usize {
+    (0..elements)
+        .map(|e| {
+            let dofs = beam.element_dofs(e).into_iter().flatten();
+            let (lo, hi) = dofs.fold((usize::MAX, 0), |(lo, hi), d| (lo.min(d), hi.max(d)));
+            hi.saturating_sub(lo)
+        })
+        .max()
+        .unwrap_or(0)
 }
 
 /// Add an element load vector into the global one at the element's free dofs.
@@ -724,6 +780,29 @@ pub struct BladeGeometry {
 }
 
 impl BladeMatrices {
+    /// The same matrices as their bands.
+    pub fn banded(self) -> BladeMatrices<SymmetricBand> {
+        let band = self.band();
+        BladeMatrices {
+            mass: SymmetricBand::from_dense(&self.mass, band),
+            k0: SymmetricBand::from_dense(&self.k0, band),
+            k_omega: SymmetricBand::from_dense(&self.k_omega, band),
+            table: self.table,
+            mesh: self.mesh,
+            pitch: self.pitch,
+            beam: self.beam,
+            curve_loads: self.curve_loads,
+        }
+    }
+}
+
+impl<M> BladeMatrices<M> {
+    /// The half-bandwidth of the matrices: the widest distance between two dofs of one element,
+    /// which no entry lies beyond (from the mesh, without a scan of the dense matrices).
+    pub fn band(&self) -> usize {
+        element_band(self.beam, self.mesh.elements())
+    }
+
     /// The load per Ω² that rotation puts on the curved blade (docs/model.md §11.9): the
     /// centrifugal tension on the slopes of the curve (pulling a prebent blade toward the rotor
     /// plane) and the in-plane pull on a swept one, as a generalised force.

@@ -8,7 +8,7 @@
 use super::fem::{scaled_stiffness, BladeGeometry, BladeMatrices, Mesh, NodeLayout};
 use super::BladeTable;
 use crate::error::{Error, Result};
-use crate::numeric::banded::{half_bandwidth, SymmetricBand};
+use crate::numeric::banded::SymmetricBand;
 use crate::numeric::cholesky::symmetrised;
 use crate::numeric::lanczos::lowest_modes;
 use nalgebra::{DMatrix, DVector, SymmetricEigen};
@@ -33,7 +33,8 @@ pub struct BladeMode {
     /// of mass offset, left out so that the shares add up to 1).
     pub shares: [f64; 3],
     /// Modal damping ratio ζ: `φᵀCφ / 2ω` of the structural damping matrix the basis carries
-    /// ([`ModalBlade::with_damping`]), 0 without one (docs/model.md §11.4).
+    /// (its projection on the pitch-range basis, [`super::pitch_range`]), 0 without one
+    /// (docs/model.md §11.4).
     pub damping_ratio: f64,
     /// Free-dof vector (`[u, u', v, v', φ]` per node after the root), M-normalised.
     pub shape: DVector<f64>,
@@ -74,7 +75,7 @@ pub fn stiffness_damping(
     mesh: &Mesh,
     pitch: f64,
     f: StiffnessFactors,
-) -> Result<DMatrix<f64>> {
+) -> Result<SymmetricBand> {
     let [shear_xi, shear_eta] = f.shear;
     scaled_stiffness(
         table,
@@ -118,21 +119,23 @@ impl ModalBlade {
         reference_speeds: &[f64],
         per_speed: usize,
     ) -> Result<ModalBlade> {
-        let n = matrices.mass.nrows();
+        Self::from_bands(matrices.banded(), reference_speeds, per_speed)
+    }
+
+    /// [`ModalBlade::new`] from the matrices' bands ([`super::fem::assemble_banded`]).
+    pub fn from_bands(
+        matrices: BladeMatrices<SymmetricBand>,
+        reference_speeds: &[f64],
+        per_speed: usize,
+    ) -> Result<ModalBlade> {
+        let n = matrices.mass.size();
         let per_speed = per_speed.min(n);
-        let band = [&matrices.mass, &matrices.k0, &matrices.k_omega]
-            .map(half_bandwidth)
-            .into_iter()
-            .max()
-            .unwrap_or(0);
-        let mass = SymmetricBand::from_dense(&matrices.mass, band);
-        let k0 = SymmetricBand::from_dense(&matrices.k0, band);
-        let k_omega = SymmetricBand::from_dense(&matrices.k_omega, band);
+        let (mass, k0, k_omega) = (&matrices.mass, &matrices.k0, &matrices.k_omega);
         let mut columns: Vec<DVector<f64>> = Vec::new();
         let mut previous = DMatrix::zeros(n, 0);
         for &omega in reference_speeds {
-            let k = k0.plus(omega * omega, &k_omega);
-            let modes = lowest_modes(&k, &mass, per_speed, &previous).map_err(|e| {
+            let k = k0.plus(omega * omega, k_omega);
+            let modes = lowest_modes(&k, mass, per_speed, &previous).map_err(|e| {
                 e.at(format!(
                     "{}: blade modes at Ω = {omega} rad/s",
                     matrices.table.origin
@@ -141,7 +144,7 @@ impl ModalBlade {
             columns.extend(modes.vectors.column_iter().map(|c| c.into_owned()));
             previous = modes.vectors;
         }
-        let basis = m_orthonormal(&mass, columns);
+        let basis = m_orthonormal(mass, columns);
         if basis.ncols() == 0 {
             return Err(Error::numerical(format!(
                 "{}: blade modal basis is empty",
@@ -150,7 +153,7 @@ impl ModalBlade {
         }
         let reduced_k0 = symmetrised(basis.tr_mul(&k0.mul(&basis)));
         let reduced_k_omega = symmetrised(basis.tr_mul(&k_omega.mul(&basis)));
-        let reduced_family = reduced_family_mass(&mass, &basis, &matrices.beam.layout());
+        let reduced_family = reduced_family_mass(mass, &basis, &matrices.beam.layout());
         let reduced_centrifugal_load = basis.tr_mul(&matrices.centrifugal_load());
         Ok(ModalBlade {
             reduced_centrifugal_load,
@@ -202,14 +205,6 @@ impl ModalBlade {
             basis,
             mass_factor: Some(l),
         })
-    }
-
-    /// This basis with the structural damping matrix `damping` (free dofs, e.g. from
-    /// [`stiffness_damping`]): each mode's [`BladeMode::damping_ratio`] is then its projection.
-    pub fn with_damping(mut self, damping: &DMatrix<f64>) -> ModalBlade {
-        let c = SymmetricBand::from_dense(damping, half_bandwidth(damping));
-        self.reduced_damping = Some(symmetrised(self.basis.tr_mul(&c.mul(&self.basis))));
-        self
     }
 
     /// The basis Φ (dofs × b).

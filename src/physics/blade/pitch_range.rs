@@ -14,14 +14,14 @@
 //! decomposition that drops the directions the snapshots hardly use. The tests bound what it
 //! costs against a full rebuild at each pitch.
 
-use super::fem::{assemble, Beam, BladeGeometry, BladeMatrices, Mesh};
+use super::fem::{assemble_banded, Beam, BladeGeometry, BladeMatrices, Mesh};
 use super::modal::{
     m_orthonormal, reduced_family_mass, stiffness_damping, ModalBlade, Projections,
     StiffnessFactors,
 };
 use super::BladeTable;
 use crate::error::{Error, Result};
-use crate::numeric::banded::{half_bandwidth, SymmetricBand};
+use crate::numeric::banded::SymmetricBand;
 use crate::numeric::cholesky::symmetrised;
 use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
@@ -130,22 +130,20 @@ impl PitchRangeBlade {
         let snapshots: Vec<DMatrix<f64>> = pitches
             .par_iter()
             .map(|&pitch| {
-                let matrices = assemble(table, mesh, pitch)?;
-                Ok(ModalBlade::new(matrices, speeds, per_speed)?
+                let matrices = assemble_banded(table, mesh, pitch)?;
+                Ok(ModalBlade::from_bands(matrices, speeds, per_speed)?
                     .basis()
                     .clone())
             })
             .collect::<Result<_>>()?;
-        let samples: Vec<BladeMatrices> = (0..SAMPLES)
+        let samples: Vec<BladeMatrices<SymmetricBand>> = (0..SAMPLES)
             .into_par_iter()
-            .map(|k| assemble(table, mesh, sample_pitch(k)))
+            .map(|k| assemble_banded(table, mesh, sample_pitch(k)))
             .collect::<Result<_>>()?;
-        let basis = compressed(&band_of(&samples[0].mass), &snapshots, &table.origin)?;
-        let project = |a: &DMatrix<f64>| -> DMatrix<f64> {
-            let band = band_of(a);
-            symmetrised(basis.tr_mul(&band.mul(&basis)))
-        };
-        let harmonics = |f: &dyn Fn(&BladeMatrices) -> &DMatrix<f64>| {
+        let basis = compressed(&samples[0].mass, &snapshots, &table.origin)?;
+        let project =
+            |a: &SymmetricBand| -> DMatrix<f64> { symmetrised(basis.tr_mul(&a.mul(&basis))) };
+        let harmonics = |f: &dyn Fn(&BladeMatrices<SymmetricBand>) -> &SymmetricBand| {
             Harmonics::from_samples(&samples.iter().map(|s| project(f(s))).collect::<Vec<_>>())
         };
         let damping = damping
@@ -160,7 +158,7 @@ impl PitchRangeBlade {
             .transpose()?;
         let families: Vec<[DMatrix<f64>; 3]> = samples
             .iter()
-            .map(|s| reduced_family_mass(&band_of(&s.mass), &basis, &s.beam.layout()))
+            .map(|s| reduced_family_mass(&s.mass, &basis, &s.beam.layout()))
             .collect();
         let family = [0, 1, 2].map(|g| {
             Harmonics::from_samples(&families.iter().map(|f| f[g].clone()).collect::<Vec<_>>())
@@ -218,10 +216,6 @@ impl PitchRangeBlade {
 }
 
 /// The banded form of a symmetric matrix.
-fn band_of(a: &DMatrix<f64>) -> SymmetricBand {
-    SymmetricBand::from_dense(a, half_bandwidth(a))
-}
-
 /// One basis for all `snapshots` (each dofs × k): M-orthonormalised together, then only the
 /// directions whose singular value in the snapshots exceeds [`POD_TOLERANCE`] of the largest
 /// (proper orthogonal decomposition in the M inner product).
@@ -256,6 +250,7 @@ fn compressed(
 
 #[cfg(test)]
 mod tests {
+    use crate::physics::blade::fem::assemble;
     use super::*;
     use crate::formats::text_file::DiskFile;
     use crate::physics::blade::axis::CurvedAxis;
@@ -326,6 +321,23 @@ mod tests {
             let samples: Vec<BladeMatrices> = (0..SAMPLES)
                 .map(|k| assemble(&table, &mesh, sample_pitch(k)).unwrap())
                 .collect();
+            // The bands the bases are built from are the dense matrices' bands.
+            for (k, dense) in samples.iter().enumerate() {
+                let banded = assemble_banded(&table, &mesh, sample_pitch(k)).unwrap();
+                for (b, d) in [
+                    (&banded.mass, &dense.mass),
+                    (&banded.k0, &dense.k0),
+                    (&banded.k_omega, &dense.k_omega),
+                ] {
+                    let scale = d.amax();
+                    let n = d.nrows();
+                    let worst = (0..n)
+                        .flat_map(|i| (0..n).map(move |j| (i, j)))
+                        .map(|(i, j)| (b.get(i, j) - d[(i, j)]).abs())
+                        .fold(0.0, f64::max);
+                    assert!(worst <= 1e-14 * scale, "{name}: {worst:e} of {scale:e}");
+                }
+            }
             let terms = |f: fn(&BladeMatrices) -> &DMatrix<f64>| {
                 Harmonics::from_samples(&samples.iter().map(|s| f(s).clone()).collect::<Vec<_>>())
             };
