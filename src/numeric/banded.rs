@@ -56,7 +56,10 @@ impl SymmetricBand {
 
     /// Add `v` to entry `(i, j)` of the lower band and so to `(j, i)` (`j ≤ i ≤ j + band`).
     pub fn add_lower(&mut self, i: usize, j: usize, v: f64) {
-        debug_assert!(j <= i && i - j <= self.band, "({i}, {j}) outside the lower band");
+        debug_assert!(
+            j <= i && i - j <= self.band,
+            "({i}, {j}) outside the lower band"
+        );
         self.lower[i * (self.band + 1) + j + self.band - i] += v;
     }
 

@@ -913,7 +913,12 @@ fn the_band_from_the_mesh_holds_every_entry() {
             let m = assemble(&table, &Mesh::following(&table, 40), pitch).unwrap();
             let scanned = [&m.mass, &m.k0, &m.k_omega].map(half_bandwidth);
             let widest = scanned.into_iter().max().unwrap();
-            assert_eq!(m.band(), widest, "{:?} at pitch {pitch}: {scanned:?}", m.beam);
+            assert_eq!(
+                m.band(),
+                widest,
+                "{:?} at pitch {pitch}: {scanned:?}",
+                m.beam
+            );
             beams.push(m.beam);
         }
     }

@@ -195,6 +195,45 @@ fn a_new_ply_angle_analyses_only_the_turned_stations() {
     }
 }
 
+/// A turned station keeps its mesh and its factorisation's pattern: its section is the one a
+/// new mesh of the turned layup gives, to round-off.
+#[test]
+fn a_turned_station_is_the_section_of_its_turned_layup_meshed_anew() {
+    use flutterscope::physics::blade::windio::{layup_section, PlyTurn};
+    let p = preset("iea15mw-btc", &[]);
+    let q = p.with("section.ply_angle", -5.0).unwrap();
+    let turned = q.tabulated_blade().unwrap().layup.clone().unwrap();
+    let turn = turned.turn.clone().unwrap();
+    assert_eq!(
+        turn,
+        PlyTurn {
+            angle: (-5.0f64).to_radians(),
+            ..turn.clone()
+        }
+    );
+    let mut compared = 0;
+    for s in turned.sections.iter().filter(|s| turn.acts_at(s.eta)) {
+        let fresh = layup_section(&turned.windio, s.eta, Some(&turn), None).unwrap();
+        assert_eq!(fresh.mesh.mesh, s.mesh.mesh, "η {}", s.eta);
+        let scale = fresh.matrices.stiffness[2][2];
+        for (a, b) in fresh
+            .matrices
+            .stiffness
+            .iter()
+            .flatten()
+            .zip(s.matrices.stiffness.iter().flatten())
+        {
+            assert!(
+                (a - b).abs() <= 1e-12 * scale,
+                "η {}: {a} against {b}",
+                s.eta
+            );
+        }
+        compared += 1;
+    }
+    assert!(compared > 10, "{compared} turned stations");
+}
+
 /// The first 8 modes of the layup blade against the IEA 15MW st-file blade (the BeamDyn file's
 /// data): bending within 3 %; the first torsion mode 5.3 % low, as the layup's outboard GJ is.
 #[test]

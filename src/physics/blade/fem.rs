@@ -22,8 +22,8 @@
 use super::axis::AxisPoint;
 use super::hermite::hermite;
 use super::{BeamSection, BladeTable};
-use crate::numeric::banded::SymmetricBand;
 use crate::error::{Error, Result};
+use crate::numeric::banded::SymmetricBand;
 use crate::physics::basis::gauss_legendre;
 use nalgebra::{DMatrix, DVector};
 

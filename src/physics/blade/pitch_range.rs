@@ -250,10 +250,10 @@ fn compressed(
 
 #[cfg(test)]
 mod tests {
-    use crate::physics::blade::fem::assemble;
     use super::*;
     use crate::formats::text_file::DiskFile;
     use crate::physics::blade::axis::CurvedAxis;
+    use crate::physics::blade::fem::assemble;
     use crate::physics::blade::source::{read_beamdyn, read_hawc2, read_twist};
 
     /// The built-in presets' two blades, as their files describe them, and the IEA 15MW on its

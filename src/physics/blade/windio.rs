@@ -1,8 +1,10 @@
 //! A blade's sections from its WindIO layup (docs/model.md §11.12): at a span station the
 //! airfoil blended in relative thickness, scaled by the chord about the pitch axis, the layers
 //! and webs placed on it as the ontology defines, meshed ([`mesh_layup`]) and analysed
-//! ([`analyse`]) for the 6×6 stiffness and mass about the reference axis, in BeamDyn's section
-//! axes (the frame turned by the twist), the form §11.5 reads from a BeamDyn blade file.
+//! ([`analyse_reusing`]) for the 6×6 stiffness and mass about the reference axis, in BeamDyn's
+//! section axes (the frame turned by the twist), the form §11.5 reads from a BeamDyn blade file.
+//! A station whose fibres turn keeps its mesh and the symbolic part of its factorisation: only
+//! the plies' stiffness changes.
 
 use super::beamdyn::from_beamdyn;
 use super::BladeTable;
@@ -13,7 +15,9 @@ use crate::formats::windio::{Elastic, Material, WindIo};
 use crate::physics::cross_section::layup::{
     mesh_layup, Layup, LayupMesh, Meshing, ShellLayer, WebLayer, WebLayup,
 };
-use crate::physics::cross_section::{analyse, BeamMatrices, Orthotropic, SectionProperties};
+use crate::physics::cross_section::{
+    analyse_reusing, BeamMatrices, Factorisation, Orthotropic, SectionProperties,
+};
 use rayon::prelude::*;
 use std::sync::Arc;
 
@@ -54,7 +58,11 @@ pub struct LayupSection {
     pub matrices: BeamMatrices,
     /// Its stiffnesses, centres and mass, in the same axes.
     pub properties: SectionProperties,
+    /// The layup as placed at this station, and its mesh.
+    pub layup: Layup,
     pub mesh: LayupMesh,
+    /// The symbolic factorisation of the mesh's warping matrix, for the same mesh turned.
+    pub factorisation: Factorisation,
 }
 
 impl LayupSection {
@@ -188,13 +196,44 @@ pub fn layup_section(
         .sum();
     let meshing = meshing.unwrap_or_else(|| Meshing::for_perimeter(perimeter));
     let mesh = mesh_layup(&layup, meshing).map_err(|e| at_station(w, eta, e))?;
-    let matrices = analyse(&mesh.mesh, [0.0, 0.0]).map_err(|e| at_station(w, eta, e))?;
+    analysed(w, eta, layup, mesh, None)
+}
+
+/// The section at `held`'s station with its fibres turned by `turn`: `held`'s mesh with the new
+/// fibre angles, analysed on its factorisation's pattern (the same as a new mesh would give,
+/// at the cost of the analysis alone). Meshed anew if the layup differs in more than angles.
+fn turned_section(w: &WindIo, held: &LayupSection, turn: Option<&PlyTurn>) -> Result<LayupSection> {
+    let eta = held.eta;
+    let layup = station_layup(w, eta, turn)?;
+    match held.mesh.turned(&held.layup, &layup) {
+        Some(mesh) => {
+            let mesh = LayupMesh {
+                mesh,
+                ..held.mesh.clone()
+            };
+            analysed(w, eta, layup, mesh, Some(&held.factorisation))
+        }
+        None => layup_section(w, eta, turn, None),
+    }
+}
+
+fn analysed(
+    w: &WindIo,
+    eta: f64,
+    layup: Layup,
+    mesh: LayupMesh,
+    reuse: Option<&Factorisation>,
+) -> Result<LayupSection> {
+    let (matrices, factorisation) =
+        analyse_reusing(&mesh.mesh, [0.0, 0.0], reuse).map_err(|e| at_station(w, eta, e))?;
     let properties = matrices.properties().map_err(|e| at_station(w, eta, e))?;
     Ok(LayupSection {
         eta,
         matrices,
         properties,
+        layup,
         mesh,
+        factorisation,
     })
 }
 
@@ -229,7 +268,7 @@ fn turn_at(turn: Option<&PlyTurn>, eta: f64) -> Option<&PlyTurn> {
 impl LayupBlade {
     /// The blade of `windio` with its layers turned by `turn`, each station's section analysed
     /// (in parallel), or taken from `held` where its fibres are the same there: a new ply angle
-    /// analyses only the stations it turns.
+    /// analyses only the stations it turns, on `held`'s meshes and factorisation patterns.
     pub fn new(
         windio: Arc<WindIo>,
         turn: Option<PlyTurn>,
@@ -248,7 +287,8 @@ impl LayupBlade {
                 let here = turn_at(turn.as_ref(), eta);
                 match held {
                     Some(h) if turn_at(h.turn.as_ref(), eta) == here => Ok(h.sections[k].clone()),
-                    _ => layup_section(&windio, eta, here, None).map(Arc::new),
+                    Some(h) => turned_section(&windio, &h.sections[k], here).map(Arc::new),
+                    None => layup_section(&windio, eta, here, None).map(Arc::new),
                 }
             })
             .collect::<Result<Vec<_>>>()?;

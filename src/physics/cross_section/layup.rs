@@ -104,11 +104,22 @@ impl Meshing {
     }
 }
 
+/// Which layer of the [`Layup`] an element lies in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LayerOf {
+    /// `layup.shell[i]`.
+    Shell(usize),
+    /// `layup.webs[web].layers[layer]`.
+    Web { web: usize, layer: usize },
+}
+
 /// The mesh and what the meshing had to leave out.
 #[derive(Debug, Clone, PartialEq)]
 pub struct LayupMesh {
     /// In BeamDyn's section axes, about the reference point.
     pub mesh: Mesh,
+    /// The layer of each element of `mesh`.
+    pub layers: Vec<LayerOf>,
     /// Mass per length of the layers cut away where the walls meet (kg/m).
     pub clipped_mass: f64,
     /// Mass per length the layup asks for on the shell (kg/m), for scale.
@@ -386,17 +397,20 @@ struct WebLines {
     suction: Vec<f64>,
     pressure: Vec<f64>,
     plies: Vec<Ply>,
+    /// The web's layer (index in the layup) of each row.
+    ply_layers: Vec<usize>,
     /// Unit vector along the web from the suction to the pressure side (chord frame).
     along: [f64; 2],
 }
 
 fn web_lines(outline: &Outline, le: f64, web: &WebLayup, rows: usize) -> Result<Option<WebLines>> {
-    let layers: Vec<&WebLayer> = web
+    let layers: Vec<(usize, &WebLayer)> = web
         .layers
         .iter()
-        .filter(|l| l.thickness >= THINNEST)
+        .enumerate()
+        .filter(|(_, l)| l.thickness >= THINNEST)
         .collect();
-    let total: f64 = layers.iter().map(|l| l.thickness).sum();
+    let total: f64 = layers.iter().map(|(_, l)| l.thickness).sum();
     if layers.is_empty() {
         return Ok(None);
     }
@@ -409,7 +423,8 @@ fn web_lines(outline: &Outline, le: f64, web: &WebLayup, rows: usize) -> Result<
     }
     let mut offsets = vec![-total / 2.0];
     let mut plies = Vec::new();
-    for l in &layers {
+    let mut ply_layers = Vec::new();
+    for &(index, l) in &layers {
         let o = *offsets.last().expect("starts with one offset");
         for k in 1..=rows {
             offsets.push(o + l.thickness * k as f64 / rows as f64);
@@ -418,6 +433,7 @@ fn web_lines(outline: &Outline, le: f64, web: &WebLayup, rows: usize) -> Result<
                 fibre_angle: l.fibre_angle,
                 orientation: 0.0,
             });
+            ply_layers.push(index);
         }
     }
     let meet = |o: f64, from: f64, to: f64, near: f64| {
@@ -442,6 +458,7 @@ fn web_lines(outline: &Outline, le: f64, web: &WebLayup, rows: usize) -> Result<
         suction,
         pressure,
         plies,
+        ply_layers,
         along,
     }))
 }
@@ -592,6 +609,9 @@ pub fn mesh_layup(layup: &Layup, meshing: Meshing) -> Result<LayupMesh> {
         .shell
         .iter()
         .filter(|l| l.thickness >= THINNEST)
+        .collect();
+    let shell_index: Vec<usize> = (0..layup.shell.len())
+        .filter(|&i| layup.shell[i].thickness >= THINNEST)
         .collect();
 
     let webs = layup
@@ -794,6 +814,7 @@ pub fn mesh_layup(layup: &Layup, meshing: Meshing) -> Result<LayupMesh> {
     // Shell elements: counterclockwise in the chord frame as (outer k, outer k+1, inner k+1,
     // inner k).
     let mut elements: Vec<Element> = Vec::new();
+    let mut layers: Vec<LayerOf> = Vec::new();
     for k in 0..n {
         let k1 = (k + 1) % n;
         let mid = (cols[k] + at(k + 1)) / 2.0;
@@ -827,12 +848,17 @@ pub fn mesh_layup(layup: &Layup, meshing: Meshing) -> Result<LayupMesh> {
                         orientation: orientation_in_section_axes(t),
                     },
                 });
+                layers.push(LayerOf::Shell(shell_index[i]));
             }
         }
     }
 
     // Webs between the shell's innermost nodes at their face columns.
-    for w in webs.iter().flatten() {
+    for (web, w) in webs
+        .iter()
+        .enumerate()
+        .filter_map(|(k, w)| w.as_ref().map(|w| (k, w)))
+    {
         let ends: Vec<(usize, usize)> = w
             .suction
             .iter()
@@ -886,6 +912,10 @@ pub fn mesh_layup(layup: &Layup, meshing: Meshing) -> Result<LayupMesh> {
                         ..*ply
                     },
                 });
+                layers.push(LayerOf::Web {
+                    web,
+                    layer: w.ply_layers[j],
+                });
             }
         }
     }
@@ -905,9 +935,44 @@ pub fn mesh_layup(layup: &Layup, meshing: Meshing) -> Result<LayupMesh> {
     mesh.validate()?;
     Ok(LayupMesh {
         mesh,
+        layers,
         clipped_mass,
         shell_mass,
     })
+}
+
+impl LayupMesh {
+    /// The mesh with each element's fibre angle from `layup`, a layup that differs from the one
+    /// meshed in its fibre angles only (a ply turn): the same elements, so the same mesh and
+    /// the same factorisation pattern. `None` when `layup` differs in anything else.
+    pub fn turned(&self, meshed: &Layup, layup: &Layup) -> Option<Mesh> {
+        if !same_but_angles(meshed, layup) {
+            return None;
+        }
+        let mut mesh = self.mesh.clone();
+        for (e, layer) in mesh.elements.iter_mut().zip(&self.layers) {
+            e.ply.fibre_angle = match *layer {
+                LayerOf::Shell(i) => layup.shell[i].fibre_angle,
+                LayerOf::Web { web, layer } => layup.webs[web].layers[layer].fibre_angle,
+            };
+        }
+        Some(mesh)
+    }
+}
+
+/// Whether two layups are the same but for their layers' fibre angles.
+fn same_but_angles(a: &Layup, b: &Layup) -> bool {
+    let shell = |l: &ShellLayer| (l.material, l.thickness, l.start, l.end);
+    let web = |l: &WebLayer| (l.material, l.thickness);
+    a.contour == b.contour
+        && a.leading_edge == b.leading_edge
+        && a.materials == b.materials
+        && a.shell.iter().map(shell).eq(b.shell.iter().map(shell))
+        && a.webs.len() == b.webs.len()
+        && a.webs.iter().zip(&b.webs).all(|(x, y)| {
+            (x.start, x.end) == (y.start, y.end)
+                && x.layers.iter().map(web).eq(y.layers.iter().map(web))
+        })
 }
 
 /// Whether a row of the stacks between columns `k` and `k1` folds: a corner of its quadrilateral

@@ -20,4 +20,4 @@ pub mod solve;
 pub use material::Orthotropic;
 pub use mesh::{Element, Mesh, Ply};
 pub use properties::SectionProperties;
-pub use solve::{analyse, BeamMatrices};
+pub use solve::{analyse, analyse_reusing, BeamMatrices, Factorisation};

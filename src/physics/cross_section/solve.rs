@@ -31,12 +31,13 @@ use super::mesh::Mesh;
 use crate::error::{Error, Result};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, CholeskySymbolicParams, SymmetricOrdering,
+    factorize_symbolic_cholesky, CholeskySymbolicParams, SymbolicCholesky, SymmetricOrdering,
 };
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 use faer::{Conj, Mat, Par, Side};
 use nalgebra::{Matrix6, SMatrix, Vector6};
+use std::sync::Arc;
 
 /// The section's matrices about `reference` (m, `[x, y]` in the mesh's plane), BeamDyn's
 /// order: strains `(γ_x, γ_y, ε, κ_x, κ_y, κ_z)` (shear along x, along y, extension, bending
@@ -364,9 +365,52 @@ fn pins(nodes: &[[f64; 2]], first: usize) -> Result<[usize; 6]> {
     ])
 }
 
+/// The symbolic part of a mesh's warping factorisation (its fill-reducing ordering and the
+/// factor's pattern): it depends only on which nodes share an element, so a mesh of the same
+/// nodes and elements with other plies (the fibres turned) reuses it ([`analyse_reusing`]).
+#[derive(Debug, Clone)]
+pub struct Factorisation {
+    symbolic: Arc<SymbolicCholesky<usize>>,
+    /// What it was made for: the node count, each element's nodes and the held warping
+    /// components (which follow from the nodes' positions).
+    nodes: usize,
+    elements: Arc<Vec<[usize; 4]>>,
+    pinned: [usize; 6],
+}
+
+impl PartialEq for Factorisation {
+    fn eq(&self, other: &Factorisation) -> bool {
+        self.nodes == other.nodes && self.elements == other.elements && self.pinned == other.pinned
+    }
+}
+
+impl Factorisation {
+    /// Whether it was made for `mesh`'s nodes and elements, with these warping components held.
+    fn fits(&self, mesh: &Mesh, pinned: &[usize; 6]) -> bool {
+        self.pinned == *pinned
+            && self.nodes == mesh.nodes.len()
+            && self.elements.len() == mesh.elements.len()
+            && self
+                .elements
+                .iter()
+                .zip(&mesh.elements)
+                .all(|(a, b)| *a == b.nodes)
+    }
+}
+
 /// The section's stiffness and mass matrices about `reference` (see [`BeamMatrices`]).
 pub fn analyse(mesh: &Mesh, reference: [f64; 2]) -> Result<BeamMatrices> {
-    analyse_pinned(mesh, reference, 0)
+    analyse_pinned(mesh, reference, 0, None).map(|(m, _)| m)
+}
+
+/// [`analyse`], reusing `reuse` when it was made for this mesh's nodes and elements; with the
+/// factorisation made, for the next mesh of the same topology.
+pub fn analyse_reusing(
+    mesh: &Mesh,
+    reference: [f64; 2],
+    reuse: Option<&Factorisation>,
+) -> Result<(BeamMatrices, Factorisation)> {
+    analyse_pinned(mesh, reference, 0, reuse)
 }
 
 /// [`analyse`] with the warping's rigid motions held at the nodes chosen from `first`.
@@ -374,7 +418,8 @@ pub(crate) fn analyse_pinned(
     mesh: &Mesh,
     reference: [f64; 2],
     first: usize,
-) -> Result<BeamMatrices> {
+    reuse: Option<&Factorisation>,
+) -> Result<(BeamMatrices, Factorisation)> {
     mesh.validate()?;
     if !(reference[0].is_finite() && reference[1].is_finite()) {
         return Err(Error::Invalid {
@@ -477,16 +522,28 @@ pub(crate) fn analyse_pinned(
              without stiffness, or elements not connected to the rest of the section"
         ))
     };
-    let symbolic = factorize_symbolic_cholesky(
-        structure.as_ref(),
-        Side::Lower,
-        SymmetricOrdering::Amd,
-        CholeskySymbolicParams {
-            supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
-            ..Default::default()
+    let factorisation = match reuse.filter(|f| f.fits(mesh, &pinned)) {
+        Some(f) => f.clone(),
+        None => Factorisation {
+            // Supernodal: on these meshes 12 % faster than the simplicial factor faer picks.
+            symbolic: Arc::new(
+                factorize_symbolic_cholesky(
+                    structure.as_ref(),
+                    Side::Lower,
+                    SymmetricOrdering::Amd,
+                    CholeskySymbolicParams {
+                        supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+                        ..Default::default()
+                    },
+                )
+                .map_err(|err| not_definite(format!("{err:?}")))?,
+            ),
+            nodes: mesh.nodes.len(),
+            elements: Arc::new(mesh.elements.iter().map(|e| e.nodes).collect()),
+            pinned,
         },
-    )
-    .map_err(|err| not_definite(format!("{err:?}")))?;
+    };
+    let symbolic = &*factorisation.symbolic;
     let mut factor = vec![0.0; symbolic.len_val()];
     let par = Par::Seq;
     let llt = symbolic
@@ -641,7 +698,7 @@ pub(crate) fn analyse_pinned(
             "cross-section: non-finite section matrices",
         ));
     }
-    Ok(out)
+    Ok((out, factorisation))
 }
 
 fn to_array(m: &Matrix6<f64>) -> [[f64; 6]; 6] {
@@ -684,8 +741,8 @@ mod tests {
     #[test]
     fn the_matrices_do_not_depend_on_which_warping_nodes_are_held() {
         let mesh = channel();
-        let a = analyse_pinned(&mesh, [0.02, 0.03], 0).unwrap();
-        let b = analyse_pinned(&mesh, [0.02, 0.03], mesh.nodes.len() / 2).unwrap();
+        let (a, _) = analyse_pinned(&mesh, [0.02, 0.03], 0, None).unwrap();
+        let (b, _) = analyse_pinned(&mesh, [0.02, 0.03], mesh.nodes.len() / 2, None).unwrap();
         let d = max_rel(&a.stiffness, &b.stiffness);
         assert!(d < 1e-9, "stiffness changed by {d:e} with the held nodes");
     }
