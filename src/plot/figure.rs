@@ -98,6 +98,11 @@ impl Series {
         self.style.color = Some(color);
         self
     }
+    /// Line width in pixels at the default size (at least 1).
+    pub fn with_width(mut self, width: u32) -> Self {
+        self.style.width = width.max(1);
+        self
+    }
 }
 
 /// Where a reference line runs.

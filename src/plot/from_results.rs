@@ -422,9 +422,15 @@ pub fn layup_section(preset: &str, eta: f64, mesh: &Mesh, materials: &[&str]) ->
         // (NaN) so that the line does not run from one to the next.
         let mut points = Vec::new();
         for e in mesh.elements.iter().filter(|e| e.ply.material == m) {
-            let c = mesh.corners(e);
-            for k in [0, 1, 2, 3, 0] {
-                let (x, y) = (c[k][1], c[k][0]);
+            // A collapsed quadrilateral (a layer's end) drawn as its triangle: a line that
+            // doubles back on itself draws a spike at the turn.
+            let mut nodes = e.nodes.to_vec();
+            nodes.dedup();
+            if nodes.len() > 1 && nodes.first() == nodes.last() {
+                nodes.pop();
+            }
+            for &n in nodes.iter().chain(nodes.first()) {
+                let (x, y) = (mesh.nodes[n][1], mesh.nodes[n][0]);
                 lo = [lo[0].min(x), lo[1].min(y)];
                 hi = [hi[0].max(x), hi[1].max(y)];
                 points.push((x, y));
@@ -432,8 +438,11 @@ pub fn layup_section(preset: &str, eta: f64, mesh: &Mesh, materials: &[&str]) ->
             points.push((f64::NAN, f64::NAN));
         }
         if !points.is_empty() {
+            // Thin: a wide line's joins spike where a thin element's outline turns back.
             panel = panel.with_series(
-                Series::line(name.to_string(), points).with_color(PALETTE[m % PALETTE.len()]),
+                Series::line(name.to_string(), points)
+                    .with_color(PALETTE[m % PALETTE.len()])
+                    .with_width(1),
             );
         }
     }
