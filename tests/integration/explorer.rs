@@ -1816,6 +1816,9 @@ fn a_ply_angle_key_on_a_windio_blade_is_checked_off_the_event_loop() {
         text.contains("analysing the blade at ply angle 9.0 deg…"),
         "{text}"
     );
+    // Marked as changed from the preset at once, as the value shows.
+    let row = text.lines().find(|l| l.contains("ply angle")).unwrap();
+    assert!(row.contains("ply angle   *"), "{row}");
     // A second key steps from the angle asked for.
     let e2 = update(&mut s, Msg::Action(Action::Increase));
     let c2 = checks(&e2);

@@ -63,7 +63,9 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
         let value = state.param_text(p);
         let changed = match p.kind {
             ParamKind::Number { key, .. } => {
-                state.preset.get(key).ok() != state.opened.get(key).ok()
+                // The value asked for counts while its check runs, as the row shows it.
+                let shown = state.pending_value(key).or(state.preset.get(key).ok());
+                shown != state.opened.get(key).ok()
             }
             ParamKind::Aero => state.preset.aero.model != state.opened.aero.model,
         };
