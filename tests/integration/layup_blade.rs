@@ -348,8 +348,15 @@ fn the_layups_axial_stiffness_is_the_files() {
     let by_eta: Vec<(f64, f64)> = rows.iter().map(|&(r, ea)| (r / length, ea)).collect();
     let old = worst_axial(OLD_YAML.trim_start_matches("presets/"), &by_eta);
     assert!(old.abs() < 0.006, "2019: {old:+.4}");
-    let bd = read_blade(&presets_file("blades/iea15mw/IEA-15-240-RWT_BeamDyn_blade.dat")).unwrap();
-    let by_eta: Vec<(f64, f64)> = bd.stations.iter().map(|s| (s.eta, s.stiffness[2][2])).collect();
+    let bd = read_blade(&presets_file(
+        "blades/iea15mw/IEA-15-240-RWT_BeamDyn_blade.dat",
+    ))
+    .unwrap();
+    let by_eta: Vec<(f64, f64)> = bd
+        .stations
+        .iter()
+        .map(|s| (s.eta, s.stiffness[2][2]))
+        .collect();
     let current = worst_axial("blades/iea15mw-windio/IEA-15-240-RWT.yaml", &by_eta);
     assert!(current.abs() < 0.09, "current: {current:+.4}");
 }
