@@ -162,12 +162,15 @@ pub enum Command {
         /// The key to vary, e.g. operating.rotor_speed.
         #[arg(long, value_name = "KEY")]
         vary: String,
-        /// Start of the search range.
+        /// Start of the search range [default: the preset's value of KEY, the schedule's for a
+        /// scheduled rotor speed or pitch].
         #[arg(long, allow_negative_numbers = true)]
-        from: f64,
-        /// End of the search range.
+        from: Option<f64>,
+        /// End of the search range [default: the top of KEY's range, as the explorer's slider
+        /// has it: `view.rotor_speed_max` for the rotor speed, cut-out for the wind on a
+        /// schedule, the key table's maximum otherwise].
         #[arg(long, allow_negative_numbers = true)]
-        to: f64,
+        to: Option<f64>,
         /// Grid points used to bracket the crossing before refinement (2 to 10000).
         #[arg(long, default_value_t = 41, value_parser = clap::value_parser!(u32).range(2..=10_000))]
         points: u32,

@@ -26,6 +26,7 @@
 //! grid brackets. A refinement point inside the final bracket that cannot be solved ends the
 //! search with an error naming the bracket and the value.
 
+use crate::analysis::campbell::{schedule_wind_range, WIND_SPEED_KEY};
 use crate::analysis::cancel::Cancel;
 use crate::analysis::eigen::{analyse, Stability, NEUTRAL_TOLERANCE};
 use crate::analysis::mode::Mode;
@@ -421,4 +422,29 @@ fn describe(m: &Mode) -> String {
         m.re,
         m.frequency_hz
     )
+}
+
+/// The range a key is explored over, by the explorer's slider and by a search given no range:
+/// the key table's, with wind, tunnel and rotor speed capped by the preset's `view` maxima (but
+/// never below the current value), the wind along a schedule from cut-in to cut-out, and the
+/// paper's blade's ply angle over Table 1's [0°, 90°] (a WindIO blade's fibres turn either way).
+pub fn key_range(p: &ValidPreset, key: &str) -> (f64, f64) {
+    let Ok(spec) = key_spec(key) else {
+        return (f64::NEG_INFINITY, f64::INFINITY);
+    };
+    let (mut lo, mut hi) = (spec.min, spec.max);
+    let cur = (spec.get)(p);
+    if key == WIND_SPEED_KEY {
+        if let Some((a, b)) = schedule_wind_range(p) {
+            return (a.min(cur), b.max(cur));
+        }
+    }
+    match key {
+        "operating.rotor_speed" => hi = p.view.rotor_speed_max.max(cur),
+        "operating.wind_speed" => hi = p.view.wind_speed_max.max(cur),
+        "operating.tunnel_speed" => hi = p.view.tunnel_speed_max.max(cur),
+        "section.ply_angle" if !p.blade.source.is_tabulated() => lo = 0.0,
+        _ => {}
+    }
+    (lo, hi)
 }

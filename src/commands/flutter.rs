@@ -1,7 +1,7 @@
 //! `flutterscope flutter`: the flutter (or divergence) boundary along one key.
 
-use crate::analysis::flutter::flutter_search;
 use crate::analysis::flutter::Search;
+use crate::analysis::flutter::{flutter_search, key_range};
 use crate::analysis::sweep::named_modes;
 use crate::error::Result;
 use crate::preset::ValidPreset;
@@ -30,17 +30,44 @@ fn overspeed_margin(p: &ValidPreset, key: &str, critical: Option<f64>) -> Option
         .map(|c| c / rated)
 }
 
+/// The search range: as given, else from the preset's value of `key` (the schedule's, for a
+/// scheduled rotor speed or pitch) to the top of the key's range ([`key_range`]).
+fn search_range(
+    p: &ValidPreset,
+    key: &str,
+    from: Option<f64>,
+    to: Option<f64>,
+) -> Result<(f64, f64)> {
+    let from = match from {
+        Some(v) => v,
+        None => crate::model::operating::on_schedule(p)?.get(key)?,
+    };
+    let to = match to {
+        Some(v) => v,
+        None => {
+            p.get(key)?;
+            key_range(p, key).1
+        }
+    };
+    Ok((from, to))
+}
+
 pub fn run(
     p: &ValidPreset,
     key: &str,
-    from: f64,
-    to: f64,
+    from: Option<f64>,
+    to: Option<f64>,
     points: usize,
     json: bool,
     plot: Option<&Path>,
 ) -> Result<()> {
     if let Some(path) = plot {
         crate::plot::format_for(path)?;
+    }
+    let given = from.is_some() && to.is_some();
+    let (from, to) = search_range(p, key, from, to)?;
+    if !given {
+        eprintln!("searching {key} from {from} to {to} (--from/--to for another range)");
     }
     let search = flutter_search(p, key, from, to, points)?;
     let overspeed = overspeed_margin(p, key, search.boundary.critical);

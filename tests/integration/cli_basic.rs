@@ -453,6 +453,41 @@ fn flutter_json_without_a_crossing_says_why_and_gives_the_largest_sigma() {
     assert_eq!(v["failed"], serde_json::json!([]));
 }
 
+/// Without `--from` the search starts at the preset's value; without `--to` it runs to the top
+/// of the key's range, as the explorer's slider has it (`view.rotor_speed_max`), and says so.
+#[test]
+fn flutter_without_a_range_searches_from_the_preset_to_the_top_of_the_key() {
+    let message = |args: &[&str]| {
+        let mut all = vec![
+            "flutter",
+            "--vary",
+            "operating.rotor_speed",
+            "--points",
+            "5",
+            "--json",
+        ];
+        all.extend_from_slice(args);
+        json(&run(&all))["message"].as_str().unwrap().to_string()
+    };
+    assert!(message(&[]).contains("in 60 … 200 rpm"), "{}", message(&[]));
+    assert!(message(&["--to", "100"]).contains("in 60 … 100 rpm"));
+    assert!(message(&["--from", "80"]).contains("in 80 … 200 rpm"));
+    let said = run(&[
+        "flutter",
+        "--vary",
+        "operating.rotor_speed",
+        "--points",
+        "5",
+    ]);
+    assert_eq!(said.code, Some(0), "{}", said.stderr);
+    assert!(
+        said.stderr
+            .contains("searching operating.rotor_speed from 60 to 200"),
+        "{}",
+        said.stderr
+    );
+}
+
 /// `--set` sets one key: a line break or a table would smuggle in more (and used to be
 /// ignored silently).
 #[test]

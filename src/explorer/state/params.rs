@@ -1,7 +1,7 @@
 //! The parameter catalogue: the rows of the parameters pane ([`PARAMS`]), which of them a preset
 //! is offered, their slider ranges, fine and coarse steps, and how their values are shown.
 
-use crate::analysis::campbell::{schedule_wind_range, ROTOR_SPEED_KEY, WIND_SPEED_KEY};
+use crate::analysis::campbell::ROTOR_SPEED_KEY;
 use crate::preset::rules::not_acting;
 use crate::preset::{key_spec, ValidPreset};
 
@@ -110,32 +110,6 @@ pub static PARAMS: &[Param] = &[
         false,
     ),
 ];
-
-/// The slider range of a numeric key: the key table's range, with wind and rotor speed capped by
-/// the preset's `view` maxima (but never below the current value).
-pub fn param_bounds(p: &ValidPreset, key: &str) -> (f64, f64) {
-    let Ok(spec) = key_spec(key) else {
-        return (f64::NEG_INFINITY, f64::INFINITY);
-    };
-    let (mut lo, mut hi) = (spec.min, spec.max);
-    let cur = (spec.get)(p);
-    // Along a schedule the wind runs where the turbine operates, cut-in to cut-out.
-    if key == WIND_SPEED_KEY {
-        if let Some((a, b)) = schedule_wind_range(p) {
-            return (a.min(cur), b.max(cur));
-        }
-    }
-    match key {
-        "operating.rotor_speed" => hi = p.view.rotor_speed_max.max(cur),
-        "operating.wind_speed" => hi = p.view.wind_speed_max.max(cur),
-        "operating.tunnel_speed" => hi = p.view.tunnel_speed_max.max(cur),
-        // The paper's blade turns its CAS plies over [0°, 90°] (Table 1's range); a WindIO
-        // blade's fibres either way.
-        "section.ply_angle" if !p.blade.source.is_tabulated() => lo = 0.0,
-        _ => {}
-    }
-    (lo, hi)
-}
 
 /// Rotor speeds below this (rpm) are shown to 0.01 rpm: a turbine rotor turns at 5–15 rpm,
 /// where a whole rpm is 7–20 % of its rated speed.

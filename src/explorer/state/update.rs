@@ -3,6 +3,7 @@
 //! (keys, edits, preset changes, solve results and the jobs they start). It does no I/O.
 
 use crate::analysis::campbell::schedule_wind_range;
+use crate::analysis::flutter::key_range;
 use crate::analysis::flutter::SearchRange;
 use crate::analysis::simulate::RunStatus;
 use crate::explorer::engine::Solved;
@@ -10,7 +11,7 @@ use crate::explorer::keys::Action;
 use crate::explorer::state::jobs::{
     opening_key, BoundaryJob, CampbellAxis, CampbellJob, Side, BOUNDARY_POINTS,
 };
-use crate::explorer::state::params::{offered_rows, param_bounds, param_index, steps, ParamKind};
+use crate::explorer::state::params::{offered_rows, param_index, steps, ParamKind};
 use crate::explorer::state::{
     frequency_order, AppState, Check, Effect, Msg, Pending, PendingWhat, Response, ViewMode,
     SOLVE_BUDGET_S, TRAIL_LEN,
@@ -133,7 +134,7 @@ impl AppState {
             return None;
         }
         let key = self.boundary_key;
-        let (lo, hi) = param_bounds(&self.preset, key);
+        let (lo, hi) = key_range(&self.preset, key);
         // The value the parameters pane shows: a scheduled rotor speed or pitch is the
         // schedule's, not the preset's own.
         let current = self
@@ -262,7 +263,7 @@ impl AppState {
                 else {
                     return Vec::new();
                 };
-                let (lo, hi) = param_bounds(&self.preset, key);
+                let (lo, hi) = key_range(&self.preset, key);
                 // Snap to the step grid, then clamp; round away float drift. A value within a
                 // thousandth of a step of a grid point counts as on it (a schedule's 7.559987 rpm,
                 // shown as 7.56, steps to 7.56 + a step, not to 7.56).
