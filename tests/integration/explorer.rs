@@ -1866,8 +1866,24 @@ fn an_edit_made_while_the_blade_is_analysed_is_kept() {
     assert_eq!(s.preset.get(key).unwrap(), moved);
 }
 
-/// A check that fails (here a preset whose file is gone) leaves the explorer where it was, with
-/// the reason in the status line.
+/// Reset (`r`) while the blade is analysed for a new angle drops that edit: the answer that
+/// comes later changes nothing.
+#[test]
+fn reset_drops_an_edit_still_being_checked() {
+    let engine = TestEngine::default();
+    let mut s = state_on("iea15mw-btc", &["view.select=ply-angle"], &engine);
+    let asked = checks(&update(&mut s, Msg::Action(Action::Increase)));
+    let e = update(&mut s, key(KeyCode::Char('r'), KeyModifiers::NONE));
+    assert_eq!(solve_gens(&e), vec![s.gen]);
+    assert!(s.checking.is_none());
+    assert_eq!(s.param_text(&PARAMS[s.focus]), "8.0 deg");
+    let late = runner::check(asked[0].0, &asked[0].1);
+    assert!(update(&mut s, late).is_empty());
+    assert_eq!(s.preset.section.ply_angle, Some(8.0));
+}
+
+/// A check that fails (its answer an error, as a layup that cannot be meshed gives) leaves the
+/// explorer where it was, with the reason in the status line.
 #[test]
 fn a_check_that_fails_is_shown_and_changes_nothing() {
     let engine = TestEngine::default();

@@ -71,8 +71,18 @@ impl AppState {
         }
     }
 
-    /// Show `preset` as entry `index`, from a fresh start.
+    /// Show `preset` as entry `index`, from a fresh start: an edit still being checked was made
+    /// on what is left behind, and is dropped with it.
     fn open(&mut self, index: usize, preset: ValidPreset) -> Vec<Effect> {
+        if matches!(
+            self.checking,
+            Some(Pending {
+                what: PendingWhat::Edit { .. },
+                ..
+            })
+        ) {
+            self.checking = None;
+        }
         self.preset_index = index;
         self.opened = preset.clone();
         self.preset = preset;
