@@ -44,10 +44,8 @@ fn search_range(
     };
     let to = match to {
         Some(v) => v,
-        None => {
-            p.get(key)?;
-            key_range(p, key).1
-        }
+        // An unknown key is an error, not the endless range `key_range` gives it.
+        None => p.get(key).map(|_| key_range(p, key).1)?,
     };
     Ok((from, to))
 }

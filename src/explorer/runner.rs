@@ -67,7 +67,7 @@ pub fn check(id: u64, check: &Check) -> Msg {
         Check::Edit { base, key, value } => guarded(&format!("{key} = {value}"), || {
             base.with(key, *value).map(Box::new)
         }),
-        Check::Open { name } => guarded(&format!("preset {name}"), || {
+        Check::Open { name, .. } => guarded(&format!("preset {name}"), || {
             crate::preset::Preset::load(name, &[]).map(Box::new)
         }),
     };

@@ -1919,7 +1919,7 @@ fn presets_are_checked_when_first_opened() {
     assert_eq!(loaded, vec![DEFAULT_PRESET]);
     let e = update(&mut s, Msg::Action(Action::NextPreset));
     let asked = checks(&e);
-    assert!(matches!(&asked[..], [(_, Check::Open { name })] if *name == s.presets[1].name));
+    assert!(matches!(&asked[..], [(_, Check::Open { name, .. })] if *name == s.presets[1].name));
     assert_eq!(
         s.preset_index, 0,
         "still on the first until the check answers"

@@ -51,28 +51,20 @@ pub struct Pending {
     /// The generation of the parameters when it was asked for: an edit checked on parameters
     /// that have moved since is made again on the current ones.
     pub gen: u64,
-    pub what: PendingWhat,
-}
-
-#[derive(Debug, Clone, PartialEq)]
-pub enum PendingWhat {
-    /// `key` set to `value` on the parameters being explored.
-    Edit { key: &'static str, value: f64 },
-    /// Preset entry `index`.
-    Open { index: usize },
+    pub check: Check,
 }
 
 /// What a [`Effect::Check`] checks.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum Check {
-    /// `base` with `key` set to `value`.
+    /// `base` (the parameters being explored) with `key` set to `value`.
     Edit {
         base: Arc<ValidPreset>,
         key: &'static str,
         value: f64,
     },
-    /// The built-in preset `name`.
-    Open { name: String },
+    /// The built-in preset `name`, preset entry `index`.
+    Open { index: usize, name: String },
 }
 
 /// Display options from the command line.
@@ -310,25 +302,23 @@ impl AppState {
 
     /// The value an edit being checked gives `key`, if one is.
     pub fn pending_value(&self, key: &str) -> Option<f64> {
-        match self.checking.as_ref()?.what {
-            PendingWhat::Edit { key: k, value } if k == key => Some(value),
+        match self.checking.as_ref()?.check {
+            Check::Edit { key: k, value, .. } if k == key => Some(value),
             _ => None,
         }
     }
 
     /// What the check running off the event loop is doing, for the status line.
     pub fn checking_text(&self) -> Option<String> {
-        Some(match self.checking.as_ref()?.what {
-            PendingWhat::Edit { key, value } => {
-                let label = PARAMS
-                    .iter()
-                    .find(|p| matches!(p.kind, ParamKind::Number { key: k, .. } if k == key))
-                    .map_or(key, |p| p.label);
-                format!("analysing the blade at {label} {}…", value_text(key, value))
+        Some(match &self.checking.as_ref()?.check {
+            Check::Edit { key, value, .. } => {
+                let label = PARAMS[param_index(&self.preset, key)].label;
+                format!(
+                    "analysing the blade at {label} {}…",
+                    value_text(key, *value)
+                )
             }
-            PendingWhat::Open { index } => {
-                format!("opening {}…", self.presets.get(index)?.name)
-            }
+            Check::Open { name, .. } => format!("opening {name}…"),
         })
     }
 

@@ -13,8 +13,8 @@ use crate::explorer::state::jobs::{
 };
 use crate::explorer::state::params::{offered_rows, param_index, steps, ParamKind};
 use crate::explorer::state::{
-    frequency_order, AppState, Check, Effect, Msg, Pending, PendingWhat, Response, ViewMode,
-    SOLVE_BUDGET_S, TRAIL_LEN,
+    frequency_order, AppState, Check, Effect, Msg, Pending, Response, ViewMode, SOLVE_BUDGET_S,
+    TRAIL_LEN,
 };
 use crate::preset::ValidPreset;
 use std::sync::Arc;
@@ -66,7 +66,7 @@ impl AppState {
             Some(p) => self.open(index, p),
             None => {
                 let name = entry.name.clone();
-                self.check(PendingWhat::Open { index }, Check::Open { name })
+                self.check(Check::Open { index, name })
             }
         }
     }
@@ -77,7 +77,7 @@ impl AppState {
         if matches!(
             self.checking,
             Some(Pending {
-                what: PendingWhat::Edit { .. },
+                check: Check::Edit { .. },
                 ..
             })
         ) {
@@ -100,13 +100,13 @@ impl AppState {
     }
 
     /// Ask for `check` off the event loop; it replaces any check still running.
-    fn check(&mut self, what: PendingWhat, check: Check) -> Vec<Effect> {
+    fn check(&mut self, check: Check) -> Vec<Effect> {
         self.check_id += 1;
         let id = self.check_id;
         self.checking = Some(Pending {
             id,
             gen: self.gen,
-            what,
+            check: check.clone(),
         });
         vec![Effect::Check { id, check }]
     }
@@ -116,15 +116,15 @@ impl AppState {
         let Some(pending) = self.checking.take() else {
             return Vec::new();
         };
-        match (pending.what, result) {
+        match (pending.check, result) {
             // The parameters moved on meanwhile (another key): the edit is made on them now,
             // its blade kept from the check.
-            (PendingWhat::Edit { key, value }, Ok(_)) if pending.gen != self.gen => {
+            (Check::Edit { key, value, .. }, Ok(_)) if pending.gen != self.gen => {
                 let edited = self.preset.with(key, value);
                 self.apply(edited)
             }
-            (PendingWhat::Edit { .. }, Ok(p)) => self.apply(Ok(*p)),
-            (PendingWhat::Open { index }, Ok(p)) => {
+            (Check::Edit { .. }, Ok(p)) => self.apply(Ok(*p)),
+            (Check::Open { index, .. }, Ok(p)) => {
                 if let Some(entry) = self.presets.get_mut(index) {
                     entry.preset = Some((*p).clone());
                 }
@@ -296,13 +296,11 @@ impl AppState {
                 // A blade analysed again (a WindIO blade's ply angle) is checked off the event
                 // loop; the row shows the new value meanwhile.
                 if self.preset.with_reads_blade(key, next) {
-                    let base = Arc::new(self.preset.clone());
-                    let check = Check::Edit {
-                        base,
+                    return self.check(Check::Edit {
+                        base: Arc::new(self.preset.clone()),
                         key,
                         value: next,
-                    };
-                    return self.check(PendingWhat::Edit { key, value: next }, check);
+                    });
                 }
                 let edited = self.preset.with(key, next);
                 self.apply(edited)

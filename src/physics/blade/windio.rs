@@ -188,7 +188,16 @@ pub fn layup_section(
     turn: Option<&PlyTurn>,
     meshing: Option<Meshing>,
 ) -> Result<LayupSection> {
-    let layup = station_layup(w, eta, turn)?;
+    meshed_section(w, eta, station_layup(w, eta, turn)?, meshing)
+}
+
+/// The section of `layup`, the layup at `eta`, meshed and analysed.
+fn meshed_section(
+    w: &WindIo,
+    eta: f64,
+    layup: Layup,
+    meshing: Option<Meshing>,
+) -> Result<LayupSection> {
     let perimeter: f64 = layup
         .contour
         .windows(2)
@@ -206,14 +215,8 @@ fn turned_section(w: &WindIo, held: &LayupSection, turn: Option<&PlyTurn>) -> Re
     let eta = held.eta;
     let layup = station_layup(w, eta, turn)?;
     match held.mesh.turned(&held.layup, &layup) {
-        Some(mesh) => {
-            let mesh = LayupMesh {
-                mesh,
-                ..held.mesh.clone()
-            };
-            analysed(w, eta, layup, mesh, Some(&held.factorisation))
-        }
-        None => layup_section(w, eta, turn, None),
+        Some(mesh) => analysed(w, eta, layup, mesh, Some(&held.factorisation)),
+        None => meshed_section(w, eta, layup, None),
     }
 }
 

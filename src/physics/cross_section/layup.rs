@@ -942,21 +942,21 @@ pub fn mesh_layup(layup: &Layup, meshing: Meshing) -> Result<LayupMesh> {
 }
 
 impl LayupMesh {
-    /// The mesh with each element's fibre angle from `layup`, a layup that differs from the one
-    /// meshed in its fibre angles only (a ply turn): the same elements, so the same mesh and
-    /// the same factorisation pattern. `None` when `layup` differs in anything else.
-    pub fn turned(&self, meshed: &Layup, layup: &Layup) -> Option<Mesh> {
+    /// This mesh with each element's fibre angle from `layup`, a layup that differs from the
+    /// one meshed (`meshed`) in its fibre angles only (a ply turn): the same elements, so the
+    /// same factorisation pattern. `None` when `layup` differs in anything else.
+    pub fn turned(&self, meshed: &Layup, layup: &Layup) -> Option<LayupMesh> {
         if !same_but_angles(meshed, layup) {
             return None;
         }
-        let mut mesh = self.mesh.clone();
-        for (e, layer) in mesh.elements.iter_mut().zip(&self.layers) {
+        let mut turned = self.clone();
+        for (e, layer) in turned.mesh.elements.iter_mut().zip(&self.layers) {
             e.ply.fibre_angle = match *layer {
                 LayerOf::Shell(i) => layup.shell[i].fibre_angle,
                 LayerOf::Web { web, layer } => layup.webs[web].layers[layer].fibre_angle,
             };
         }
-        Some(mesh)
+        Some(turned)
     }
 }
 
