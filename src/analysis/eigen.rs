@@ -69,7 +69,7 @@ pub fn analyse(p: &ValidPreset) -> Result<Stability> {
 /// The linearised system of a preset (assemble, equilibrium, state matrix).
 pub fn linear_system(p: &ValidPreset) -> Result<LinearSystem> {
     let (system, equilibrium) = crate::model::system_with_equilibrium(p)?;
-    system.linearise_at(equilibrium)
+    crate::model::linearised(p, &system, equilibrium)
 }
 
 /// Eigen-analysis of an assembled linear system (sweeps reuse their own systems).
@@ -87,13 +87,7 @@ pub fn analyse_system(ls: &LinearSystem) -> Result<Stability> {
         .iter()
         .enumerate()
         .map(|(k, lambda)| {
-            let q: Vec<Complex<f64>> = roots
-                .vectors
-                .column(k)
-                .rows(0, nq)
-                .iter()
-                .copied()
-                .collect();
+            let q: Vec<Complex<f64>> = motion_pattern(&roots.vectors.column(k), nq);
             let left: Vec<Complex<f64>> = if roots.left.ncols() == 0 {
                 Vec::new()
             } else {
@@ -126,6 +120,14 @@ pub fn analyse_system(ls: &LinearSystem) -> Result<Stability> {
         structural: mut named,
         aero: mut lags,
     } = identify(all, nq, structure)?;
+    for m in named
+        .iter_mut()
+        .filter(|m| m.im == 0.0 && m.re.abs() <= tol)
+    {
+        // A real root within round-off of zero (a free rotor's azimuth, alone or with the
+        // aerodynamic torque's decay) neither decays nor grows.
+        m.damping_ratio = 0.0;
+    }
     named.sort_by(|a, b| b.re.total_cmp(&a.re));
     lags.sort_by(|a, b| b.re.total_cmp(&a.re));
     for (k, m) in lags.iter_mut().enumerate() {
@@ -151,6 +153,20 @@ fn verdict_of<'a>(roots: impl Iterator<Item = &'a Mode>, tol: f64) -> Verdict {
         }
         _ => Verdict::Stable,
     }
+}
+
+/// The structural coordinates that name a root: its displacements, or, for a root whose
+/// displacements vanish against its rates (the coasting root of a free body, a rotor's
+/// rigid rotation at rest: its eigenvalue is zero and defective), its rates.
+fn motion_pattern(v: &nalgebra::DVectorView<Complex<f64>>, nq: usize) -> Vec<Complex<f64>> {
+    let q = v.rows(0, nq);
+    let rate = v.rows(nq, nq);
+    let pick = if q.norm() < 1e-8 * rate.norm() {
+        rate
+    } else {
+        q
+    };
+    pick.iter().copied().collect()
 }
 
 /// Unit norm, phase turned so the largest coefficient is real and positive (a canonical form for

@@ -51,7 +51,11 @@ pub fn identify(roots: Vec<Mode>, nq: usize, structure: &dyn Structure) -> Resul
         return Ok(Identified { structural, aero });
     }
     let natural = structure.natural_modes()?;
-    let content = modal_content(&structural, &natural, structure);
+    let content = structural
+        .iter()
+        .map(|r| structure.slot_content(&r.shape))
+        .collect::<Option<Vec<_>>>()
+        .unwrap_or_else(|| modal_content(&structural, &natural, structure));
     let (groups, left) = assign(&structural, &content, &natural);
     let mut named: Vec<Mode> = Vec::new();
     for (k, group) in groups {

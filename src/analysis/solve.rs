@@ -6,9 +6,9 @@
 use crate::analysis::eigen::{analyse_system, Stability};
 use crate::analysis::mode_shape::{mode_shape, ModeShape, SpanRows};
 use crate::analysis::simulate::Simulator;
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::physics::system::{LinearSystem, System};
-use crate::preset::{Start, ValidPreset};
+use crate::preset::{Start, TurbineModel, ValidPreset};
 use nalgebra::DVector;
 use std::sync::Arc;
 
@@ -25,7 +25,7 @@ pub struct Solution {
 /// Build the preset's system once and linearise it about its static equilibrium.
 pub fn solve(p: &ValidPreset) -> Result<Solution> {
     let (system, equilibrium) = crate::model::system_with_equilibrium(p)?;
-    let linear = system.linearise_at(equilibrium);
+    let linear = crate::model::linearised(p, &system, equilibrium);
     let system = Arc::new(system);
     Ok(Solution { system, linear })
 }
@@ -49,7 +49,11 @@ impl Solution {
     /// The shape along the span of each structural root of `stability` (in its order), from
     /// this build's structure (docs/model.md §6.5).
     pub fn mode_shapes(&self, stability: &Stability) -> Vec<ModeShape> {
-        let structure = self.system.structure();
+        // The linearisation's coordinates: a rotor's are its ground frame's, not the blade's.
+        let structure = match &self.linear {
+            Ok(l) => l.structure.as_ref(),
+            Err(_) => self.system.structure(),
+        };
         let at = SpanRows::of(structure);
         stability
             .eigenvalues
@@ -62,6 +66,19 @@ impl Solution {
     /// build: exactly for the affine models, split about it for the nonlinear ones. A run from
     /// rest of a nonlinear model without an equilibrium is split about the rest state instead.
     pub fn simulator(self, p: &ValidPreset) -> Result<Simulator> {
+        if p.turbine.model != TurbineModel::Blade {
+            // The ground frame's states hold blade 1's tip only through the azimuth, which
+            // the stepper would have to turn with time.
+            return Err(Error::Invalid {
+                origin: p.origin.clone(),
+                message: format!(
+                    "the time response is of one clamped blade; turbine.model = \"{}\" is \
+                     analysed in the ground frame (eigen, modes, sweep, flutter), not simulated: \
+                     set turbine.model = \"blade\" for the tip response",
+                    p.turbine.model.name()
+                ),
+            });
+        }
         let sim = &p.simulation;
         let length = self.system.structure().length();
         let affine = self.system.model().nonlinear_support().is_affine();

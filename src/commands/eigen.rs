@@ -66,8 +66,13 @@ pub fn render(p: &ValidPreset, s: &Stability) -> String {
 /// frequency of the mode it is named after, the shares of its motion, and an overdamped mode's
 /// second decay rate.
 fn table(modes: &[Mode]) -> String {
+    // As wide as the longest name (`collective torsion 2` on a rotor), at least 14.
+    let w = modes
+        .iter()
+        .map(|m| m.label.chars().count())
+        .fold(14, usize::max);
     let mut out = format!(
-        "{:<14} {:>13} {:>13} {:>12} {:>10} {:>7} {:>11}  {:>5} {:>5} {:>5}\n",
+        "{:<w$} {:>13} {:>13} {:>12} {:>10} {:>7} {:>11}  {:>5} {:>5} {:>5}\n",
         "mode",
         "σ (1/s)",
         "ω (rad/s)",
@@ -81,7 +86,7 @@ fn table(modes: &[Mode]) -> String {
     );
     for m in modes {
         out += &format!(
-            "{:<14} {:>13.5} {:>13.5} {:>12.5} {:>10.5} {:>7.3}",
+            "{:<w$} {:>13.5} {:>13.5} {:>12.5} {:>10.5} {:>7.3}",
             m.label, m.re, m.im, m.frequency_hz, m.damping_ratio, m.structural_share
         );
         if let Some(f0) = m.in_vacuo_hz {
@@ -90,8 +95,13 @@ fn table(modes: &[Mode]) -> String {
                 f0, m.shares.flap, m.shares.edge, m.shares.twist
             );
         }
-        if let Some(s2) = m.second_re {
-            out += &format!("  overdamped, second root σ = {s2:.5}");
+        match m.second_re {
+            // A rigid-body pair (a free rotor's azimuth and speed) is neutral, not overdamped.
+            Some(s2) if m.damping_ratio == 0.0 => {
+                out += &format!("  rigid body, second root σ = {s2:.5}")
+            }
+            Some(s2) => out += &format!("  overdamped, second root σ = {s2:.5}"),
+            None => {}
         }
         out += "\n";
     }

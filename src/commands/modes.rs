@@ -11,10 +11,10 @@
 //! reads in rad per m of peak flap displacement, a torsion mode's `u` and `v` in m per rad.
 
 use crate::error::Result;
-use crate::model::for_preset;
+use crate::model::turbine::structure_in_vacuo;
 use crate::physics::structure::{damping_ratio, Family, MotionRows, NaturalMode, Structure};
 use crate::plot::{Figure, Panel, Series, PALETTE};
-use crate::preset::{Form, ValidPreset};
+use crate::preset::{Form, TurbineModel, ValidPreset};
 use nalgebra::DVector;
 use serde::Serialize;
 use std::path::Path;
@@ -71,7 +71,7 @@ pub fn run(p: &ValidPreset, json: bool, shapes: bool, plot: Option<&Path>) -> Re
             p.operating.rotor_speed
         )
     };
-    let structure = for_preset(p).map_err(|e| e.at(at()))?;
+    let structure = structure_in_vacuo(p).map_err(|e| e.at(at()))?;
     let mut report = report(p, mode_rows(p, structure.as_ref()).map_err(|e| e.at(at()))?);
     let heading = heading(p, structure.as_ref());
     if let Some(path) = plot {
@@ -138,6 +138,14 @@ fn heading(p: &ValidPreset, structure: &dyn Structure) -> String {
                 p.structure.modes
             )
         }
+        Some(_) if p.turbine.model != TurbineModel::Blade => format!(
+            "{name}: {} modes of the rotor ({} blades on a {} drivetrain, support rigid) at {rpm} \
+             rpm, pitch {} deg, in the ground frame",
+            structure.coordinates(),
+            p.operating.blades,
+            p.turbine.drivetrain.name(),
+            p.operating.pitch
+        ),
         Some(blade) => {
             let count = structure.coordinates();
             let beam = crate::model::blade::beam(p).map_or("", |b| b.title());
@@ -199,8 +207,14 @@ fn report(p: &ValidPreset, modes: Vec<ModeRow>) -> Report {
 /// The human-readable table, and each mode's shape after it when asked for.
 fn render(heading: &str, r: &Report) -> String {
     let mut out = format!("{heading}\n\n");
+    // As wide as the longest name (`collective torsion 2` on a rotor), at least 12.
+    let w = r
+        .modes
+        .iter()
+        .map(|m| m.mode.label.chars().count())
+        .fold(12, usize::max);
     out.push_str(&format!(
-        "{:>4}  {:<12} {:>14}  {:>6}  {:>6}  {:>6}  {:>9}\n",
+        "{:>4}  {:<w$} {:>14}  {:>6}  {:>6}  {:>6}  {:>9}\n",
         "#", "mode", "frequency (Hz)", "flap", "edge", "twist", "damping ζ"
     ));
     for (k, m) in r.modes.iter().enumerate() {
@@ -208,7 +222,7 @@ fn render(heading: &str, r: &Report) -> String {
             .damping_ratio
             .map_or_else(|| "—".to_string(), |z| format!("{z:.5}"));
         out.push_str(&format!(
-            "{:>4}  {:<12} {:>14}  {:>6.3}  {:>6.3}  {:>6.3}  {zeta:>9}\n",
+            "{:>4}  {:<w$} {:>14}  {:>6.3}  {:>6.3}  {:>6.3}  {zeta:>9}\n",
             k + 1,
             m.mode.label,
             format_hz(m.mode.frequency_hz),

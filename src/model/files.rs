@@ -16,6 +16,7 @@
 use super::htc::htc_files;
 use super::kept::Kept;
 use crate::error::{Error, Result};
+use crate::formats::elastodyn_turbine::{parse_turbine, ElastoDynTurbine};
 use crate::formats::text_file::TextFile;
 use crate::formats::windio::{self, WindIo};
 use crate::physics::blade::source::{
@@ -28,7 +29,7 @@ use crate::physics::rotor::files::{
 use crate::physics::rotor::schedule::Table as ScheduleTable;
 use crate::physics::rotor::AeroBlade;
 use crate::preset::files::BladeFile;
-use crate::preset::schema::{Blade, BladeSource, Preset, Schedule};
+use crate::preset::schema::{Blade, BladeSource, Preset, Schedule, TurbineSource};
 use std::sync::Arc;
 
 /// Everything a checked preset's files gave, with the keys each was read from.
@@ -45,6 +46,8 @@ pub struct ReadFiles {
     aero: AeroFiles,
     /// The operating table.
     table: TableFile,
+    /// The turbine around the blades (`turbine.file`).
+    turbine: TurbineFile,
 }
 
 impl PartialEq for ReadFiles {
@@ -53,7 +56,10 @@ impl PartialEq for ReadFiles {
             (Some(a), Some(b)) => a.keys == b.keys,
             (a, b) => a.is_none() && b.is_none(),
         };
-        tabulated && self.aero.keys == other.aero.keys && self.table.key == other.table.key
+        tabulated
+            && self.aero.keys == other.aero.keys
+            && self.table.key == other.table.key
+            && self.turbine.key == other.turbine.key
     }
 }
 
@@ -97,6 +103,11 @@ impl ReadFiles {
     /// The operating table (`None` unless `operating.schedule = "table"`).
     pub fn schedule_table(&self) -> Option<&Arc<ScheduleTable>> {
         self.table.table.as_ref()
+    }
+
+    /// The ElastoDyn main file `turbine.file` names (`None` without one), and its display name.
+    pub fn turbine(&self) -> Option<&(Arc<ElastoDynTurbine>, String)> {
+        self.turbine.turbine.as_ref()
     }
 }
 
@@ -176,6 +187,13 @@ impl std::fmt::Debug for AeroFiles {
 struct TableFile {
     key: String,
     table: Option<Arc<ScheduleTable>>,
+}
+
+/// The turbine file and the keys it was read from (`turbine.source`, `turbine.file`).
+#[derive(Debug)]
+struct TurbineFile {
+    key: (String, String),
+    turbine: Option<(Arc<ElastoDynTurbine>, String)>,
 }
 
 /// How many station counts are kept (the most recently built): an operating point and a
@@ -344,15 +362,27 @@ pub fn read_rotor(
     held: Option<&Arc<ReadFiles>>,
 ) -> Result<Arc<ReadFiles>> {
     let (aero_keys, table_key) = rotor_keys(p);
+    let turbine_key = (
+        format!("{:?}", p.turbine.source),
+        p.turbine.file.trim().to_string(),
+    );
     if let Some(h) = held {
         let same_blade = match (&h.tabulated, &tabulated) {
             (Some(a), Some(b)) => a.keys == b.keys,
             (a, b) => a.is_none() && b.is_none(),
         };
-        if same_blade && h.aero.keys == aero_keys && h.table.key == table_key {
+        if same_blade
+            && h.aero.keys == aero_keys
+            && h.table.key == table_key
+            && h.turbine.key == turbine_key
+        {
             return Ok(Arc::clone(h));
         }
     }
+    let turbine = match held.filter(|h| h.turbine.key == turbine_key) {
+        Some(h) => h.turbine.turbine.clone(),
+        None => read_turbine_file(p)?,
+    };
     let aero = match held.filter(|h| h.aero.keys == aero_keys) {
         Some(h) => AeroFiles {
             keys: aero_keys,
@@ -386,7 +416,26 @@ pub fn read_rotor(
             key: table_key,
             table,
         },
+        turbine: TurbineFile {
+            key: turbine_key,
+            turbine,
+        },
     }))
+}
+
+/// The ElastoDyn main file `turbine.file` names, with its display name; none without one.
+fn read_turbine_file(p: &Preset) -> Result<Option<(Arc<ElastoDynTurbine>, String)>> {
+    let name = p.turbine.file.trim();
+    if p.turbine.source != TurbineSource::Elastodyn || name.is_empty() {
+        return Ok(None);
+    }
+    let file = p.base.resolve(name);
+    let display = file.display();
+    let turbine = file
+        .read()
+        .and_then(|text| parse_turbine(&text, &display))
+        .map_err(|e| file_error(p, &format!("turbine.file = \"{name}\""), e))?;
+    Ok(Some((Arc::new(turbine), display)))
 }
 
 /// The keys that decide what the rotor's files are: (the aerodynamic description's: the aero

@@ -20,7 +20,8 @@ pub mod operating;
 pub mod section;
 pub mod structure;
 pub mod system;
+pub mod turbine;
 
 pub use section::section_properties;
 pub use structure::{assemble, for_preset};
-pub use system::{system, system_with_equilibrium};
+pub use system::{linearised, system, system_with_equilibrium};

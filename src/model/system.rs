@@ -7,7 +7,8 @@ use super::operating::{in_the_wind, on_schedule, steady, unsteadiness};
 use super::structure::for_preset;
 use crate::error::Result;
 use crate::physics::inflow::stations;
-use crate::physics::system::System;
+use crate::physics::system::{LinearSystem, System};
+use crate::physics::turbine::rotor_system;
 use crate::preset::ValidPreset;
 use nalgebra::DVector;
 
@@ -34,4 +35,25 @@ pub fn system_with_equilibrium(p: &ValidPreset) -> Result<(System, Option<DVecto
         p.aero.stations,
     );
     Ok((System::from_parts(structure, stations, model)?, None))
+}
+
+/// The state matrix of `p` about its equilibrium, from its `system` and the `equilibrium`
+/// building it found ([`system_with_equilibrium`]): the blade's, or for a rotor
+/// (`turbine.model`, docs/model.md §13) the ground-frame rotor's made of that blade.
+pub fn linearised(
+    p: &ValidPreset,
+    system: &System,
+    equilibrium: Option<DVector<f64>>,
+) -> Result<LinearSystem> {
+    let rpm = super::operating::scheduled_rotor_speed(p)?;
+    match super::turbine::rotor_inputs(p, rpm)? {
+        None => system.linearise_at(equilibrium),
+        Some(inputs) => {
+            let x = match equilibrium {
+                Some(x) => x,
+                None => system.equilibrium()?,
+            };
+            rotor_system(system, &x, &inputs)
+        }
+    }
 }

@@ -12,3 +12,4 @@ pub mod rotor;
 pub mod section;
 pub mod structure;
 pub mod system;
+pub mod turbine;

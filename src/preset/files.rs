@@ -13,6 +13,16 @@ use std::path::PathBuf;
 /// `presets/`.
 pub static BUILTIN_FILES: &[(&str, &str)] = &[
     (
+        "blades/nrel5mw-turbine/onshore/ElastoDyn.dat",
+        include_str!("../../presets/blades/nrel5mw-turbine/onshore/ElastoDyn.dat"),
+    ),
+    (
+        "blades/iea15mw-monopile/IEA-15-240-RWT-Monopile/IEA-15-240-RWT-Monopile_ElastoDyn.dat",
+        include_str!(
+            "../../presets/blades/iea15mw-monopile/IEA-15-240-RWT-Monopile/IEA-15-240-RWT-Monopile_ElastoDyn.dat"
+        ),
+    ),
+    (
         "blades/iea15mw-windio/IEA-15-240-RWT.yaml",
         include_str!("../../presets/blades/iea15mw-windio/IEA-15-240-RWT.yaml"),
     ),

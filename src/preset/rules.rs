@@ -3,7 +3,10 @@
 //! every preset whatever its `section.source` (`flutterscope section` evaluates the layup of any
 //! preset).
 
-use super::schema::{AeroModel, BladeSource, ContourShape, Preset, Schedule, SectionSource};
+use super::schema::{
+    AeroModel, BladeSource, ContourShape, DrivetrainModel, Preset, Schedule, SectionSource,
+    TurbineModel, TurbineSource,
+};
 use crate::error::{Error, Result};
 use crate::model::files::ReadFiles;
 use crate::physics::blade::coupling::{coupling_ratio, indefinite_station};
@@ -409,6 +412,7 @@ pub fn check(p: &Preset, files: &ReadFiles) -> Result<()> {
     law_is_complete(p, files).map_err(invalid)?;
     cut_in_below_cut_out(p).map_err(invalid)?;
     coupling_is_definite(p, files).map_err(invalid)?;
+    turbine_is_complete(p, files).map_err(invalid)?;
     let described = files.aero_blade().is_some();
     if p.blade.source.is_tabulated() && p.aero.model != AeroModel::None && !described {
         return Err(invalid(format!(
@@ -466,6 +470,66 @@ pub fn check(p: &Preset, files: &ReadFiles) -> Result<()> {
     stiffness_is_definite(p).map_err(invalid)?;
     ply_is_physical(p).map_err(invalid)?;
     walls_do_not_overlap(p).map_err(invalid)
+}
+
+/// The `[turbine]` keys describe a model the program holds: a rotor of three tabulated blades,
+/// its drivetrain's values from the turbine file (none for a rigid one), the file's blade count
+/// the preset's; a turbine file names its source.
+fn turbine_is_complete(p: &Preset, files: &ReadFiles) -> std::result::Result<(), String> {
+    let t = &p.turbine;
+    let named = !t.file.trim().is_empty();
+    match (t.source, named) {
+        (TurbineSource::None, true) => {
+            return Err(format!(
+                "turbine.file = \"{}\" without turbine.source: set turbine.source =                  \"elastodyn\" for an ElastoDyn main file",
+                t.file
+            ))
+        }
+        (TurbineSource::Elastodyn, false) => {
+            return Err("turbine.source = \"elastodyn\" needs turbine.file: the ElastoDyn main \
+                        file, relative to the preset file"
+                .to_string())
+        }
+        _ => {}
+    }
+    if let Some((turbine, name)) = files.turbine() {
+        if turbine.blades != p.operating.blades {
+            return Err(format!(
+                "operating.blades = {} but {name} has NumBl = {}: the rotor is the file's",
+                p.operating.blades, turbine.blades
+            ));
+        }
+    }
+    if t.model == TurbineModel::Blade {
+        return Ok(());
+    }
+    if !p.blade.source.is_tabulated() {
+        return Err(format!(
+            "turbine.model = \"{}\" with blade.source = \"{}\": a rotor is made of a tabulated \
+             blade (beamdyn, hawc2 or windio); the paper's uniform blade has no edge motion",
+            t.model.name(),
+            p.blade.source.name()
+        ));
+    }
+    if p.operating.blades != 3 {
+        return Err(format!(
+            "turbine.model = \"{}\" with operating.blades = {}: the ground-frame model is a \
+             three-bladed rotor's",
+            t.model.name(),
+            p.operating.blades
+        ));
+    }
+    if t.drivetrain != DrivetrainModel::Rigid && files.turbine().is_none() {
+        return Err(format!(
+            "turbine.model = \"{}\" with turbine.drivetrain = \"{}\" reads the hub's and the \
+             drivetrain's inertia, stiffness and damping from the turbine file: set \
+             turbine.source = \"elastodyn\" and turbine.file, or turbine.drivetrain = \"rigid\" \
+             for a hub turning at exactly the rotor speed",
+            t.model.name(),
+            t.drivetrain.name()
+        ));
+    }
+    Ok(())
 }
 
 /// A tabulated blade is as long as its file says: `blade.length` either left out (it is then

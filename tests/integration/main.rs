@@ -33,6 +33,7 @@ mod sweep;
 mod tabulated;
 mod timoshenko;
 mod tui_tmux;
+mod turbine;
 mod validation;
 mod windio;
 

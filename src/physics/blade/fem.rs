@@ -189,6 +189,13 @@ pub struct BladeMatrices<M = DMatrix<f64>> {
     /// instead of by the pitch (zero for a straight blade): the load at any pitch of the curve
     /// is `cos p · [0] + sin p · [1]` ([`BladeMatrices::centrifugal_load`]).
     pub curve_loads: [DVector<f64>; 2],
+    /// The blade turning rigidly with the rotor about the shaft (docs/model.md §13.2): `M r` on
+    /// the free dofs for the rotation `r` (`v = (r_hub + z) θ`, `v' = θ`, per radian), the
+    /// inertial load the hub's angular acceleration puts on the blade, and `rᵀ M r`, the
+    /// blade's moment of inertia about the shaft, root element included (the clamp holds the
+    /// root's dofs at zero relative to the hub, not in space).
+    pub rotation_load: DVector<f64>,
+    pub rotation_inertia: f64,
 }
 
 /// Shape functions of one element at local `s ∈ [0, 1]` as rows over its local dofs
@@ -433,6 +440,8 @@ fn assemble_with<M: Storage>(
     let mut k0 = M::zeros(n, band);
     let mut k_omega = M::zeros(n, band);
     let mut curve_loads = [DVector::zeros(n), DVector::zeros(n)];
+    let mut rotation_load = DVector::zeros(n);
+    let mut rotation_inertia = 0.0;
     let curved = !table.axis.is_straight();
     let (gauss_s, gauss_w) = gauss_legendre(GAUSS_POINTS);
     let tension = tension_at_nodes(table, &mesh.nodes);
@@ -588,7 +597,11 @@ fn assemble_with<M: Storage>(
                 )));
             }
         }
+        let rotation = rigid_rotation(table.hub_radius + za, table.hub_radius + zb);
+        let load = element_times(&me, &rotation);
+        rotation_inertia += load.iter().zip(&rotation).map(|(a, b)| a * b).sum::<f64>();
         let dofs = beam.element_dofs(e);
+        scatter_load(&mut rotation_load, &load, &dofs);
         scatter(&mut mass, &me, &dofs);
         scatter(&mut k0, &ke, &dofs);
         scatter(&mut k_omega, &kw, &dofs);
@@ -598,6 +611,8 @@ fn assemble_with<M: Storage>(
     }
     Ok(BladeMatrices {
         curve_loads,
+        rotation_load,
+        rotation_inertia,
         table: table.clone(),
         mesh: mesh.clone(),
         pitch,
@@ -696,6 +711,23 @@ fn element_band(beam: Beam, elements: usize) -> usize {
         .unwrap_or(0)
 }
 
+/// An element's local dofs in the rigid rotation about the shaft of one radian, its nodes at
+/// radii `ra`, `rb`: every point moves in the edge direction by its radius, so `v = r`,
+/// `v' = 1` and nothing else (the section turns with the slope, no shear strain, no twist).
+fn rigid_rotation(ra: f64, rb: f64) -> Row {
+    let mut r = [0.0; ELEMENT];
+    for (node, radius) in [(0, ra), (1, rb)] {
+        r[node * LOCAL + V] = radius;
+        r[node * LOCAL + V + 1] = 1.0;
+    }
+    r
+}
+
+/// `a x` for an element matrix.
+fn element_times(a: &ElementMatrix, x: &Row) -> Row {
+    std::array::from_fn(|i| a[i].iter().zip(x).map(|(a, b)| a * b).sum())
+}
+
 /// Add an element load vector into the global one at the element's free dofs.
 fn scatter_load(global: &mut DVector<f64>, local: &Row, dofs: &[Option<usize>; ELEMENT]) {
     for (value, d) in local.iter().zip(dofs) {
@@ -792,6 +824,8 @@ impl BladeMatrices {
             pitch: self.pitch,
             beam: self.beam,
             curve_loads: self.curve_loads,
+            rotation_load: self.rotation_load,
+            rotation_inertia: self.rotation_inertia,
         }
     }
 }

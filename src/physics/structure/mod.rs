@@ -200,6 +200,12 @@ pub trait Structure: Send + Sync {
     fn damping(&self) -> &DMatrix<f64>;
     /// Twist, flap and edge of the reference axis at span position `x` (m from the root).
     fn motion_rows(&self, x: f64) -> MotionRows;
+    /// The motion rows at each of the strips' span positions `xs`, in order. One blade's at each
+    /// position; a rotor of N blades takes the same positions once per blade, blade after
+    /// blade, and gives each its own blade's rows (docs/model.md §13.3).
+    fn station_rows(&self, xs: &[f64]) -> Vec<MotionRows> {
+        xs.iter().map(|&x| self.motion_rows(x)).collect()
+    }
     /// Undamped natural modes at the rotor speed, ascending, named by family.
     fn natural_modes(&self) -> Result<Vec<NaturalMode>>;
     /// Kinetic-energy shares of a (complex) motion's coordinates `q`.
@@ -223,4 +229,31 @@ pub trait Structure: Send + Sync {
     fn left_out(&self) -> Option<&dyn Structure> {
         None
     }
+    /// What a rotor needs of one of its blades (docs/model.md §13.2): none for a blade that
+    /// cannot sit on one (the paper's, which has no edge motion).
+    fn rotor_coupling(&self) -> Option<RotorCoupling> {
+        None
+    }
+    /// Each root's content in the named slots of [`Structure::natural_modes`], in their order
+    /// (shares summing to 1), where the structure names its roots by a measure of its own (a
+    /// rotor in multi-blade coordinates, §13.5); none: the mass-weighted projection on the
+    /// natural modes' shapes.
+    fn slot_content(&self, _q: &[Complex<f64>]) -> Option<Vec<f64>> {
+        None
+    }
+}
+
+/// One blade's part in a rotor (docs/model.md §13.2), in its modal coordinates.
+#[derive(Debug, Clone)]
+pub struct RotorCoupling {
+    /// `φ_jᵀ M r`: each mode's share of the blade's rigid rotation about the shaft.
+    pub rotation: DVector<f64>,
+    /// `rᵀ M r`: the blade's moment of inertia about the shaft (kg·m²).
+    pub inertia: f64,
+    /// The centrifugal load per Ω² on a curved blade (zero for a straight one).
+    pub centrifugal_load: DVector<f64>,
+    /// `K_Ω`, the stiffness per Ω² between the modes.
+    pub centrifugal_stiffness: DMatrix<f64>,
+    /// The kinetic energy of flap, edge and twist between the modes ([`Structure::shares`]).
+    pub family_energy: [DMatrix<f64>; 3],
 }

@@ -4,7 +4,7 @@
 //! motion rows are the mode shapes carried from the shear centre to the reference (pitch) axis,
 //! where the aerodynamics attach.
 
-use super::{Family, MotionRows, NaturalMode, Shares, Structure};
+use super::{Family, MotionRows, NaturalMode, RotorCoupling, Shares, Structure};
 use crate::error::{Error, Result};
 use crate::physics::blade::modal::{BladeMode, ModalBlade};
 use crate::physics::section::SectionProps;
@@ -193,5 +193,14 @@ impl Structure for TabulatedStructure {
     }
     fn left_out(&self) -> Option<&dyn Structure> {
         self.left_out.as_deref().map(|s| s as &dyn Structure)
+    }
+    fn rotor_coupling(&self) -> Option<RotorCoupling> {
+        Some(RotorCoupling {
+            rotation: self.blade.rotation_participation(&self.modes),
+            inertia: self.blade.rotation_inertia(),
+            centrifugal_load: self.blade.centrifugal_load(&self.modes),
+            centrifugal_stiffness: self.blade.centrifugal_stiffness(&self.modes),
+            family_energy: self.family_energy.clone(),
+        })
     }
 }

@@ -63,7 +63,12 @@ impl LeftOut {
                 "non-finite centrifugal load on the left-out modes",
             ));
         }
-        let rows: Vec<_> = stations.iter().map(|s| motion(s.x)).collect();
+        let xs: Vec<f64> = stations.iter().map(|s| s.x).collect();
+        let rows: Vec<_> = rest
+            .station_rows(&xs)
+            .into_iter()
+            .map(|r| [r.twist, r.flap, r.edge])
+            .collect();
         let reach = structure.hub_radius() + structure.length();
         let scale = DVector::from_fn(stiffness.len(), |j, _| {
             rows.iter().fold(0.0, |m: f64, [twist, flap, _]| {

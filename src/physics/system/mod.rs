@@ -43,7 +43,7 @@ use std::sync::Arc;
 pub struct System {
     structure: Arc<dyn Structure>,
     stations: Vec<Station>,
-    model: Box<dyn StripModel>,
+    model: Arc<dyn StripModel>,
     /// The rows e_φ, e_u and e_v that map q to each strip's φ, u and v.
     rows: Arc<Vec<[DVector<f64>; RATES]>>,
     /// The same at the tip.
@@ -97,12 +97,25 @@ impl System {
         stations: Vec<Station>,
         model: Box<dyn StripModel>,
     ) -> Result<System> {
-        let motion = |x: f64| {
-            let r = structure.motion_rows(x);
-            [r.twist, r.flap, r.edge]
-        };
-        let rows: Arc<Vec<_>> = Arc::new(stations.iter().map(|s| motion(s.x)).collect());
-        let tip_rows = motion(structure.length());
+        System::with_model(structure, stations, Arc::from(model))
+    }
+
+    /// [`System::from_parts`] with a strip model shared with other systems.
+    fn with_model(
+        structure: Arc<dyn Structure>,
+        stations: Vec<Station>,
+        model: Arc<dyn StripModel>,
+    ) -> Result<System> {
+        let xs: Vec<f64> = stations.iter().map(|s| s.x).collect();
+        let rows: Arc<Vec<_>> = Arc::new(
+            structure
+                .station_rows(&xs)
+                .into_iter()
+                .map(|r| [r.twist, r.flap, r.edge])
+                .collect(),
+        );
+        let tip = structure.motion_rows(structure.length());
+        let tip_rows = [tip.twist, tip.flap, tip.edge];
         let stiffness = structure.stiffness();
         check_finite("stiffness matrix", &stiffness)?;
         let damping = structure.damping().clone();
@@ -153,7 +166,7 @@ impl System {
         Ok(System {
             structure: Arc::clone(&self.structure),
             stations,
-            model,
+            model: Arc::from(model),
             rows: Arc::clone(&self.rows),
             tip_rows: self.tip_rows.clone(),
             mass_inv,
@@ -164,6 +177,22 @@ impl System {
             left_out: self.left_out.clone(),
             offsets: self.offsets.clone(),
         })
+    }
+
+    /// The same strips on `blades` blades of `rotor`, a structure whose coordinates hold this
+    /// system's blade once per blade (docs/model.md §13.3): the stations repeated blade after
+    /// blade, the strip model shared (it reads each station's section by its index, the same
+    /// on every blade).
+    pub fn on_rotor(&self, rotor: Arc<dyn Structure>, blades: usize) -> Result<System> {
+        let stations: Vec<Station> = (0..blades)
+            .flat_map(|_| self.stations.iter().cloned())
+            .collect();
+        System::with_model(rotor, stations, Arc::clone(&self.model))
+    }
+
+    /// The blade structure, shared.
+    pub fn structure_arc(&self) -> Arc<dyn Structure> {
+        Arc::clone(&self.structure)
     }
 
     /// Length of the state vector: 2 n_q + aero states.

@@ -9,6 +9,7 @@ pub mod operating;
 pub mod section;
 pub mod simulation;
 pub mod structure;
+pub mod turbine;
 pub mod view;
 
 pub use aero::*;
@@ -17,6 +18,7 @@ pub use operating::*;
 pub use section::*;
 pub use simulation::*;
 pub use structure::*;
+pub use turbine::*;
 pub use view::*;
 
 use crate::preset::files::FileBase;
@@ -33,6 +35,7 @@ pub struct Preset {
     pub operating: Operating,
     pub structure: StructureSettings,
     pub aero: Aero,
+    pub turbine: Turbine,
     pub simulation: Simulation,
     pub view: View,
     /// Where this preset came from (file path or `built-in NAME`), for error messages.
@@ -68,6 +71,7 @@ impl Default for Preset {
             operating: Operating::default(),
             structure: StructureSettings::default(),
             aero: Aero::default(),
+            turbine: Turbine::default(),
             simulation: Simulation::default(),
             view: View::default(),
             origin: "defaults".into(),

@@ -1,0 +1,97 @@
+//! The rotor as one aeroelastic system in the ground frame (docs/model.md §13): three identical
+//! blades in their rotating frames ([`rotor::Rotor`]) on the drivetrain
+//! ([`drivetrain::Drivetrain`]), their strips as one blade's, linearised about the blade's
+//! equilibrium and carried into the ground frame by the multi-blade transform
+//! ([`crate::numeric::mbc`]), where [`ground::GroundRotor`] names the roots.
+//!
+//! An isotropic rotor in uniform axial inflow, on a support that does not move: the
+//! rotating-frame state matrix does not depend on the azimuth, and the transform gives the
+//! ground-frame matrix exactly at any one azimuth.
+
+pub mod drivetrain;
+pub mod ground;
+pub mod rotor;
+
+use crate::error::{Error, Result};
+use crate::physics::structure::Structure;
+use crate::physics::system::{LinearSystem, System};
+use drivetrain::Drivetrain;
+use ground::GroundRotor;
+use nalgebra::DVector;
+use rotor::Rotor;
+use std::sync::Arc;
+
+/// What a rotor adds to its blade: how many blades, the drivetrain, the speed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RotorInputs {
+    pub blades: usize,
+    /// None: the hub turns at a constant speed (an infinitely stiff drivetrain on an infinite
+    /// inertia), the blades clamped to it.
+    pub drivetrain: Option<Drivetrain>,
+    /// Ω (rad/s), the speed the blade's modes are at.
+    pub rotor_speed: f64,
+}
+
+/// The rotor of `inputs` made of `blade`'s structure and strips, linearised about the blade's
+/// equilibrium state `x_eq` (every blade at it, the drivetrain at rest relative to the hub): the
+/// ground-frame state matrix, its states `[a, ȧ, z̄]` in multi-blade coordinates.
+pub fn rotor_system(
+    blade: &System,
+    x_eq: &DVector<f64>,
+    inputs: &RotorInputs,
+) -> Result<LinearSystem> {
+    let k = blade.nq();
+    if x_eq.len() != blade.dim() {
+        return Err(Error::numerical(format!(
+            "rotor: the blade's equilibrium has {} states, the blade {}",
+            x_eq.len(),
+            blade.dim()
+        )));
+    }
+    let n_blades = inputs.blades;
+    let left_out = blade.left_out_response(x_eq);
+    let q_eq = x_eq.rows(0, k).into_owned();
+    let z_eq = x_eq.rows(2 * k, blade.n_aero()).into_owned();
+    let rotor = Rotor::new(
+        blade.structure_arc(),
+        n_blades,
+        inputs.drivetrain.clone(),
+        inputs.rotor_speed,
+        &q_eq,
+    )?;
+    let ground = GroundRotor::new(&rotor, inputs.rotor_speed)?;
+    let rotor = Arc::new(rotor);
+    let mut system = blade.on_rotor(Arc::clone(&rotor) as _, n_blades)?;
+    if let Some(p) = left_out {
+        system = system.with_left_out_at(&repeated(&p, n_blades));
+    }
+    let n = rotor.coordinates();
+    let mut x = DVector::zeros(system.dim());
+    x.rows_mut(0, n_blades * k)
+        .copy_from(&repeated(&q_eq, n_blades));
+    x.rows_mut(2 * n, system.n_aero())
+        .copy_from(&repeated(&z_eq, n_blades));
+    let rotating = system.linearise_at(Some(x.clone()))?;
+    let mbc = ground::layout(&rotor, rotating.dim())?;
+    let a = mbc.transform(&rotating.a, 0.0, inputs.rotor_speed)?;
+    let x_eq = mbc.to_ground(0.0, inputs.rotor_speed) * x;
+    let [tip_twist, tip_flap] = ground.tip_rows();
+    Ok(LinearSystem {
+        a,
+        x_eq,
+        nq: n,
+        n_aero: rotating.n_aero,
+        tip_twist,
+        tip_flap,
+        tip_offset: rotating.tip_offset,
+        structure: Arc::new(ground),
+    })
+}
+
+/// `v` once per blade.
+fn repeated(v: &DVector<f64>, blades: usize) -> DVector<f64> {
+    DVector::from_iterator(
+        v.len() * blades,
+        (0..blades).flat_map(|_| v.iter().copied()),
+    )
+}

@@ -1,0 +1,78 @@
+//! The `[turbine]` table: what around the blade the model holds (docs/model.md §13): the blade
+//! alone, clamped (the default), or the rotor of identical blades on its drivetrain, analysed in
+//! the ground frame; and the file the drivetrain's values come from.
+
+use serde::{Deserialize, Serialize};
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Turbine {
+    pub model: TurbineModel,
+    /// What gives the hub's and the drivetrain's values: `elastodyn` (an ElastoDyn main file).
+    pub source: TurbineSource,
+    /// The turbine file (relative to the preset's directory).
+    pub file: String,
+    /// The drivetrain of a `rotor`: the generator `free` (open loop, held by its constant
+    /// torque), `locked` (a held brake), or `rigid`: no drivetrain, the hub turning at exactly
+    /// the rotor speed (no file needed).
+    pub drivetrain: DrivetrainModel,
+}
+
+/// `turbine.model`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum TurbineModel {
+    /// One blade clamped at its root, in its rotating frame.
+    Blade,
+    /// Three identical blades on the drivetrain, the support rigid, in the ground frame.
+    Rotor,
+}
+
+/// `turbine.source`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum TurbineSource {
+    /// No turbine file.
+    None,
+    /// An OpenFAST ElastoDyn main file.
+    Elastodyn,
+}
+
+/// `turbine.drivetrain`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum DrivetrainModel {
+    Free,
+    Locked,
+    Rigid,
+}
+
+impl TurbineModel {
+    pub fn name(self) -> &'static str {
+        match self {
+            TurbineModel::Blade => "blade",
+            TurbineModel::Rotor => "rotor",
+        }
+    }
+}
+
+impl DrivetrainModel {
+    pub fn name(self) -> &'static str {
+        match self {
+            DrivetrainModel::Free => "free",
+            DrivetrainModel::Locked => "locked",
+            DrivetrainModel::Rigid => "rigid",
+        }
+    }
+}
+
+impl Default for Turbine {
+    fn default() -> Self {
+        Turbine {
+            model: TurbineModel::Blade,
+            source: TurbineSource::None,
+            file: String::new(),
+            drivetrain: DrivetrainModel::Free,
+        }
+    }
+}

@@ -1,0 +1,268 @@
+//! The rotor in the ground frame (docs/model.md §13): three blades on the drivetrain, carried
+//! by the multi-blade transform; checked against the one blade it is made of, against the
+//! NREL 5MW's published full-system frequencies, and through the real binary.
+
+use super::flutterscope_ok;
+use flutterscope::analysis::eigen::{analyse, linear_system};
+use flutterscope::analysis::mode::Mode;
+use flutterscope::numeric::decompose;
+use flutterscope::preset::{Preset, ValidPreset};
+use nalgebra::Complex;
+use std::f64::consts::TAU;
+
+fn preset(name: &str, overrides: &[&str]) -> ValidPreset {
+    let o: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
+    Preset::load(name, &o).unwrap()
+}
+
+/// Every root of the state matrix of `p`, each complex pair's both roots.
+fn roots(p: &ValidPreset) -> Vec<Complex<f64>> {
+    let values = decompose(&linear_system(p).unwrap().a, false)
+        .unwrap()
+        .values;
+    let conjugates: Vec<Complex<f64>> = values
+        .iter()
+        .filter(|l| l.im != 0.0)
+        .map(|l| l.conj())
+        .collect();
+    values.into_iter().chain(conjugates).collect()
+}
+
+/// The rotor speed (rad/s) `p` runs at.
+fn omega(p: &ValidPreset) -> f64 {
+    flutterscope::model::operating::scheduled_rotor_speed(p).unwrap() * TAU / 60.0
+}
+
+/// Every blade root `λ` is the rotor's three times, as `λ` (collective) and `λ ∓ iΩ` (the
+/// cyclic pair), to `tol` of the spectral scale; and the rotor has no other root.
+fn assert_blade_roots_shifted(blade: &[Complex<f64>], rotor: &[Complex<f64>], w: f64, tol: f64) {
+    assert_eq!(rotor.len(), 3 * blade.len());
+    let scale = rotor.iter().map(|l| l.norm()).fold(1.0, f64::max);
+    let mut left: Vec<Complex<f64>> = rotor.to_vec();
+    for l in blade {
+        for shift in [0.0, w, -w] {
+            let want = l + Complex::new(0.0, shift);
+            let (k, d) = left
+                .iter()
+                .enumerate()
+                .map(|(k, r)| (k, (r - want).norm()))
+                .min_by(|a, b| a.1.total_cmp(&b.1))
+                .unwrap();
+            assert!(
+                d <= tol * scale,
+                "blade root {l} shifted by {shift} i: nearest rotor root {} off by {d:e}",
+                left[k]
+            );
+            left.swap_remove(k);
+        }
+    }
+}
+
+#[test]
+fn a_rotor_on_a_rigid_drivetrain_in_vacuo_is_its_blade_at_and_either_side_of_1p() {
+    let o = ["aero.model=none"];
+    let blade = preset("nrel5mw", &o);
+    let rotor = preset(
+        "nrel5mw",
+        &[
+            "aero.model=none",
+            "turbine.model=rotor",
+            "turbine.drivetrain=rigid",
+        ],
+    );
+    assert_blade_roots_shifted(&roots(&blade), &roots(&rotor), omega(&blade), 1e-9);
+    // Named: collective at the blade's frequency, BW at f − 1P, FW at f + 1P.
+    let named = analyse(&rotor).unwrap().eigenvalues;
+    let find = |label: &str| -> &Mode {
+        named
+            .iter()
+            .find(|m| m.label == label)
+            .unwrap_or_else(|| panic!("no {label}"))
+    };
+    let one_p = omega(&blade) / TAU;
+    for m in analyse(&blade).unwrap().eigenvalues.iter().take(6) {
+        let f = m.frequency_hz;
+        for (whirl, want) in [
+            ("collective", f),
+            ("BW", (f - one_p).abs()),
+            ("FW", f + one_p),
+        ] {
+            let got = find(&format!("{whirl} {}", m.label)).frequency_hz;
+            assert!(
+                (got - want).abs() <= 1e-9 * want,
+                "{whirl} {}: {got} Hz, want {want}",
+                m.label
+            );
+        }
+    }
+}
+
+#[test]
+fn a_rotor_on_a_rigid_drivetrain_in_the_wind_is_its_blade_shifted_by_1p() {
+    let blade = preset("nrel5mw", &[]);
+    let rotor = preset(
+        "nrel5mw",
+        &["turbine.model=rotor", "turbine.drivetrain=rigid"],
+    );
+    assert_blade_roots_shifted(&roots(&blade), &roots(&rotor), omega(&blade), 1e-9);
+}
+
+/// Jonkman et al. (2009), NREL/TP-500-38060, table 9-1: the full-system natural frequencies
+/// (FAST) of the land-based turbine at rest, generator brake engaged, no aerodynamic damping.
+/// The rotor on a rigid support holds the drivetrain and the modes the tower barely moves.
+#[test]
+fn the_nrel5mw_rotor_at_rest_with_its_brake_on_has_the_published_frequencies() {
+    let p = preset(
+        "nrel5mw",
+        &[
+            "aero.model=none",
+            "operating.schedule=none",
+            "operating.rotor_speed=0",
+            "turbine.model=rotor",
+            "turbine.drivetrain=locked",
+        ],
+    );
+    let named = analyse(&p).unwrap().eigenvalues;
+    let hz = |label: &str| {
+        named
+            .iter()
+            .find(|m| m.label == label)
+            .unwrap_or_else(|| panic!("no {label}"))
+            .frequency_hz
+    };
+    for (label, published) in [
+        ("drivetrain 1", 0.6205),
+        ("collective flap 1", 0.6993),
+        ("BW edge 1", 1.0793),
+        ("FW edge 1", 1.0898),
+        ("BW flap 2", 1.9223),
+        ("FW flap 2", 1.9337),
+    ] {
+        let got = hz(label);
+        assert!(
+            (got / published - 1.0).abs() < 0.03,
+            "{label}: {got:.4} Hz against {published} Hz"
+        );
+    }
+    // The drivetrain carries the collective edge mode far above the blade's.
+    assert!(hz("collective edge 1") > 2.0 * hz("BW edge 1"));
+}
+
+/// The blade's inertia about the shaft, from the mass matrix of its elements, is the
+/// published second moment about the root (Jonkman et al. 2009, table 2-1: 11 776 047 kg·m²,
+/// which includes ElastoDyn's mass factor AdjBlMs = 1.04536 of the blade file the BeamDyn blade
+/// does not carry) within 1 %.
+#[test]
+fn the_blades_inertia_about_the_root_is_the_published_one() {
+    let p = preset("nrel5mw", &["aero.model=none", "blade.hub_radius=1e-9"]);
+    let coupling = flutterscope::model::for_preset(&p)
+        .unwrap()
+        .rotor_coupling()
+        .unwrap();
+    let published = 11_776_047.0 / 1.04536;
+    assert!(
+        (coupling.inertia / published - 1.0).abs() < 0.01,
+        "{} kg·m² against {published}",
+        coupling.inertia
+    );
+}
+
+#[test]
+fn a_free_drivetrain_turns_as_a_whole_and_twists() {
+    let p = preset(
+        "nrel5mw",
+        &[
+            "aero.model=none",
+            "turbine.model=rotor",
+            "turbine.drivetrain=free",
+        ],
+    );
+    let s = analyse(&p).unwrap();
+    let rotation = s
+        .eigenvalues
+        .iter()
+        .find(|m| m.label == "rotor rotation")
+        .unwrap();
+    assert_eq!(rotation.frequency_hz, 0.0);
+    assert_eq!(rotation.damping_ratio, 0.0);
+    assert!(s.eigenvalues.iter().any(|m| m.label == "drivetrain 1"));
+    // In the wind the rotor's speed decays by the aerodynamic torque's slope.
+    let windy = analyse(&preset("nrel5mw", &["turbine.model=rotor"])).unwrap();
+    let rotation = windy
+        .eigenvalues
+        .iter()
+        .find(|m| m.label == "rotor rotation")
+        .unwrap();
+    assert!(rotation.second_re.unwrap() < 0.0);
+    assert!(windy.stable);
+}
+
+#[test]
+fn the_commands_name_the_rotors_modes() {
+    let out = flutterscope_ok(&[
+        "eigen",
+        "--preset",
+        "nrel5mw",
+        "--set",
+        "turbine.model=rotor",
+    ]);
+    let text = String::from_utf8(out.stdout).unwrap();
+    for name in [
+        "BW edge 1",
+        "FW edge 1",
+        "collective edge 1",
+        "drivetrain 1",
+        "rotor rotation",
+    ] {
+        assert!(text.contains(name), "eigen lacks {name}:\n{text}");
+    }
+    let out = flutterscope_ok(&[
+        "modes",
+        "--preset",
+        "nrel5mw",
+        "--json",
+        "--set",
+        "turbine.model=rotor",
+    ]);
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let labels: Vec<&str> = json["modes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|m| m["label"].as_str().unwrap())
+        .collect();
+    assert_eq!(labels.len(), 3 * 12 + 2);
+    for name in [
+        "collective flap 1",
+        "BW flap 1",
+        "FW flap 1",
+        "drivetrain 1",
+    ] {
+        assert!(labels.contains(&name), "modes lacks {name}: {labels:?}");
+    }
+}
+
+#[test]
+fn a_rotor_the_preset_cannot_hold_is_refused_with_the_reason() {
+    let err = |overrides: &[&str]| {
+        let o: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
+        Preset::load("nrel5mw", &o).unwrap_err().to_string()
+    };
+    let e = err(&[
+        "turbine.model=rotor",
+        "turbine.source=none",
+        "turbine.file=",
+    ]);
+    assert!(
+        e.contains("turbine.drivetrain = \"free\"") && e.contains("turbine.file"),
+        "{e}"
+    );
+    let e = err(&["operating.blades=2"]);
+    assert!(e.contains("NumBl = 3"), "{e}");
+    let e = Preset::load("liu2017", &["turbine.model=rotor".to_string()])
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("tabulated blade"), "{e}");
+    let e = err(&["turbine.file=blades/missing.dat"]);
+    assert!(e.contains("turbine.file = \"blades/missing.dat\""), "{e}");
+}
