@@ -135,12 +135,20 @@ impl TrackedSweep {
             .collect();
         order.sort_by(|a, b| a.1.total_cmp(&b.1));
         let total = self.modes.len();
-        let Some(&(lowest, _)) = order.first() else {
+        if order.is_empty() {
             return CampbellSelection {
                 shown: Vec::new(),
                 left_off: total,
             };
-        };
+        }
+        // The scale follows the lowest mode that oscillates at most points: a root that turns
+        // real over most of the range (a free rotor's rotation, oscillating only where it
+        // meets a lag root) would squeeze every other mode off it.
+        let points = self.values.len();
+        let lowest = order
+            .iter()
+            .find(|(i, _)| 2 * oscillating(&self.modes[*i]).count() >= points)
+            .map_or(order[0].0, |&(i, _)| i);
         let top = oscillating(&self.modes[lowest]).fold(0.0, f64::max);
         let three_p = if self.parameter == ROTOR_SPEED_KEY {
             3.0 * self.values.iter().copied().fold(0.0, f64::max) / 60.0

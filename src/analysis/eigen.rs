@@ -116,6 +116,7 @@ pub fn analyse_system(ls: &LinearSystem) -> Result<Stability> {
             }
         })
         .collect();
+    let all = without_rigid_body_roots(all, structure.rigid_body_roots(), tol);
     let Identified {
         structural: mut named,
         aero: mut lags,
@@ -140,6 +141,24 @@ pub fn analyse_system(ls: &LinearSystem) -> Result<Stability> {
         eigenvalues: named,
         aero_lags: lags,
     })
+}
+
+/// `roots` less the `count` real roots nearest zero, where they lie within `tol` of it: the
+/// azimuth of a free rotor ([`crate::physics::structure::Structure::rigid_body_roots`]),
+/// neither a mode nor a stability margin.
+fn without_rigid_body_roots(mut roots: Vec<Mode>, count: usize, tol: f64) -> Vec<Mode> {
+    for _ in 0..count {
+        let nearest = roots
+            .iter()
+            .enumerate()
+            .filter(|(_, m)| m.im == 0.0 && m.re.abs() <= tol)
+            .min_by(|a, b| a.1.re.abs().total_cmp(&b.1.re.abs()))
+            .map(|(i, _)| i);
+        if let Some(i) = nearest {
+            roots.remove(i);
+        }
+    }
+    roots
 }
 
 fn verdict_of<'a>(roots: impl Iterator<Item = &'a Mode>, tol: f64) -> Verdict {

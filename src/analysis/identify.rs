@@ -77,7 +77,9 @@ pub fn identify(roots: Vec<Mode>, nq: usize, structure: &dyn Structure) -> Resul
 }
 
 /// Rule 1: the roots filling the `2 nq` structural state dimensions, largest structural share
-/// first; the rest are aerodynamic.
+/// first; the rest are aerodynamic. Where the caller took out a rigid body's zero root
+/// ([`Structure::rigid_body_roots`]) its dimension stays open: a free rotor's speed root,
+/// coupled with an aerodynamic lag into a complex pair, takes it.
 fn split_structural(roots: Vec<Mode>, nq: usize) -> (Vec<Mode>, Vec<Mode>) {
     let mut order: Vec<usize> = (0..roots.len()).collect();
     order.sort_by(|&a, &b| {
@@ -164,7 +166,13 @@ fn assign(
     content: &[Vec<f64>],
     natural: &[NaturalMode],
 ) -> (Vec<(usize, Vec<usize>)>, Vec<usize>) {
+    let rigid = |k: usize| natural[k].frequency_hz == 0.0;
     let cost = |i: usize, k: usize| -> f64 {
+        // A rigid body (a free rotor's speed) takes only a root that is mostly its motion:
+        // any other mode's root holds a little of it, none of its own name.
+        if rigid(k) && content[i][k] < 0.5 {
+            return MISFIT;
+        }
         let penalty = if roots[i].shares.family() == natural[k].family {
             0.0
         } else {
@@ -183,12 +191,21 @@ fn assign(
         named + UNNAMED * left.len() as f64
     };
     let (mut named, mut left, free) = name_oscillating(&oscillating, &modes, &cost);
-    let (pairs, unpaired) = name_real(&real, &free, &cost);
+    let (pairs, unpaired) = name_real(&real, &free, &cost, &rigid);
     named.extend(pairs.iter().cloned());
     left.extend(unpaired.iter().copied());
     let oscillating_first = (named, left);
     let units: Vec<Vec<usize>> = pairs.into_iter().map(|(_, group)| group).collect();
-    let (mut named, mut left, free) = name_units(&units, &modes, &cost);
+    // A rigid mode takes one real root, never a pair.
+    let pair_cost = |i: usize, k: usize| {
+        let pair = units.iter().any(|u| u.len() > 1 && u.contains(&i));
+        if pair && rigid(k) {
+            MISFIT
+        } else {
+            cost(i, k)
+        }
+    };
+    let (mut named, mut left, free) = name_units(&units, &modes, &pair_cost);
     let (single, unnamed, _) = name_oscillating(&oscillating, &free, &cost);
     named.extend(single);
     left.extend(unnamed);
@@ -200,6 +217,10 @@ fn assign(
         oscillating_first
     }
 }
+
+/// Cost of a name a root cannot take (an overdamped pair for a rigid mode's one real root):
+/// far above any other, so it is taken only when nothing else is left.
+const MISFIT: f64 = 1e3;
 
 /// Named groups, roots left unnamed, and the natural modes still free.
 type Naming = (Vec<(usize, Vec<usize>)>, Vec<usize>, Vec<usize>);
@@ -234,14 +255,19 @@ fn name_units(units: &[Vec<usize>], modes: &[usize], cost: &dyn Fn(usize, usize)
     (named, left, free)
 }
 
-/// The real roots, two to each of `modes` (an overdamped pair's two decay rates), the slots
-/// filled one-to-one: the groups formed and the roots left over.
+/// The real roots, two to each of `modes` (an overdamped pair's two decay rates) and one to a
+/// `rigid` one (a natural mode at zero frequency: a free rotor's speed, whose azimuth the
+/// caller took out), the slots filled one-to-one: the groups formed and the roots left over.
 fn name_real(
     roots: &[usize],
     modes: &[usize],
     cost: &dyn Fn(usize, usize) -> f64,
+    rigid: &dyn Fn(usize) -> bool,
 ) -> (Vec<(usize, Vec<usize>)>, Vec<usize>) {
-    let slots: Vec<usize> = modes.iter().flat_map(|&k| [k, k]).collect();
+    let slots: Vec<usize> = modes
+        .iter()
+        .flat_map(|&k| if rigid(k) { vec![k] } else { vec![k, k] })
+        .collect();
     let mut groups: Vec<(usize, Vec<usize>)> = Vec::new();
     let mut left = Vec::new();
     for (&i, k) in roots.iter().zip(one_to_one(roots, &slots, cost)) {

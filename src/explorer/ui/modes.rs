@@ -72,6 +72,8 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
         .fold(f64::NEG_INFINITY, f64::max);
     // Below this the table squeezes ζ to 5 characters and cuts its left: see `zeta_text`.
     let narrow = area.width < 36;
+    // The name column's width: the pane less its borders, the other columns and the spacing.
+    let name_width = usize::from(area.width).saturating_sub(2 + 8 + 6 + 8 + 3);
     let rows: Vec<Row> = modes
         .iter()
         .map(|m| {
@@ -95,7 +97,7 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
             let f_trend = trend(m.frequency_hz, p.map(|p| p.frequency_hz), true);
             let z_trend = trend(m.damping_ratio, p.map(|p| p.damping_ratio), false);
             Row::new(vec![
-                Cell::from(Line::styled(m.label.clone(), swatch)),
+                Cell::from(Line::styled(fitted(&m.label, name_width), swatch)),
                 Cell::from(Line::from(format!("{frequency}{f_trend}")).right_aligned()),
                 Cell::from(
                     Line::from(m.in_vacuo_hz.map(|f| sig(f, 3)).unwrap_or_default())
@@ -129,6 +131,15 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
     .column_spacing(1)
     .block(block);
     frame.render_widget(table, area);
+}
+
+/// A rotor's long names shortened to fit `width` (`collective flap 1` → `coll flap 1`), so the
+/// mode's number stays in view; any other name as it is.
+fn fitted(label: &str, width: usize) -> String {
+    if label.chars().count() <= width {
+        return label.to_string();
+    }
+    label.replacen("collective ", "coll ", 1)
 }
 
 /// ζ with 3 significant digits; in a narrow pane, where the column shows 5 characters and

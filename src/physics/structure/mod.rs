@@ -229,6 +229,12 @@ pub trait Structure: Send + Sync {
     fn left_out(&self) -> Option<&dyn Structure> {
         None
     }
+    /// Exact zero roots of the coordinates that are no mode: the azimuth of a rotor free to
+    /// turn, on which nothing depends (docs/model.md §13.2). The analyses leave them out of
+    /// the roots they name.
+    fn rigid_body_roots(&self) -> usize {
+        0
+    }
     /// What a rotor needs of one of its blades (docs/model.md §13.2): none for a blade that
     /// cannot sit on one (the paper's, which has no edge motion).
     fn rotor_coupling(&self) -> Option<RotorCoupling> {

@@ -74,7 +74,7 @@ pub struct GroundRotor {
     stiffness: DMatrix<f64>,
     damping: DMatrix<f64>,
     family_energy: [DMatrix<f64>; 3],
-    /// `φᵀ M` of the drivetrain's modes, mass-normalised, over its coordinates: the rigid
+    /// `φᵀ M` of the drivetrain's modes, mass-normalised, over all coordinates: the rigid
     /// rotation and the twist with the generator free, the twist alone with it locked. A
     /// motion's modal amplitude in each is the product with its coordinates.
     drivetrain_modes: Vec<DVector<f64>>,
@@ -105,9 +105,8 @@ impl GroundRotor {
         } else {
             0.0
         };
-        let fixed = rotor.coordinates() - at;
-        let drivetrain_mass = rotor.mass().view((at, at), (fixed, fixed)).into_owned();
-        let drivetrain_modes = drivetrain_modes(&drivetrain_mass);
+        let mass = congruent(rotor.mass());
+        let drivetrain_modes = drivetrain_modes(&mass, at);
         let blade_natural = rotor.blade().natural_modes()?;
         let mut slots: Vec<Slot> = (0..k)
             .flat_map(|mode| Whirl::ALL.map(|whirl| Slot::Blade { mode, whirl }))
@@ -121,7 +120,7 @@ impl GroundRotor {
             blade: Arc::clone(rotor.blade()),
             per_blade: k,
             generator,
-            mass: congruent(rotor.mass()),
+            mass,
             stiffness: congruent(&rotor.stiffness()),
             damping: congruent(rotor.damping()),
             family_energy: rotor.family_energy().clone(),
@@ -260,15 +259,13 @@ impl GroundRotor {
                     }
                 }
                 Slot::Drivetrain | Slot::Rotation => {
-                    let at = 3 * k;
                     let modes = &self.drivetrain_modes;
                     let weights = match (slot, modes.len()) {
                         (Slot::Rotation, 2) => &modes[0],
                         (_, 2) => &modes[1],
                         _ => &modes[0],
                     };
-                    let eta: Complex<f64> =
-                        (0..weights.len()).map(|c| q[at + c] * weights[c]).sum();
+                    let eta: Complex<f64> = weights.iter().zip(q).map(|(w, q)| q * *w).sum();
                     eta.norm_sqr()
                 }
             });
@@ -364,6 +361,10 @@ impl Structure for GroundRotor {
     fn slot_content(&self, q: &[Complex<f64>]) -> Option<Vec<f64>> {
         Some(self.content(q))
     }
+    /// The azimuth of a drivetrain free to turn.
+    fn rigid_body_roots(&self) -> usize {
+        usize::from(self.generator == Some(Generator::Free))
+    }
 }
 
 impl GroundRotor {
@@ -407,22 +408,33 @@ pub fn layout(rotor: &Rotor, dim: usize) -> Result<MultiBlade> {
     MultiBlade::new(dim, groups)
 }
 
-/// `φᵀ M` of the drivetrain's modes on its mass `m` (blades' inertia in `θ_r` included):
-/// with the generator free (`θ_r, δ`), the rigid rotation `(1, 0)` and the twist M-orthogonal
-/// to it; locked (`θ_r`), the one coordinate.
-fn drivetrain_modes(m: &DMatrix<f64>) -> Vec<DVector<f64>> {
-    let unit = |phi: DVector<f64>| {
-        let mphi = m * &phi;
-        let norm = phi.dot(&mphi).sqrt();
-        mphi / norm
+/// `φᵀ M` of the drivetrain's modes, `M` the ground coordinates' mass (the drivetrain's from
+/// coordinate `at`), over all coordinates. With the generator free (`θ_r, δ`): the rigid
+/// rotation `(1, 0)` on the whole mass, its amplitude the rotor's angular momentum about the
+/// shaft (a collective edge mode whose hub swings against its blades holds none of it), and
+/// the shaft's twist, M-orthogonal to the rigid rotation on the drivetrain's own mass (the
+/// blades' collective motion is their own slot's). Locked (`θ_r`): the twist alone.
+fn drivetrain_modes(m: &DMatrix<f64>, at: usize) -> Vec<DVector<f64>> {
+    let n = m.nrows();
+    let fixed = n - at;
+    let own = m.view((at, at), (fixed, fixed)).into_owned();
+    let on = |mphi: DVector<f64>, norm: f64| {
+        let mut v = DVector::zeros(n);
+        v.rows_mut(at, fixed).copy_from(&(mphi / norm));
+        v
     };
-    match m.nrows() {
+    let twist = |phi: DVector<f64>| {
+        let mphi = &own * &phi;
+        let norm = phi.dot(&mphi).sqrt();
+        on(mphi, norm)
+    };
+    match fixed {
         0 => Vec::new(),
-        1 => vec![unit(DVector::from_element(1, 1.0))],
+        1 => vec![twist(DVector::from_element(1, 1.0))],
         _ => {
-            let rigid = DVector::from_vec(vec![1.0, 0.0]);
-            let twist = DVector::from_vec(vec![-m[(0, 1)] / m[(0, 0)], 1.0]);
-            vec![unit(rigid), unit(twist)]
+            let rigid = m.column(at) / m[(at, at)].sqrt();
+            let a = -own[(0, 1)] / own[(0, 0)];
+            vec![rigid, twist(DVector::from_vec(vec![a, 1.0]))]
         }
     }
 }
