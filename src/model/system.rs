@@ -9,7 +9,7 @@ use crate::error::Result;
 use crate::physics::inflow::stations;
 use crate::physics::system::{LinearSystem, System};
 use crate::physics::turbine::rotor_system;
-use crate::preset::ValidPreset;
+use crate::preset::{TurbineModel, ValidPreset};
 use nalgebra::DVector;
 
 /// The system of `p` at its scheduled rotor speed and pitch.
@@ -45,8 +45,16 @@ pub fn linearised(
     system: &System,
     equilibrium: Option<DVector<f64>>,
 ) -> Result<LinearSystem> {
-    let rpm = super::operating::scheduled_rotor_speed(p)?;
-    match super::turbine::rotor_inputs(p, rpm)? {
+    // The schedule's speed is read only for a rotor: a blade's linearisation, on every sweep
+    // point and key press, needs none of it.
+    let inputs = match p.turbine.model {
+        TurbineModel::Blade => None,
+        TurbineModel::Rotor => {
+            let rpm = super::operating::scheduled_rotor_speed(p)?;
+            super::turbine::rotor_inputs(p, rpm)?
+        }
+    };
+    match inputs {
         None => system.linearise_at(equilibrium),
         Some(inputs) => {
             let x = match equilibrium {

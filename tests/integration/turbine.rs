@@ -15,6 +15,14 @@ fn preset(name: &str, overrides: &[&str]) -> ValidPreset {
     Preset::load(name, &o).unwrap()
 }
 
+/// The mode named `label` among `modes`.
+fn mode<'a>(modes: &'a [Mode], label: &str) -> &'a Mode {
+    modes
+        .iter()
+        .find(|m| m.label == label)
+        .unwrap_or_else(|| panic!("no {label}"))
+}
+
 /// Every root of the state matrix of `p`, each complex pair's both roots.
 fn roots(p: &ValidPreset) -> Vec<Complex<f64>> {
     let values = decompose(&linear_system(p).unwrap().a, false)
@@ -73,12 +81,7 @@ fn a_rotor_on_a_rigid_drivetrain_in_vacuo_is_its_blade_at_and_either_side_of_1p(
     assert_blade_roots_shifted(&roots(&blade), &roots(&rotor), omega(&blade), 1e-9);
     // Named: collective at the blade's frequency, BW at f − 1P, FW at f + 1P.
     let named = analyse(&rotor).unwrap().eigenvalues;
-    let find = |label: &str| -> &Mode {
-        named
-            .iter()
-            .find(|m| m.label == label)
-            .unwrap_or_else(|| panic!("no {label}"))
-    };
+    let find = |label: &str| -> &Mode { mode(&named, label) };
     let one_p = omega(&blade) / TAU;
     for m in analyse(&blade).unwrap().eigenvalues.iter().take(6) {
         let f = m.frequency_hz;
@@ -123,13 +126,7 @@ fn the_nrel5mw_rotor_at_rest_with_its_brake_on_has_the_published_frequencies() {
         ],
     );
     let named = analyse(&p).unwrap().eigenvalues;
-    let hz = |label: &str| {
-        named
-            .iter()
-            .find(|m| m.label == label)
-            .unwrap_or_else(|| panic!("no {label}"))
-            .frequency_hz
-    };
+    let hz = |label: &str| mode(&named, label).frequency_hz;
     for (label, published) in [
         ("drivetrain 1", 0.6205),
         ("collective flap 1", 0.6993),
@@ -178,21 +175,13 @@ fn a_free_drivetrain_turns_as_a_whole_and_twists() {
         ],
     );
     let s = analyse(&p).unwrap();
-    let rotation = s
-        .eigenvalues
-        .iter()
-        .find(|m| m.label == "rotor rotation")
-        .unwrap();
+    let rotation = mode(&s.eigenvalues, "rotor rotation");
     assert_eq!(rotation.frequency_hz, 0.0);
     assert_eq!(rotation.damping_ratio, 0.0);
     assert!(s.eigenvalues.iter().any(|m| m.label == "drivetrain 1"));
     // In the wind the rotor's speed decays by the aerodynamic torque's slope.
     let windy = analyse(&preset("nrel5mw", &["turbine.model=rotor"])).unwrap();
-    let rotation = windy
-        .eigenvalues
-        .iter()
-        .find(|m| m.label == "rotor rotation")
-        .unwrap();
+    let rotation = mode(&windy.eigenvalues, "rotor rotation");
     assert!(rotation.re < 0.0 && rotation.im == 0.0 && rotation.second_re.is_none());
     assert!(windy.stable);
 }
@@ -205,11 +194,7 @@ fn a_free_drivetrain_turns_as_a_whole_and_twists() {
 fn the_drivetrain_lifts_the_collective_edge_mode_as_openfast_has_it() {
     let p = preset("nrel5mw", &["aero.model=none", "turbine.model=rotor"]);
     let s = analyse(&p).unwrap();
-    let edge = s
-        .eigenvalues
-        .iter()
-        .find(|m| m.label == "collective edge 1")
-        .unwrap();
+    let edge = mode(&s.eigenvalues, "collective edge 1");
     assert!(
         (edge.frequency_hz / 1.6916 - 1.0).abs() < 0.03,
         "{} Hz",

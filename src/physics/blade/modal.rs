@@ -278,12 +278,7 @@ impl ModalBlade {
     /// `[Yᵀ Φᵀ M_b Φ Y]` for `b` = flap, edge, twist, from the modes' basis coordinates: the
     /// shares of any combination of `modes` (docs/model.md §11.4), with no product over the dofs.
     pub fn family_energy(&self, modes: &[BladeMode]) -> [DMatrix<f64>; 3] {
-        let y = DMatrix::from_columns(
-            &modes
-                .iter()
-                .map(|m| m.coordinates.clone())
-                .collect::<Vec<_>>(),
-        );
+        let y = basis_coordinates(modes);
         self.reduced_family.clone().map(|e| y.tr_mul(&(e * &y)))
     }
 
@@ -319,14 +314,19 @@ impl ModalBlade {
 
     /// `K_Ω` (per Ω²) between `modes`: how their stiffness changes with the rotor speed.
     pub fn centrifugal_stiffness(&self, modes: &[BladeMode]) -> DMatrix<f64> {
-        let y = DMatrix::from_columns(
-            &modes
-                .iter()
-                .map(|m| m.coordinates.clone())
-                .collect::<Vec<_>>(),
-        );
+        let y = basis_coordinates(modes);
         y.tr_mul(&(&self.reduced_k_omega * &y))
     }
+}
+
+/// The modes' basis coordinates as the columns of one matrix `Y`.
+fn basis_coordinates(modes: &[BladeMode]) -> DMatrix<f64> {
+    DMatrix::from_columns(
+        &modes
+            .iter()
+            .map(|m| m.coordinates.clone())
+            .collect::<Vec<_>>(),
+    )
 }
 
 /// The projections `ΦᵀAΦ` of a blade's matrices on a basis Φ (b × b each).

@@ -174,6 +174,18 @@ pub fn mode_labels(torsion_shares_in_frequency_order: &[f64]) -> Vec<String> {
         .collect()
 }
 
+/// `Re(qᴴ M q)` of a (complex) motion `q` on a block `M` of kinetic energy (the leading
+/// `M.nrows()` coordinates of `q`).
+pub fn kinetic_energy(m: &DMatrix<f64>, q: &[Complex<f64>]) -> f64 {
+    let mut sum = 0.0;
+    for (j, qj) in q.iter().enumerate().take(m.ncols()) {
+        for (i, qi) in q.iter().enumerate().take(m.nrows()) {
+            sum += m[(i, j)] * (qi.conj() * qj).re;
+        }
+    }
+    sum
+}
+
 /// Rows mapping the structural coordinates `q` to the motion of the reference axis at one span
 /// position: `φ = twist·q` (rad), `u = flap·q`, `v = edge·q` (m).
 #[derive(Debug, Clone, PartialEq)]
@@ -181,6 +193,17 @@ pub struct MotionRows {
     pub twist: DVector<f64>,
     pub flap: DVector<f64>,
     pub edge: DVector<f64>,
+}
+
+impl MotionRows {
+    /// No motion from any of `n` coordinates.
+    pub fn zeros(n: usize) -> MotionRows {
+        MotionRows {
+            twist: DVector::zeros(n),
+            flap: DVector::zeros(n),
+            edge: DVector::zeros(n),
+        }
+    }
 }
 
 /// A blade structure in some coordinates `q` (docs/model.md §6): what the aeroelastic system

@@ -4,7 +4,7 @@
 //! motion rows are the mode shapes carried from the shear centre to the reference (pitch) axis,
 //! where the aerodynamics attach.
 
-use super::{Family, MotionRows, NaturalMode, RotorCoupling, Shares, Structure};
+use super::{kinetic_energy, Family, MotionRows, NaturalMode, RotorCoupling, Shares, Structure};
 use crate::error::{Error, Result};
 use crate::physics::blade::modal::{BladeMode, ModalBlade};
 use crate::physics::section::SectionProps;
@@ -139,11 +139,7 @@ impl Structure for TabulatedStructure {
     /// the shear centre moves with the twist).
     fn motion_rows(&self, x: f64) -> MotionRows {
         let k = self.modes.len();
-        let mut rows = MotionRows {
-            twist: DVector::zeros(k),
-            flap: DVector::zeros(k),
-            edge: DVector::zeros(k),
-        };
+        let mut rows = MotionRows::zeros(k);
         let z = x.clamp(0.0, self.length());
         // z is on the blade, so locating it cannot fail.
         if let Ok(map) = self.blade.geometry.reference_axis_at(z) {
@@ -160,15 +156,7 @@ impl Structure for TabulatedStructure {
         Ok(self.natural.clone())
     }
     fn shares(&self, q: &[Complex<f64>]) -> Shares {
-        let energy = |e: &DMatrix<f64>| -> f64 {
-            let mut sum = 0.0;
-            for (j, qj) in q.iter().enumerate().take(e.ncols()) {
-                for (i, qi) in q.iter().enumerate().take(e.nrows()) {
-                    sum += e[(i, j)] * (qi.conj() * qj).re;
-                }
-            }
-            sum
-        };
+        let energy = |e: &DMatrix<f64>| kinetic_energy(e, q);
         let [f, e, t] = &self.family_energy;
         Shares::from_energies(energy(f), energy(e), energy(t))
     }

@@ -11,12 +11,14 @@
 //! undamped rotor (gyroscopic terms kept) that holds most of it.
 
 use super::drivetrain::Generator;
-use super::rotor::{quadratic, Rotor};
+use super::rotor::Rotor;
 use crate::error::{Error, Result};
 use crate::numeric::mbc::{t1, MultiBlade, Rotating};
 use crate::numeric::{decompose, hungarian};
 use crate::physics::section::SectionProps;
-use crate::physics::structure::{Family, MotionRows, NaturalMode, Shares, Structure};
+use crate::physics::structure::{
+    kinetic_energy, Family, MotionRows, NaturalMode, Shares, Structure,
+};
 use nalgebra::{Complex, DMatrix, DVector};
 use std::f64::consts::TAU;
 use std::sync::Arc;
@@ -39,18 +41,6 @@ impl Whirl {
             Whirl::Collective => "collective",
             Whirl::Backward => "BW",
             Whirl::Forward => "FW",
-        }
-    }
-
-    /// The frequency (Hz) a blade in its rotating frame sees of a ground-frame root at `hz`, the
-    /// rotor at `rotor_hz` (its 1P): a backward whirl `f + 1P`, a forward one `f − 1P` (negative
-    /// where the blade mode is slower than the rotor: it then whirls backward in the blade's
-    /// frame too), a collective mode the same.
-    pub fn rotating_hz(self, hz: f64, rotor_hz: f64) -> f64 {
-        match self {
-            Whirl::Collective => hz,
-            Whirl::Backward => hz + rotor_hz,
-            Whirl::Forward => hz - rotor_hz,
         }
     }
 }
@@ -78,8 +68,6 @@ pub struct GroundRotor {
     /// rotation and the twist with the generator free, the twist alone with it locked. A
     /// motion's modal amplitude in each is the product with its coordinates.
     drivetrain_modes: Vec<DVector<f64>>,
-    /// `θ_r`'s inertia with the blades'.
-    rotor_inertia: f64,
     slots: Vec<Slot>,
     natural: Vec<NaturalMode>,
 }
@@ -100,11 +88,6 @@ impl GroundRotor {
         let congruent = |a: &DMatrix<f64>| t.transpose() * a * &t;
         let at = rotor.drivetrain_at();
         let generator = rotor.drivetrain().map(|d| d.generator);
-        let rotor_inertia = if generator.is_some() {
-            rotor.mass()[(at, at)]
-        } else {
-            0.0
-        };
         let mass = congruent(rotor.mass());
         let drivetrain_modes = drivetrain_modes(&mass, at);
         let blade_natural = rotor.blade().natural_modes()?;
@@ -125,7 +108,6 @@ impl GroundRotor {
             damping: congruent(rotor.damping()),
             family_energy: rotor.family_energy().clone(),
             drivetrain_modes,
-            rotor_inertia,
             slots,
             natural: Vec::new(),
         };
@@ -178,11 +160,6 @@ impl GroundRotor {
             .collect();
         debug_assert_eq!(ground.mass.nrows(), n);
         Ok(ground)
-    }
-
-    /// The slots, in the order of [`Structure::natural_modes`].
-    pub fn slots(&self) -> &[Slot] {
-        &self.slots
     }
 
     /// Each slot's frequency (Hz) and shape in vacuo: the ground-frame roots of the rotor with
@@ -277,10 +254,10 @@ impl GroundRotor {
         crate::numeric::shares(self.slot_energies(q))
     }
 
-    /// Blade 0's coordinates at zero azimuth from ground coordinates `q`: `a_0 + a_c`.
-    fn blade_zero(&self, q: &DVector<f64>) -> DVector<f64> {
-        let k = self.per_blade;
-        q.rows(0, k) + q.rows(k, k)
+    /// Blade 0's tip rows at zero azimuth over the ground coordinates (twist, flap).
+    pub fn tip_rows(&self) -> [DVector<f64>; 2] {
+        let r = self.motion_rows(self.length());
+        [r.twist, r.flap]
     }
 }
 
@@ -309,11 +286,7 @@ impl Structure for GroundRotor {
         let k = self.per_blade;
         let n = self.coordinates();
         let b = self.blade.motion_rows(x);
-        let mut rows = MotionRows {
-            twist: DVector::zeros(n),
-            flap: DVector::zeros(n),
-            edge: DVector::zeros(n),
-        };
+        let mut rows = MotionRows::zeros(n);
         for at in [0, k] {
             rows.twist.rows_mut(at, k).copy_from(&b.twist);
             rows.flap.rows_mut(at, k).copy_from(&b.flap);
@@ -333,11 +306,11 @@ impl Structure for GroundRotor {
         let k = self.per_blade;
         let mut e = [0.0; 3];
         for (acc, m) in e.iter_mut().zip(&self.family_energy) {
-            *acc = 3.0 * quadratic(m, &q[..k])
-                + 1.5 * (quadratic(m, &q[k..2 * k]) + quadratic(m, &q[2 * k..3 * k]));
+            *acc = 3.0 * kinetic_energy(m, &q[..k])
+                + 1.5 * (kinetic_energy(m, &q[k..2 * k]) + kinetic_energy(m, &q[2 * k..3 * k]));
         }
         if self.generator.is_some() {
-            e[1] += self.rotor_inertia * q[3 * k].norm_sqr();
+            e[1] += self.mass[(3 * k, 3 * k)] * q[3 * k].norm_sqr();
         }
         Shares::from_energies(e[0], e[1], e[2])
     }
@@ -364,20 +337,6 @@ impl Structure for GroundRotor {
     /// The azimuth of a drivetrain free to turn.
     fn rigid_body_roots(&self) -> usize {
         usize::from(self.generator == Some(Generator::Free))
-    }
-}
-
-impl GroundRotor {
-    /// Blade 0's tip rows at zero azimuth over the ground coordinates (twist, flap).
-    pub fn tip_rows(&self) -> [DVector<f64>; 2] {
-        let r = self.motion_rows(self.length());
-        [r.twist, r.flap]
-    }
-
-    /// Blade 0's coordinates at zero azimuth (its mode shapes' amplitudes) in a ground state's
-    /// coordinates.
-    pub fn blade_coordinates(&self, q: &DVector<f64>) -> DVector<f64> {
-        self.blade_zero(q)
     }
 }
 

@@ -14,7 +14,7 @@
 use super::drivetrain::Drivetrain;
 use crate::error::{Error, Result};
 use crate::physics::section::SectionProps;
-use crate::physics::structure::{MotionRows, NaturalMode, Shares, Structure};
+use crate::physics::structure::{kinetic_energy, MotionRows, NaturalMode, Shares, Structure};
 use nalgebra::{Complex, DMatrix, DVector};
 use std::sync::Arc;
 
@@ -206,11 +206,7 @@ impl Rotor {
     fn rows_of_blade(&self, b: usize, x: f64, blade: &MotionRows) -> MotionRows {
         let n = self.coordinates();
         let k = self.per_blade;
-        let mut rows = MotionRows {
-            twist: DVector::zeros(n),
-            flap: DVector::zeros(n),
-            edge: DVector::zeros(n),
-        };
+        let mut rows = MotionRows::zeros(n);
         rows.twist.rows_mut(b * k, k).copy_from(&blade.twist);
         rows.flap.rows_mut(b * k, k).copy_from(&blade.flap);
         rows.edge.rows_mut(b * k, k).copy_from(&blade.edge);
@@ -229,7 +225,7 @@ impl Rotor {
         for b in 0..self.blades {
             let block = &q[b * k..(b + 1) * k];
             for (acc, m) in e.iter_mut().zip(&self.family_energy) {
-                *acc += quadratic(m, block);
+                *acc += kinetic_energy(m, block);
             }
         }
         if self.drivetrain.is_some() {
@@ -238,17 +234,6 @@ impl Rotor {
         }
         e
     }
-}
-
-/// `Re(qᴴ M q)`.
-pub(super) fn quadratic(m: &DMatrix<f64>, q: &[Complex<f64>]) -> f64 {
-    let mut sum = 0.0;
-    for (j, qj) in q.iter().enumerate().take(m.ncols()) {
-        for (i, qi) in q.iter().enumerate().take(m.nrows()) {
-            sum += m[(i, j)] * (qi.conj() * qj).re;
-        }
-    }
-    sum
 }
 
 impl Structure for Rotor {
