@@ -145,23 +145,39 @@ fn the_nrel5mw_rotor_at_rest_with_its_brake_on_has_the_published_frequencies() {
     assert!(hz("collective edge 1") > 2.0 * hz("BW edge 1"));
 }
 
-/// The blade's inertia about the shaft, from the mass matrix of its elements, is the
-/// published second moment about the root (Jonkman et al. 2009, table 2-1: 11 776 047 kg·m²,
-/// which includes ElastoDyn's mass factor AdjBlMs = 1.04536 of the blade file the BeamDyn blade
-/// does not carry) within 1 %.
+/// The blade's mass and inertia about the shaft, from the mass matrix of its elements, are the
+/// published ones (Jonkman et al. 2009, table 2-1: 17 740 kg and 11 776 047 kg·m², which
+/// include ElastoDyn's mass factor AdjBlMs = 1.04536 of the blade file the BeamDyn blade does
+/// not carry) within 1 %; a rigid tilt about the root carries the same second moment (the
+/// sections' rotary inertia apart) and a translation moves the whole mass either way.
 #[test]
-fn the_blades_inertia_about_the_root_is_the_published_one() {
+fn the_blades_mass_and_inertia_about_the_root_are_the_published_ones() {
+    use flutterscope::physics::blade::fem::Rigid;
     let p = preset("nrel5mw", &["aero.model=none", "blade.hub_radius=1e-9"]);
     let coupling = flutterscope::model::for_preset(&p)
         .unwrap()
         .rotor_coupling()
         .unwrap();
+    let m = |a: Rigid, b: Rigid| coupling.rigid_mass[(a as usize, b as usize)];
+    let (inertia, mass) = (
+        m(Rigid::Rotation, Rigid::Rotation),
+        m(Rigid::Flap, Rigid::Flap),
+    );
     let published = 11_776_047.0 / 1.04536;
     assert!(
-        (coupling.inertia / published - 1.0).abs() < 0.01,
-        "{} kg·m² against {published}",
-        coupling.inertia
+        (inertia / published - 1.0).abs() < 0.01,
+        "{inertia} kg·m² against {published}"
     );
+    let published_mass = 17_740.0 / 1.04536;
+    assert!(
+        (mass / published_mass - 1.0).abs() < 0.01,
+        "{mass} kg against {published_mass}"
+    );
+    assert!((m(Rigid::Edge, Rigid::Edge) / mass - 1.0).abs() < 1e-12);
+    assert!((m(Rigid::Tilt, Rigid::Tilt) / inertia - 1.0).abs() < 1e-3);
+    // The first moment: the same for a rotation about the shaft and across it.
+    assert!((m(Rigid::Flap, Rigid::Tilt) / m(Rigid::Edge, Rigid::Rotation) - 1.0).abs() < 1e-12);
+    assert!(m(Rigid::Flap, Rigid::Edge).abs() < 1e-9 * mass);
 }
 
 #[test]

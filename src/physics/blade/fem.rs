@@ -189,13 +189,60 @@ pub struct BladeMatrices<M = DMatrix<f64>> {
     /// instead of by the pitch (zero for a straight blade): the load at any pitch of the curve
     /// is `cos p · [0] + sin p · [1]` ([`BladeMatrices::centrifugal_load`]).
     pub curve_loads: [DVector<f64>; 2],
-    /// The blade turning rigidly with the rotor about the shaft (docs/model.md §13.2): `M r` on
-    /// the free dofs for the rotation `r` (`v = (r_hub + z) θ`, `v' = θ`, per radian), the
-    /// inertial load the hub's angular acceleration puts on the blade, and `rᵀ M r`, the
-    /// blade's moment of inertia about the shaft, root element included (the clamp holds the
-    /// root's dofs at zero relative to the hub, not in space).
-    pub rotation_load: DVector<f64>,
-    pub rotation_inertia: f64,
+    /// The blade moving rigidly with the hub (docs/model.md §13.2, §13.6), one column per
+    /// [`Rigid`] motion: `M r` on the free dofs, the inertial load the hub's acceleration in
+    /// that motion puts on the blade (n × 4).
+    pub rigid_loads: DMatrix<f64>,
+    /// `rᵢᵀ M rⱼ` of the rigid motions (4 × 4), root element included (the clamp holds the
+    /// root's dofs at zero relative to the hub, not in space): the blade's moment of inertia
+    /// about the shaft, its mass, its moment of inertia about an axis across the shaft.
+    pub rigid_mass: DMatrix<f64>,
+}
+
+/// The blade's rigid motions with the hub, per unit: the columns of
+/// [`BladeMatrices::rigid_loads`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Rigid {
+    /// About the shaft, one radian: every point moves in the edge direction by its radius.
+    Rotation = 0,
+    /// One metre downwind.
+    Flap = 1,
+    /// One metre in the edge direction.
+    Edge = 2,
+    /// About the axis across the shaft perpendicular to the blade, one radian: every point
+    /// moves downwind by its radius.
+    Tilt = 3,
+}
+
+/// How many [`Rigid`] motions there are.
+pub const RIGID_MOTIONS: usize = 4;
+
+impl Rigid {
+    pub const ALL: [Rigid; RIGID_MOTIONS] =
+        [Rigid::Rotation, Rigid::Flap, Rigid::Edge, Rigid::Tilt];
+
+    /// An element's local dofs in this motion, its nodes at radii `ra`, `rb`: a translation
+    /// moves every node alike, a rotation by its radius with the slope 1 (the section turns
+    /// with the slope, no shear strain, no twist).
+    fn element_dofs(self, ra: f64, rb: f64) -> Row {
+        let mut r = [0.0; ELEMENT];
+        for (node, radius) in [(0, ra), (1, rb)] {
+            let at = node * LOCAL;
+            match self {
+                Rigid::Rotation => {
+                    r[at + V] = radius;
+                    r[at + V + 1] = 1.0;
+                }
+                Rigid::Flap => r[at + U] = 1.0,
+                Rigid::Edge => r[at + V] = 1.0,
+                Rigid::Tilt => {
+                    r[at + U] = radius;
+                    r[at + U + 1] = 1.0;
+                }
+            }
+        }
+        r
+    }
 }
 
 /// Shape functions of one element at local `s ∈ [0, 1]` as rows over its local dofs
@@ -440,8 +487,8 @@ fn assemble_with<M: Storage>(
     let mut k0 = M::zeros(n, band);
     let mut k_omega = M::zeros(n, band);
     let mut curve_loads = [DVector::zeros(n), DVector::zeros(n)];
-    let mut rotation_load = DVector::zeros(n);
-    let mut rotation_inertia = 0.0;
+    let mut rigid_loads = DMatrix::zeros(n, RIGID_MOTIONS);
+    let mut rigid_mass = DMatrix::zeros(RIGID_MOTIONS, RIGID_MOTIONS);
     let curved = !table.axis.is_straight();
     let (gauss_s, gauss_w) = gauss_legendre(GAUSS_POINTS);
     let tension = tension_at_nodes(table, &mesh.nodes);
@@ -597,11 +644,20 @@ fn assemble_with<M: Storage>(
                 )));
             }
         }
-        let rotation = rigid_rotation(table.hub_radius + za, table.hub_radius + zb);
-        let load = element_times(&me, &rotation);
-        rotation_inertia += load.iter().zip(&rotation).map(|(a, b)| a * b).sum::<f64>();
         let dofs = beam.element_dofs(e);
-        scatter_load(&mut rotation_load, &load, &dofs);
+        let (ra, rb) = (table.hub_radius + za, table.hub_radius + zb);
+        let motions = Rigid::ALL.map(|m| m.element_dofs(ra, rb));
+        for (i, r) in motions.iter().enumerate() {
+            let load = element_times(&me, r);
+            for (j, s) in motions.iter().enumerate() {
+                rigid_mass[(i, j)] += load.iter().zip(s).map(|(a, b)| a * b).sum::<f64>();
+            }
+            for (value, d) in load.iter().zip(&dofs) {
+                if let Some(d) = d {
+                    rigid_loads[(*d, i)] += value;
+                }
+            }
+        }
         scatter(&mut mass, &me, &dofs);
         scatter(&mut k0, &ke, &dofs);
         scatter(&mut k_omega, &kw, &dofs);
@@ -611,8 +667,8 @@ fn assemble_with<M: Storage>(
     }
     Ok(BladeMatrices {
         curve_loads,
-        rotation_load,
-        rotation_inertia,
+        rigid_loads,
+        rigid_mass,
         table: table.clone(),
         mesh: mesh.clone(),
         pitch,
@@ -709,18 +765,6 @@ fn element_band(beam: Beam, elements: usize) -> usize {
         })
         .max()
         .unwrap_or(0)
-}
-
-/// An element's local dofs in the rigid rotation about the shaft of one radian, its nodes at
-/// radii `ra`, `rb`: every point moves in the edge direction by its radius, so `v = r`,
-/// `v' = 1` and nothing else (the section turns with the slope, no shear strain, no twist).
-fn rigid_rotation(ra: f64, rb: f64) -> Row {
-    let mut r = [0.0; ELEMENT];
-    for (node, radius) in [(0, ra), (1, rb)] {
-        r[node * LOCAL + V] = radius;
-        r[node * LOCAL + V + 1] = 1.0;
-    }
-    r
 }
 
 /// `a x` for an element matrix.
@@ -824,8 +868,8 @@ impl BladeMatrices {
             pitch: self.pitch,
             beam: self.beam,
             curve_loads: self.curve_loads,
-            rotation_load: self.rotation_load,
-            rotation_inertia: self.rotation_inertia,
+            rigid_loads: self.rigid_loads,
+            rigid_mass: self.rigid_mass,
         }
     }
 }

@@ -106,10 +106,10 @@ pub struct ModalBlade {
     /// ([`BladeMatrices::centrifugal_load`]), in the coordinates where the reduced mass is the
     /// identity (`L⁻¹Φᵀ f`); zero for a straight blade.
     reduced_centrifugal_load: DVector<f64>,
-    /// `Φᵀ M r` of the rigid rotation about the shaft ([`BladeMatrices::rotation_load`]), in
-    /// the same coordinates, and `rᵀ M r`, the blade's inertia about the shaft.
-    reduced_rotation: DVector<f64>,
-    rotation_inertia: f64,
+    /// `Φᵀ M r` of the rigid motions ([`BladeMatrices::rigid_loads`]), in the same
+    /// coordinates, and `rᵢᵀ M rⱼ`.
+    reduced_rigid: DMatrix<f64>,
+    rigid_mass: DMatrix<f64>,
 }
 
 impl ModalBlade {
@@ -161,8 +161,8 @@ impl ModalBlade {
         let reduced_centrifugal_load = basis.tr_mul(&matrices.centrifugal_load());
         Ok(ModalBlade {
             reduced_centrifugal_load,
-            reduced_rotation: basis.tr_mul(&matrices.rotation_load),
-            rotation_inertia: matrices.rotation_inertia,
+            reduced_rigid: basis.tr_mul(&matrices.rigid_loads),
+            rigid_mass: matrices.rigid_mass.clone(),
             geometry: matrices.geometry(),
             basis: Arc::new(basis),
             mass_factor: None,
@@ -203,8 +203,8 @@ impl ModalBlade {
         let reduced_family = reduced.family.each_ref().map(reduce);
         Ok(ModalBlade {
             reduced_centrifugal_load: &l_inv * &reduced.centrifugal_load,
-            reduced_rotation: &l_inv * &reduced.rotation,
-            rotation_inertia: reduced.rotation_inertia,
+            reduced_rigid: &l_inv * &reduced.rigid,
+            rigid_mass: reduced.rigid_mass.clone(),
             reduced_k_omega: reduce(&reduced.k_omega),
             reduced_damping: reduced.damping.as_ref().map(reduce),
             reduced_k0,
@@ -295,21 +295,16 @@ impl ModalBlade {
 }
 
 impl ModalBlade {
-    /// Each mode's share of the blade's rigid rotation about the shaft, `φᵀ M r`
-    /// (docs/model.md §13.2): the coupling of its coordinate with the rotor's azimuth through
-    /// the mass.
-    pub fn rotation_participation(&self, modes: &[BladeMode]) -> DVector<f64> {
-        DVector::from_iterator(
-            modes.len(),
-            modes
-                .iter()
-                .map(|m| m.coordinates.dot(&self.reduced_rotation)),
-        )
+    /// Each mode's share of the blade's rigid motions with the hub, `φᵀ M r` (modes × 4, the
+    /// columns [`Rigid`](super::fem::Rigid)'s; docs/model.md §13.2, §13.6): the coupling of
+    /// its coordinate with the hub's motion through the mass.
+    pub fn rigid_participation(&self, modes: &[BladeMode]) -> DMatrix<f64> {
+        basis_coordinates(modes).tr_mul(&self.reduced_rigid)
     }
 
-    /// The blade's moment of inertia about the shaft, `rᵀ M r` (kg·m²).
-    pub fn rotation_inertia(&self) -> f64 {
-        self.rotation_inertia
+    /// `rᵢᵀ M rⱼ` of the blade's rigid motions (4 × 4).
+    pub fn rigid_mass(&self) -> &DMatrix<f64> {
+        &self.rigid_mass
     }
 
     /// `K_Ω` (per Ω²) between `modes`: how their stiffness changes with the rotor speed.
@@ -340,9 +335,9 @@ pub struct Projections {
     pub family: [DMatrix<f64>; 3],
     /// `Φᵀ f` of [`BladeMatrices::centrifugal_load`] (b).
     pub centrifugal_load: DVector<f64>,
-    /// `Φᵀ M r` and `rᵀ M r` of [`BladeMatrices::rotation_load`].
-    pub rotation: DVector<f64>,
-    pub rotation_inertia: f64,
+    /// `Φᵀ M r` and `rᵢᵀ M rⱼ` of [`BladeMatrices::rigid_loads`].
+    pub rigid: DMatrix<f64>,
+    pub rigid_mass: DMatrix<f64>,
 }
 
 /// `Φᵀ M_b Φ` for the flap, edge and twist blocks `b` of the mass matrix (the diagonal blocks of

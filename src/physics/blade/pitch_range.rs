@@ -113,10 +113,10 @@ pub struct PitchRangeBlade {
     /// and by 90° (b × 1 each): the curve turns with the pitch, so its load at pitch `p` is
     /// `cos p · first + sin p · second`, each of those an ordinary matrix term in `p`.
     curve_load: [Harmonics; 2],
-    /// `Φᵀ M r` (b × 1) and `rᵀ M r` (1 × 1) of the rigid rotation about the shaft: the mass
-    /// turns with the pitch, the rotation does not.
-    rotation: Harmonics,
-    rotation_inertia: Harmonics,
+    /// `Φᵀ M r` (b × 4) and `rᵢᵀ M rⱼ` (4 × 4) of the rigid motions with the hub: the mass
+    /// turns with the pitch, the motions do not.
+    rigid: Harmonics,
+    rigid_mass: Harmonics,
 }
 
 impl PitchRangeBlade {
@@ -178,23 +178,22 @@ impl PitchRangeBlade {
                     .collect::<Vec<_>>(),
             )
         });
-        let column = |v: &DVector<f64>| DMatrix::from_column_slice(v.len(), 1, v.as_slice());
-        let rotation = Harmonics::from_samples(
+        let rigid = Harmonics::from_samples(
             &samples
                 .iter()
-                .map(|s| column(&basis.tr_mul(&s.rotation_load)))
+                .map(|s| basis.tr_mul(&s.rigid_loads))
                 .collect::<Vec<_>>(),
         );
-        let rotation_inertia = Harmonics::from_samples(
+        let rigid_mass = Harmonics::from_samples(
             &samples
                 .iter()
-                .map(|s| DMatrix::from_element(1, 1, s.rotation_inertia))
+                .map(|s| s.rigid_mass.clone())
                 .collect::<Vec<_>>(),
         );
         Ok(PitchRangeBlade {
             curve_load,
-            rotation,
-            rotation_inertia,
+            rigid,
+            rigid_mass,
             table: table.clone(),
             mesh: mesh.clone(),
             beam: Beam::of(table),
@@ -223,8 +222,8 @@ impl PitchRangeBlade {
             family: [0, 1, 2].map(|g| self.family[g].at(pitch)),
             centrifugal_load: self.curve_load[0].at(pitch).column(0) * pitch.cos()
                 + self.curve_load[1].at(pitch).column(0) * pitch.sin(),
-            rotation: self.rotation.at(pitch).column(0).into_owned(),
-            rotation_inertia: self.rotation_inertia.at(pitch)[(0, 0)],
+            rigid: self.rigid.at(pitch),
+            rigid_mass: self.rigid_mass.at(pitch),
         };
         let geometry = BladeGeometry {
             table: self.table.clone(),

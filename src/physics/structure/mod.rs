@@ -275,10 +275,12 @@ pub trait Structure: Send + Sync {
 /// One blade's part in a rotor (docs/model.md §13.2), in its modal coordinates.
 #[derive(Debug, Clone)]
 pub struct RotorCoupling {
-    /// `φ_jᵀ M r`: each mode's share of the blade's rigid rotation about the shaft.
-    pub rotation: DVector<f64>,
-    /// `rᵀ M r`: the blade's moment of inertia about the shaft (kg·m²).
-    pub inertia: f64,
+    /// `φ_jᵀ M r_k`: each mode's (row) share of the blade's rigid motions (columns, in the
+    /// order of [`crate::physics::blade::Rigid`]).
+    pub rigid: DMatrix<f64>,
+    /// `r_kᵀ M r_l` of the blade's rigid motions; `[Rotation, Rotation]` is its moment of
+    /// inertia about the shaft (kg·m²), `[Flap, Flap]` its mass.
+    pub rigid_mass: DMatrix<f64>,
     /// The centrifugal load per Ω² on a curved blade (zero for a straight one).
     pub centrifugal_load: DVector<f64>,
     /// `K_Ω`, the stiffness per Ω² between the modes.

@@ -184,8 +184,8 @@ impl Structure for TabulatedStructure {
     }
     fn rotor_coupling(&self) -> Option<RotorCoupling> {
         Some(RotorCoupling {
-            rotation: self.blade.rotation_participation(&self.modes),
-            inertia: self.blade.rotation_inertia(),
+            rigid: self.blade.rigid_participation(&self.modes),
+            rigid_mass: self.blade.rigid_mass().clone(),
             centrifugal_load: self.blade.centrifugal_load(&self.modes),
             centrifugal_stiffness: self.blade.centrifugal_stiffness(&self.modes),
             family_energy: self.family_energy.clone(),

@@ -13,6 +13,7 @@
 
 use super::drivetrain::Drivetrain;
 use crate::error::{Error, Result};
+use crate::physics::blade::fem::Rigid;
 use crate::physics::section::SectionProps;
 use crate::physics::structure::{kinetic_energy, MotionRows, NaturalMode, Shares, Structure};
 use nalgebra::{Complex, DMatrix, DVector};
@@ -106,13 +107,14 @@ impl Rotor {
             mass.view_mut((at, at), (fixed, fixed)).copy_from(&m);
             stiffness.view_mut((at, at), (fixed, fixed)).copy_from(&s);
             damping.view_mut((at, at), (fixed, fixed)).copy_from(&c);
-            mass[(at, at)] += blades as f64 * coupling.inertia;
+            mass[(at, at)] += blades as f64
+                * coupling.rigid_mass[(Rigid::Rotation as usize, Rigid::Rotation as usize)];
             let radial = &coupling.centrifugal_load - &coupling.centrifugal_stiffness * q_eq;
             for b in 0..blades {
                 for j in 0..k {
                     let i = b * k + j;
-                    mass[(i, at)] = coupling.rotation[j];
-                    mass[(at, i)] = coupling.rotation[j];
+                    mass[(i, at)] = coupling.rigid[(j, Rigid::Rotation as usize)];
+                    mass[(at, i)] = coupling.rigid[(j, Rigid::Rotation as usize)];
                     damping[(i, at)] -= 2.0 * omega * radial[j];
                     damping[(at, i)] += 2.0 * omega * radial[j];
                 }
