@@ -16,6 +16,7 @@
 use super::htc::htc_files;
 use super::kept::Kept;
 use crate::error::{Error, Result};
+use crate::formats::elastodyn_tower::{parse_tower, ElastoDynTower};
 use crate::formats::elastodyn_turbine::{parse_turbine, ElastoDynTurbine};
 use crate::formats::text_file::TextFile;
 use crate::formats::windio::{self, WindIo};
@@ -29,7 +30,8 @@ use crate::physics::rotor::files::{
 use crate::physics::rotor::schedule::Table as ScheduleTable;
 use crate::physics::rotor::AeroBlade;
 use crate::preset::files::BladeFile;
-use crate::preset::schema::{Blade, BladeSource, Preset, Schedule, TurbineSource};
+use crate::preset::schema::{Blade, BladeSource, Preset, Schedule, TurbineModel, TurbineSource};
+use std::path::Path;
 use std::sync::Arc;
 
 /// Everything a checked preset's files gave, with the keys each was read from.
@@ -108,6 +110,12 @@ impl ReadFiles {
     /// The ElastoDyn main file `turbine.file` names (`None` without one), and its display name.
     pub fn turbine(&self) -> Option<&(Arc<ElastoDynTurbine>, String)> {
         self.turbine.turbine.as_ref()
+    }
+
+    /// The tower file the turbine file names, read for `turbine.model = "turbine"` (`None`
+    /// otherwise), and its display name.
+    pub fn tower(&self) -> Option<&(Arc<ElastoDynTower>, String)> {
+        self.turbine.tower.as_ref()
     }
 }
 
@@ -189,11 +197,14 @@ struct TableFile {
     table: Option<Arc<ScheduleTable>>,
 }
 
-/// The turbine file and the keys it was read from (`turbine.source`, `turbine.file`).
+/// The turbine file and the keys it was read from (`turbine.source`, `turbine.file`, and
+/// whether the model holds the tower).
 #[derive(Debug)]
 struct TurbineFile {
-    key: (String, String),
+    key: (String, String, bool),
     turbine: Option<(Arc<ElastoDynTurbine>, String)>,
+    /// The tower file the main file names, read for `turbine.model = "turbine"` only.
+    tower: Option<(Arc<ElastoDynTower>, String)>,
 }
 
 /// How many station counts are kept (the most recently built): an operating point and a
@@ -365,6 +376,7 @@ pub fn read_rotor(
     let turbine_key = (
         format!("{:?}", p.turbine.source),
         p.turbine.file.trim().to_string(),
+        p.turbine.model == TurbineModel::Turbine,
     );
     if let Some(h) = held {
         let same_blade = match (&h.tabulated, &tabulated) {
@@ -379,9 +391,9 @@ pub fn read_rotor(
             return Ok(Arc::clone(h));
         }
     }
-    let turbine = match held.filter(|h| h.turbine.key == turbine_key) {
-        Some(h) => h.turbine.turbine.clone(),
-        None => read_turbine_file(p)?,
+    let (turbine, tower) = match held.filter(|h| h.turbine.key == turbine_key) {
+        Some(h) => (h.turbine.turbine.clone(), h.turbine.tower.clone()),
+        None => read_turbine_files(p)?,
     };
     let aero = match held.filter(|h| h.aero.keys == aero_keys) {
         Some(h) => AeroFiles {
@@ -419,23 +431,43 @@ pub fn read_rotor(
         turbine: TurbineFile {
             key: turbine_key,
             turbine,
+            tower,
         },
     }))
 }
 
-/// The ElastoDyn main file `turbine.file` names, with its display name; none without one.
-fn read_turbine_file(p: &Preset) -> Result<Option<(Arc<ElastoDynTurbine>, String)>> {
+/// A file read with its display name.
+type Named<T> = Option<(Arc<T>, String)>;
+
+/// The ElastoDyn main file `turbine.file` names, with its display name, and for the whole
+/// turbine the tower file it names (`TwrFile`, relative to the main file's directory as
+/// OpenFAST resolves it); none without one.
+fn read_turbine_files(p: &Preset) -> Result<(Named<ElastoDynTurbine>, Named<ElastoDynTower>)> {
     let name = p.turbine.file.trim();
     if p.turbine.source != TurbineSource::Elastodyn || name.is_empty() {
-        return Ok(None);
+        return Ok((None, None));
     }
+    let keys = format!("turbine.file = \"{name}\"");
     let file = p.base.resolve(name);
     let display = file.display();
     let turbine = file
         .read()
         .and_then(|text| parse_turbine(&text, &display))
-        .map_err(|e| file_error(p, &format!("turbine.file = \"{name}\""), e))?;
-    Ok(Some((Arc::new(turbine), display)))
+        .map_err(|e| file_error(p, &keys, e))?;
+    let tower = if p.turbine.model == TurbineModel::Turbine {
+        let tower_name = turbine.tower_file_path(Path::new(name));
+        let tower_name = tower_name.to_string_lossy();
+        let tower_file = p.base.resolve(&tower_name);
+        let tower_display = tower_file.display();
+        let tower = tower_file
+            .read()
+            .and_then(|text| parse_tower(&text, &tower_display))
+            .map_err(|e| file_error(p, &format!("{keys} (its TwrFile)"), e))?;
+        Some((Arc::new(tower), tower_display))
+    } else {
+        None
+    };
+    Ok((Some((Arc::new(turbine), display)), tower))
 }
 
 /// The keys that decide what the rotor's files are: (the aerodynamic description's: the aero

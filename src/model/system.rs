@@ -49,7 +49,7 @@ pub fn linearised(
     // point and key press, needs none of it.
     let inputs = match p.turbine.model {
         TurbineModel::Blade => None,
-        TurbineModel::Rotor => {
+        TurbineModel::Rotor | TurbineModel::Turbine => {
             let rpm = super::operating::scheduled_rotor_speed(p)?;
             super::turbine::rotor_inputs(p, rpm)?
         }

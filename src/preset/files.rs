@@ -17,6 +17,14 @@ pub static BUILTIN_FILES: &[(&str, &str)] = &[
         include_str!("../../presets/blades/nrel5mw-turbine/onshore/ElastoDyn.dat"),
     ),
     (
+        "blades/nrel5mw-turbine/5MW_Baseline/NRELOffshrBsline5MW_Onshore_ElastoDyn_Tower.dat",
+        include_str!("../../presets/blades/nrel5mw-turbine/5MW_Baseline/NRELOffshrBsline5MW_Onshore_ElastoDyn_Tower.dat"),
+    ),
+    (
+        "blades/iea15mw-monopile/IEA-15-240-RWT-Monopile/IEA-15-240-RWT-Monopile_ElastoDyn_tower.dat",
+        include_str!("../../presets/blades/iea15mw-monopile/IEA-15-240-RWT-Monopile/IEA-15-240-RWT-Monopile_ElastoDyn_tower.dat"),
+    ),
+    (
         "blades/iea15mw-monopile/IEA-15-240-RWT-Monopile/IEA-15-240-RWT-Monopile_ElastoDyn.dat",
         include_str!(
             "../../presets/blades/iea15mw-monopile/IEA-15-240-RWT-Monopile/IEA-15-240-RWT-Monopile_ElastoDyn.dat"

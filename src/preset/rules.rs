@@ -519,6 +519,14 @@ fn turbine_is_complete(p: &Preset, files: &ReadFiles) -> std::result::Result<(),
             p.operating.blades
         ));
     }
+    if t.model == TurbineModel::Turbine && files.turbine().is_none() {
+        return Err(
+            "turbine.model = \"turbine\" reads the tower (its file, height and base), \
+                    the nacelle, the hub and the drivetrain from an ElastoDyn main file: set \
+                    turbine.source = \"elastodyn\" and turbine.file"
+                .to_string(),
+        );
+    }
     if t.drivetrain != DrivetrainModel::Rigid && files.turbine().is_none() {
         return Err(format!(
             "turbine.model = \"{}\" with turbine.drivetrain = \"{}\" reads the hub's and the \

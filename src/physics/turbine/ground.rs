@@ -11,7 +11,8 @@
 //! undamped rotor (gyroscopic terms kept) that holds most of it.
 
 use super::drivetrain::Generator;
-use super::rotor::Rotor;
+use super::rotor::{tower_energies, Rotor};
+use super::tower::{strip_rows, TowerMode, TOWER_COORDINATES};
 use crate::error::{Error, Result};
 use crate::numeric::mbc::{t1, MultiBlade, Rotating};
 use crate::numeric::{decompose, hungarian};
@@ -48,9 +49,15 @@ impl Whirl {
 /// One slot a root can be named after.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Slot {
-    Blade { mode: usize, whirl: Whirl },
+    Blade {
+        mode: usize,
+        whirl: Whirl,
+    },
     Drivetrain,
     Rotation,
+    /// The tower's mode on the ground-frame rotor's rigid masses, by [`GroundRotor`]'s
+    /// `tower_modes` index.
+    Tower(usize),
 }
 
 /// The rotor's coordinates in the ground frame, as the analyses read them.
@@ -64,10 +71,19 @@ pub struct GroundRotor {
     stiffness: DMatrix<f64>,
     damping: DMatrix<f64>,
     family_energy: [DMatrix<f64>; 3],
-    /// `φᵀ M` of the drivetrain's modes, mass-normalised, over all coordinates: the rigid
-    /// rotation and the twist with the generator free, the twist alone with it locked. A
-    /// motion's modal amplitude in each is the product with its coordinates.
-    drivetrain_modes: Vec<DVector<f64>>,
+    /// The rotor's angular momentum about the shaft per unit of each coordinate, with the
+    /// generator free ([`rotation_weights`]).
+    rotation: Option<DVector<f64>>,
+    /// `φᵀ M` of the collective modes of the rotor on a rigid support, mass-normalised, over
+    /// all coordinates: blade mode j's collective slot's (`j`), then the drivetrain's
+    /// ([`collective_modes`]).
+    collective: Vec<DVector<f64>>,
+    /// The tower's modes with the rotor as rigid masses on its top, mass-normalised: `φᵀ M`
+    /// over all coordinates, and each one's name (fore–aft or side–side, counted up in
+    /// frequency).
+    tower_modes: Vec<(DVector<f64>, TowerMode)>,
+    /// The first tower coordinate and the apex's motion, on a tower.
+    tower: Option<(usize, DMatrix<f64>)>,
     slots: Vec<Slot>,
     natural: Vec<NaturalMode>,
 }
@@ -89,7 +105,15 @@ impl GroundRotor {
         let at = rotor.drivetrain_at();
         let generator = rotor.drivetrain().map(|d| d.generator);
         let mass = congruent(rotor.mass());
-        let drivetrain_modes = drivetrain_modes(&mass, at);
+        let stiffness = congruent(&rotor.stiffness());
+        let rotation = rotation_weights(&mass, at, generator);
+        let collective =
+            collective_modes(&mass, &stiffness, k, at, rotor.drivetrain_coordinates())?;
+        let tower = rotor.tower().map(|(at, apex)| (at, apex.clone()));
+        let tower_modes = match &tower {
+            Some((at, _)) => tower_modes(&mass, &stiffness, *at)?,
+            None => Vec::new(),
+        };
         let blade_natural = rotor.blade().natural_modes()?;
         let mut slots: Vec<Slot> = (0..k)
             .flat_map(|mode| Whirl::ALL.map(|whirl| Slot::Blade { mode, whirl }))
@@ -99,15 +123,19 @@ impl GroundRotor {
             Some(Generator::Locked) => slots.push(Slot::Drivetrain),
             Some(Generator::Free) => slots.extend([Slot::Drivetrain, Slot::Rotation]),
         }
+        slots.extend((0..tower_modes.len()).map(Slot::Tower));
         let mut ground = GroundRotor {
             blade: Arc::clone(rotor.blade()),
             per_blade: k,
             generator,
             mass,
-            stiffness: congruent(&rotor.stiffness()),
-            damping: congruent(rotor.damping()),
+            stiffness,
+            damping: congruent(&(rotor.damping() - rotor.gyroscopic())),
             family_energy: rotor.family_energy().clone(),
-            drivetrain_modes,
+            rotation,
+            collective,
+            tower_modes,
+            tower,
             slots,
             natural: Vec::new(),
         };
@@ -146,6 +174,16 @@ impl GroundRotor {
                         1,
                         Shares::from_energies(0.0, 1.0, 0.0),
                     ),
+                    Slot::Tower(i) => {
+                        let mode = ground.tower_modes[i].1;
+                        let (family, number) = mode.family_and_number();
+                        (
+                            mode.label().to_string(),
+                            family,
+                            number,
+                            ground.shares(&complex),
+                        )
+                    }
                 };
                 NaturalMode {
                     label,
@@ -167,8 +205,7 @@ impl GroundRotor {
     /// holds most of; a slot no oscillating root takes (the rotor's rotation) is at zero.
     fn in_vacuo_frequencies(&self, rotor: &Rotor, omega: f64) -> Result<Vec<(f64, DVector<f64>)>> {
         let n = rotor.coordinates();
-        let c = rotor.damping();
-        let gyroscopic = (c - c.transpose()) * 0.5;
+        let gyroscopic = rotor.gyroscopic();
         let mass_inv = rotor
             .mass()
             .clone()
@@ -220,7 +257,12 @@ impl GroundRotor {
         Ok(out)
     }
 
-    /// The energies of coordinates `q` in each slot.
+    /// The energies of coordinates `q` in each slot: a blade mode's backward and forward whirl
+    /// its cyclic amplitudes' (`¾|B|²`, `¾|F|²`); the collective slots and the drivetrain
+    /// the modal amplitudes of the rotor's collective modes on a rigid support (the blades'
+    /// collective coordinates are mass-coupled with the drivetrain, and with the nacelle's
+    /// roll, so a clamped blade's mode is not one of them); the tower's its modes'; the
+    /// rotation the angular momentum about the shaft.
     fn slot_energies(&self, q: &[Complex<f64>]) -> Vec<f64> {
         let k = self.per_blade;
         let i = Complex::new(0.0, 1.0);
@@ -228,28 +270,22 @@ impl GroundRotor {
         for slot in &self.slots {
             e.push(match *slot {
                 Slot::Blade { mode, whirl } => {
-                    let (a0, ac, as_) = (q[mode], q[k + mode], q[2 * k + mode]);
+                    let (ac, as_) = (q[k + mode], q[2 * k + mode]);
                     match whirl {
-                        Whirl::Collective => 3.0 * a0.norm_sqr(),
+                        Whirl::Collective => projected(&self.collective[mode], q),
                         Whirl::Forward => 0.75 * (ac + i * as_).norm_sqr(),
                         Whirl::Backward => 0.75 * (ac - i * as_).norm_sqr(),
                     }
                 }
-                Slot::Drivetrain | Slot::Rotation => {
-                    let modes = &self.drivetrain_modes;
-                    let weights = match (slot, modes.len()) {
-                        (Slot::Rotation, 2) => &modes[0],
-                        (_, 2) => &modes[1],
-                        _ => &modes[0],
-                    };
-                    let eta: Complex<f64> = weights.iter().zip(q).map(|(w, q)| q * *w).sum();
-                    eta.norm_sqr()
-                }
+                Slot::Tower(t) => projected(&self.tower_modes[t].0, q),
+                Slot::Drivetrain => projected(&self.collective[k], q),
+                Slot::Rotation => self.rotation.as_ref().map_or(0.0, |w| projected(w, q)),
             });
         }
         e
     }
 
+    /// Each slot's share of a motion ([`GroundRotor::slot_energies`]).
     fn content(&self, q: &[Complex<f64>]) -> Vec<f64> {
         crate::numeric::shares(self.slot_energies(q))
     }
@@ -292,8 +328,14 @@ impl Structure for GroundRotor {
             rows.flap.rows_mut(at, k).copy_from(&b.flap);
             rows.edge.rows_mut(at, k).copy_from(&b.edge);
         }
+        let radius = self.hub_radius() + x;
         if self.generator.is_some() {
-            rows.edge[3 * k] = self.hub_radius() + x;
+            rows.edge[3 * k] = radius;
+        }
+        if let Some((at, apex)) = &self.tower {
+            let [flap, edge] = strip_rows(apex, 0.0, radius);
+            rows.flap.rows_mut(*at, TOWER_COORDINATES).copy_from(&flap);
+            rows.edge.rows_mut(*at, TOWER_COORDINATES).copy_from(&edge);
         }
         rows
     }
@@ -311,6 +353,11 @@ impl Structure for GroundRotor {
         }
         if self.generator.is_some() {
             e[1] += self.mass[(3 * k, 3 * k)] * q[3 * k].norm_sqr();
+        }
+        if let Some((at, _)) = &self.tower {
+            let [fore_aft, side_side] = tower_energies(&self.mass, *at, q);
+            e[0] += fore_aft;
+            e[1] += side_side;
         }
         Shares::from_energies(e[0], e[1], e[2])
     }
@@ -367,35 +414,139 @@ pub fn layout(rotor: &Rotor, dim: usize) -> Result<MultiBlade> {
     MultiBlade::new(dim, groups)
 }
 
-/// `φᵀ M` of the drivetrain's modes, `M` the ground coordinates' mass (the drivetrain's from
-/// coordinate `at`), over all coordinates. With the generator free (`θ_r, δ`): the rigid
-/// rotation `(1, 0)` on the whole mass, its amplitude the rotor's angular momentum about the
-/// shaft (a collective edge mode whose hub swings against its blades holds none of it), and
-/// the shaft's twist, M-orthogonal to the rigid rotation on the drivetrain's own mass (the
-/// blades' collective motion is their own slot's). Locked (`θ_r`): the twist alone.
-fn drivetrain_modes(m: &DMatrix<f64>, at: usize) -> Vec<DVector<f64>> {
+/// The rotor's angular momentum about the shaft per unit of `q`, mass-normalised, with the
+/// generator free (`θ_r` at coordinate `at` of the ground mass `m`): the rigid rotation
+/// `(1, 0)` on the whole mass (a collective edge mode whose hub swings against its blades holds
+/// none of it). None with the generator locked or no drivetrain: nothing turns freely.
+fn rotation_weights(
+    m: &DMatrix<f64>,
+    at: usize,
+    generator: Option<Generator>,
+) -> Option<DVector<f64>> {
+    (generator == Some(Generator::Free)).then(|| m.column(at) / m[(at, at)].sqrt())
+}
+
+/// `φᵀ M` (mass-normalised, over all `m.nrows()` coordinates) of the collective modes of the
+/// rotor on a rigid support: the undamped modes of the collective coordinates of its `k`
+/// blade modes and the drivetrain's `fixed` coordinates (from `at`), all else held, ordered as
+/// the slots they are named after: blade mode j's collective slot at `j`, the drivetrain's at
+/// `k` (with a drivetrain). A mode goes to the slot whose coordinates hold most of its kinetic
+/// energy (`3|a_0j|²` for blade mode j, the shaft's twist M-orthogonal to the rigid rotation
+/// for the drivetrain), one-to-one; a free drivetrain's rigid rotation, at zero frequency, to
+/// none.
+fn collective_modes(
+    m: &DMatrix<f64>,
+    stiffness: &DMatrix<f64>,
+    k: usize,
+    at: usize,
+    fixed: usize,
+) -> Result<Vec<DVector<f64>>> {
     let n = m.nrows();
-    let fixed = n - at;
-    let own = m.view((at, at), (fixed, fixed)).into_owned();
-    let on = |mphi: DVector<f64>, norm: f64| {
-        let mut v = DVector::zeros(n);
-        v.rows_mut(at, fixed).copy_from(&(mphi / norm));
-        v
-    };
-    let twist = |phi: DVector<f64>| {
-        let mphi = &own * &phi;
-        let norm = phi.dot(&mphi).sqrt();
-        on(mphi, norm)
-    };
-    match fixed {
-        0 => Vec::new(),
-        1 => vec![twist(DVector::from_element(1, 1.0))],
-        _ => {
-            let rigid = m.column(at) / m[(at, at)].sqrt();
-            let a = -own[(0, 1)] / own[(0, 0)];
-            vec![rigid, twist(DVector::from_vec(vec![a, 1.0]))]
-        }
+    let coords: Vec<usize> = (0..k).chain(at..at + fixed).collect();
+    let nc = coords.len();
+    let mc = m.select_rows(&coords).select_columns(&coords);
+    let kc = stiffness.select_rows(&coords).select_columns(&coords);
+    let (values, phi) = undamped_modes(&mc, &kc)?;
+    // The shaft's twist in the drivetrain's own coordinates: `θ_r` locked; `(a, 1)` in
+    // `θ_r, δ`, M-orthogonal to the rigid rotation `(1, 0)`, with the generator free.
+    let own = mc.view((k, k), (fixed, fixed)).into_owned();
+    let twist = match fixed {
+        0 => None,
+        1 => Some(DVector::from_element(1, 1.0)),
+        _ => Some(DVector::from_vec(vec![-own[(0, 1)] / own[(0, 0)], 1.0])),
     }
+    .map(|t| {
+        let mt = &own * &t;
+        mt / t.dot(&(&own * &t)).sqrt()
+    });
+    let slots = k + usize::from(fixed > 0);
+    // A free drivetrain's rigid rotation is the lowest mode, at zero.
+    let skip = usize::from(fixed == 2);
+    let content: Vec<Vec<f64>> = (skip..nc)
+        .map(|i| {
+            let y = phi.column(i);
+            let mut e: Vec<f64> = (0..k).map(|j| 3.0 * y[j] * y[j]).collect();
+            if let Some(t) = &twist {
+                e.push(t.dot(&y.rows(k, fixed)).powi(2));
+            }
+            crate::numeric::shares(e)
+        })
+        .collect();
+    debug_assert!(values.len() == nc && content.len() == slots);
+    let cost: Vec<Vec<f64>> = content
+        .iter()
+        .map(|c| c.iter().map(|v| -v).collect())
+        .collect();
+    let assigned = hungarian(&cost);
+    let mut out = vec![DVector::zeros(n); slots];
+    for (r, &slot) in assigned.iter().enumerate() {
+        let mphi = &mc * phi.column(skip + r);
+        let mut w = DVector::zeros(n);
+        for (c, &i) in coords.iter().enumerate() {
+            w[i] = mphi[c];
+        }
+        out[slot] = w;
+    }
+    Ok(out)
+}
+
+/// The undamped modes of mass `m` and stiffness `k` (symmetric parts), ascending: `ω²` and the
+/// mass-normalised shapes as columns.
+fn undamped_modes(m: &DMatrix<f64>, k: &DMatrix<f64>) -> Result<(DVector<f64>, DMatrix<f64>)> {
+    let l_inv = m
+        .clone()
+        .cholesky()
+        .ok_or_else(|| Error::numerical("the rotor's mass matrix is not positive definite"))?
+        .l()
+        .try_inverse()
+        .ok_or_else(|| Error::numerical("the rotor's mass matrix is singular"))?;
+    let a = &l_inv * k * l_inv.transpose();
+    let eig = ((&a + a.transpose()) * 0.5).symmetric_eigen();
+    let mut order: Vec<usize> = (0..a.nrows()).collect();
+    order.sort_by(|&i, &j| eig.eigenvalues[i].total_cmp(&eig.eigenvalues[j]));
+    let values = DVector::from_iterator(order.len(), order.iter().map(|&i| eig.eigenvalues[i]));
+    let shapes = l_inv.transpose() * eig.eigenvectors.select_columns(&order);
+    Ok((values, shapes))
+}
+
+/// `|wᵀ q|²`.
+fn projected(w: &DVector<f64>, q: &[Complex<f64>]) -> f64 {
+    w.iter()
+        .zip(q)
+        .map(|(w, q)| q * *w)
+        .sum::<Complex<f64>>()
+        .norm_sqr()
+}
+
+/// The tower's modes (coordinates from `at`) on the ground coordinates' mass `m` and
+/// stiffness `k` with everything else held: `φᵀ M` over all coordinates, mass-normalised, and
+/// each mode's name: fore–aft where its fore–aft coordinates hold more of its kinetic energy,
+/// numbered in frequency within its plane.
+fn tower_modes(
+    m: &DMatrix<f64>,
+    k: &DMatrix<f64>,
+    at: usize,
+) -> Result<Vec<(DVector<f64>, TowerMode)>> {
+    let t = TOWER_COORDINATES;
+    let mt = m.view((at, at), (t, t)).into_owned();
+    let kt = k.view((at, at), (t, t)).into_owned();
+    let (_, phi) = undamped_modes(&mt, &kt)?;
+    let mut counts = [0usize; 2];
+    let n = m.nrows();
+    Ok((0..t)
+        .map(|i| {
+            let phi = phi.column(i);
+            let mphi = &mt * phi;
+            let fore_aft = phi[0] * mphi[0] + phi[1] * mphi[1];
+            let side_side = phi[2] * mphi[2] + phi[3] * mphi[3];
+            let plane = usize::from(side_side > fore_aft);
+            counts[plane] += 1;
+            let mode = TowerMode::named(plane == 0, counts[plane]);
+            let mut weights = DVector::zeros(n);
+            weights.rows_mut(at, t).copy_from(&mphi);
+            (weights, mode)
+        })
+        .collect())
 }
 
 /// `T1(0)` on the rotor's coordinates (blade blocks; identity on the drivetrain's).

@@ -10,27 +10,18 @@
 
 pub mod drivetrain;
 pub mod ground;
+pub mod inputs;
 pub mod rotor;
+pub mod tower;
 
 use crate::error::{Error, Result};
 use crate::physics::structure::Structure;
 use crate::physics::system::{LinearSystem, System};
-use drivetrain::Drivetrain;
 use ground::GroundRotor;
+pub use inputs::{RotorInputs, Support};
 use nalgebra::DVector;
 use rotor::Rotor;
 use std::sync::Arc;
-
-/// What a rotor adds to its blade: how many blades, the drivetrain, the speed.
-#[derive(Debug, Clone, PartialEq)]
-pub struct RotorInputs {
-    pub blades: usize,
-    /// None: the hub turns at a constant speed (an infinitely stiff drivetrain on an infinite
-    /// inertia), the blades clamped to it.
-    pub drivetrain: Option<Drivetrain>,
-    /// Ω (rad/s), the speed the blade's modes are at.
-    pub rotor_speed: f64,
-}
 
 /// The rotor of `inputs` made of `blade`'s structure and strips, linearised about the blade's
 /// equilibrium state `x_eq` (every blade at it, the drivetrain at rest relative to the hub): the
@@ -52,13 +43,7 @@ pub fn rotor_system(
     let left_out = blade.left_out_response(x_eq);
     let q_eq = x_eq.rows(0, k).into_owned();
     let z_eq = x_eq.rows(2 * k, blade.n_aero()).into_owned();
-    let rotor = Rotor::new(
-        blade.structure_arc(),
-        n_blades,
-        inputs.drivetrain.clone(),
-        inputs.rotor_speed,
-        &q_eq,
-    )?;
+    let rotor = Rotor::new(blade.structure_arc(), inputs, &q_eq, 0.0)?;
     let ground = GroundRotor::new(&rotor, inputs.rotor_speed)?;
     let rotor = Arc::new(rotor);
     let mut system = blade.on_rotor(Arc::clone(&rotor) as _, n_blades)?;

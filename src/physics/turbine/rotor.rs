@@ -11,12 +11,16 @@
 //! the skew pair `±2Ω g` between the modes and `θ_r`, `g = f − K_Ω q*` the radial load per Ω²
 //! on the blade at its equilibrium `q*`.
 
-use super::drivetrain::Drivetrain;
+use super::drivetrain::{Drivetrain, Generator};
+use super::inputs::RotorInputs;
+use super::tower::{strip_rows, Apex, Tower, APEX_MOTIONS, TOWER_COORDINATES};
 use crate::error::{Error, Result};
 use crate::physics::blade::fem::Rigid;
 use crate::physics::section::SectionProps;
+use crate::physics::structure::RotorCoupling;
 use crate::physics::structure::{kinetic_energy, MotionRows, NaturalMode, Shares, Structure};
 use nalgebra::{Complex, DMatrix, DVector};
+use std::f64::consts::TAU;
 use std::sync::Arc;
 
 /// Which of the blade's modes a rotor's blades hold.
@@ -36,9 +40,17 @@ pub struct Rotor {
     /// Modes per blade.
     per_blade: usize,
     drivetrain: Option<Drivetrain>,
+    /// The tower's [`super::tower::Tower::apex`], on a tower.
+    tower: Option<DMatrix<f64>>,
+    /// Blade 0's azimuth (rad).
+    azimuth: f64,
     mass: DMatrix<f64>,
     stiffness: DMatrix<f64>,
+    /// Structural and gyroscopic together, as the system reads them.
     damping: DMatrix<f64>,
+    /// The part of the damping that is the rotation's (Coriolis) and no material's: kept in
+    /// vacuo, where the structural damping is left out.
+    gyroscopic: DMatrix<f64>,
     static_load: DVector<f64>,
     family_energy: [DMatrix<f64>; 3],
     /// The left-out modes of every blade, where the blade leaves some out.
@@ -46,21 +58,22 @@ pub struct Rotor {
 }
 
 impl Rotor {
-    /// `blades` copies of `blade` (modes at rotor speed `omega`, rad/s, its equilibrium
-    /// coordinates `q_eq`) on `drivetrain` (none: the hub turns at a constant speed, the blades
-    /// clamped to it).
+    /// `inputs.blades` copies of `blade` (modes at the rotor speed, its equilibrium
+    /// coordinates `q_eq`) on the drivetrain and support of `inputs`, blade 0 at `azimuth`
+    /// (rad, zero up). On a rigid support nothing depends on the azimuth; on a tower the
+    /// blades' coupling with it turns with them (docs/model.md §13.6).
     pub fn new(
         blade: Arc<dyn Structure>,
-        blades: usize,
-        drivetrain: Option<Drivetrain>,
-        omega: f64,
+        inputs: &RotorInputs,
         q_eq: &DVector<f64>,
+        azimuth: f64,
     ) -> Result<Rotor> {
         let coupling = blade.rotor_coupling().ok_or_else(|| {
             Error::numerical(
                 "a rotor needs a tabulated blade (the paper's blade has no edge motion)",
             )
         })?;
+        let (blades, omega) = (inputs.blades, inputs.rotor_speed);
         if blades < 3 {
             return Err(Error::numerical(format!(
                 "a rotor of {blades} blades: the multi-blade transform needs at least 3"
@@ -82,41 +95,100 @@ impl Rotor {
                 load,
             ))
         });
+        let drivetrain = inputs.drivetrain.clone();
         let fixed = drivetrain.as_ref().map_or(0, Drivetrain::coordinates);
-        let n = blades * k + fixed;
-        let mut mass = DMatrix::zeros(n, n);
-        let mut stiffness = DMatrix::zeros(n, n);
-        let mut damping = DMatrix::zeros(n, n);
-        let mut static_load = DVector::zeros(n);
-        let blade_stiffness = blade.stiffness();
+        let on_tower = usize::from(inputs.support.is_some()) * TOWER_COORDINATES;
+        let n = blades * k + fixed + on_tower;
+        let mut m = RotorMatrices::zeros(n);
         let own_load = blade.static_load();
         for b in 0..blades {
             let at = b * k;
-            mass.view_mut((at, at), (k, k)).copy_from(blade.mass());
-            stiffness
+            m.mass.view_mut((at, at), (k, k)).copy_from(blade.mass());
+            m.stiffness
                 .view_mut((at, at), (k, k))
-                .copy_from(&blade_stiffness);
-            damping
+                .copy_from(&blade.stiffness());
+            m.damping
                 .view_mut((at, at), (k, k))
                 .copy_from(blade.damping());
-            static_load.rows_mut(at, k).copy_from(&own_load);
+            m.static_load.rows_mut(at, k).copy_from(&own_load);
         }
+        let rigid = |j: usize, r: Rigid| coupling.rigid[(j, r as usize)];
+        let rigid_mass = |a: Rigid, b: Rigid| coupling.rigid_mass[(a as usize, b as usize)];
+        let blade_inertia = rigid_mass(Rigid::Rotation, Rigid::Rotation);
+        // Turning faster pulls a curved or deflected blade outward: the radial load per Ω² at
+        // the equilibrium, which meets every rotation about the shaft (§13.2).
+        let radial = &coupling.centrifugal_load - &coupling.centrifugal_stiffness * q_eq;
+        // Every coordinate that turns the blades about the shaft, with its weight: the
+        // drivetrain's azimuth, the nacelle's roll.
+        let mut turning: Vec<DVector<f64>> = Vec::new();
         if let Some(d) = &drivetrain {
             let at = blades * k;
-            let [m, s, c] = d.matrices();
-            mass.view_mut((at, at), (fixed, fixed)).copy_from(&m);
-            stiffness.view_mut((at, at), (fixed, fixed)).copy_from(&s);
-            damping.view_mut((at, at), (fixed, fixed)).copy_from(&c);
-            mass[(at, at)] += blades as f64
-                * coupling.rigid_mass[(Rigid::Rotation as usize, Rigid::Rotation as usize)];
-            let radial = &coupling.centrifugal_load - &coupling.centrifugal_stiffness * q_eq;
+            let [dm, ds, dc] = d.matrices();
+            m.mass.view_mut((at, at), (fixed, fixed)).copy_from(&dm);
+            m.stiffness
+                .view_mut((at, at), (fixed, fixed))
+                .copy_from(&ds);
+            m.damping.view_mut((at, at), (fixed, fixed)).copy_from(&dc);
+            let mut azimuth_row = DVector::zeros(n);
+            azimuth_row[at] = 1.0;
+            turning.push(azimuth_row);
+        }
+        if let Some(support) = &inputs.support {
+            let at = blades * k + fixed;
+            let tower = &support.tower;
+            let t = TOWER_COORDINATES;
+            m.mass.view_mut((at, at), (t, t)).copy_from(&tower.mass);
+            m.stiffness
+                .view_mut((at, at), (t, t))
+                .copy_from(&tower.stiffness);
+            m.damping
+                .view_mut((at, at), (t, t))
+                .copy_from(&tower.damping);
+            let mut roll = DVector::zeros(n);
+            roll.rows_mut(at, t)
+                .copy_from(&tower.apex.row(Apex::Roll as usize).transpose());
+            // The hub and the generator turn with the nacelle's roll: `½ J_h (θ̇_r + θ̇_x)²`
+            // and `½ J_gen (N θ̇_g + θ̇_x)²` (θ_g = θ_r − δ with the generator free, held at
+            // zero with it locked, θ_r itself with no drivetrain).
+            let (jh, jgen, ratio) = (
+                support.hub_inertia,
+                support.generator_inertia,
+                support.gear_ratio,
+            );
+            m.add_outer(&roll, &roll, jh + jgen);
+            if let Some(d) = &drivetrain {
+                let r = blades * k;
+                let mut azimuth_row = DVector::zeros(n);
+                azimuth_row[r] = 1.0;
+                m.add_symmetric(&azimuth_row, &roll, jh);
+                if d.generator == Generator::Free {
+                    let mut generator = DVector::zeros(n);
+                    generator[r] = 1.0;
+                    generator[r + 1] = -1.0;
+                    m.add_symmetric(&generator, &roll, jgen * ratio);
+                }
+            }
+            turning.push(roll);
+            for b in 0..blades {
+                let psi = azimuth + TAU * b as f64 / blades as f64;
+                on_tower_blade(&mut m, &coupling, tower, b * k, at, psi, omega);
+            }
+        }
+        for (i, a) in turning.iter().enumerate() {
+            // The blades turn by the sum of every turning coordinate.
+            let weight = blades as f64 * blade_inertia;
+            m.add_outer(a, a, weight);
+            for b in &turning[i + 1..] {
+                m.add_symmetric(a, b, weight);
+            }
             for b in 0..blades {
                 for j in 0..k {
-                    let i = b * k + j;
-                    mass[(i, at)] = coupling.rigid[(j, Rigid::Rotation as usize)];
-                    mass[(at, i)] = coupling.rigid[(j, Rigid::Rotation as usize)];
-                    damping[(i, at)] -= 2.0 * omega * radial[j];
-                    damping[(at, i)] += 2.0 * omega * radial[j];
+                    let mut mode = DVector::zeros(n);
+                    mode[b * k + j] = 1.0;
+                    m.add_symmetric(&mode, a, rigid(j, Rigid::Rotation));
+                    // `∓2Ω g`: a blade moving radially changes the rotor's angular momentum.
+                    let g = 2.0 * omega * radial[j];
+                    m.add_gyroscopic(a, &mode, g);
                 }
             }
         }
@@ -126,10 +198,13 @@ impl Rotor {
             blades,
             per_blade: k,
             drivetrain,
-            mass,
-            stiffness,
-            damping,
-            static_load,
+            tower: inputs.support.as_ref().map(|s| s.tower.apex.clone()),
+            azimuth,
+            mass: m.mass,
+            stiffness: m.stiffness,
+            damping: &m.damping + &m.gyroscopic,
+            gyroscopic: m.gyroscopic,
+            static_load: m.static_load,
             family_energy: coupling.family_energy,
             left_out,
         })
@@ -158,9 +233,12 @@ impl Rotor {
             blades,
             per_blade: count,
             drivetrain: None,
+            tower: None,
+            azimuth: 0.0,
             mass: DMatrix::identity(n, n),
             stiffness: k,
             damping: DMatrix::zeros(n, n),
+            gyroscopic: DMatrix::zeros(n, n),
             static_load,
             family_energy: [(); 3].map(|_| DMatrix::zeros(count, count)),
             left_out: None,
@@ -204,6 +282,22 @@ impl Rotor {
         self.blades * self.per_blade
     }
 
+    /// The drivetrain's coordinates (0 without one).
+    pub fn drivetrain_coordinates(&self) -> usize {
+        self.drivetrain.as_ref().map_or(0, Drivetrain::coordinates)
+    }
+
+    /// The first tower coordinate and the tower's apex motion, on a tower.
+    pub fn tower(&self) -> Option<(usize, &DMatrix<f64>)> {
+        let at = self.drivetrain_at() + self.drivetrain_coordinates();
+        self.tower.as_ref().map(|apex| (at, apex))
+    }
+
+    /// The rotation's part of the damping ([`Rotor::damping`] less the structure's).
+    pub fn gyroscopic(&self) -> &DMatrix<f64> {
+        &self.gyroscopic
+    }
+
     /// Blade `b`'s rows in `rows` (one blade's, at span `x`), with the azimuth's edge motion.
     fn rows_of_blade(&self, b: usize, x: f64, blade: &MotionRows) -> MotionRows {
         let n = self.coordinates();
@@ -212,8 +306,15 @@ impl Rotor {
         rows.twist.rows_mut(b * k, k).copy_from(&blade.twist);
         rows.flap.rows_mut(b * k, k).copy_from(&blade.flap);
         rows.edge.rows_mut(b * k, k).copy_from(&blade.edge);
+        let radius = self.hub_radius() + x;
         if self.drivetrain.is_some() {
-            rows.edge[self.drivetrain_at()] = self.hub_radius() + x;
+            rows.edge[self.drivetrain_at()] = radius;
+        }
+        if let Some((at, apex)) = self.tower() {
+            let psi = self.azimuth + TAU * b as f64 / self.blades as f64;
+            let [flap, edge] = strip_rows(apex, psi, radius);
+            rows.flap.rows_mut(at, TOWER_COORDINATES).copy_from(&flap);
+            rows.edge.rows_mut(at, TOWER_COORDINATES).copy_from(&edge);
         }
         rows
     }
@@ -233,6 +334,11 @@ impl Rotor {
         if self.drivetrain.is_some() {
             let at = self.drivetrain_at();
             e[1] += self.mass[(at, at)] * q[at].norm_sqr();
+        }
+        if let Some((at, _)) = self.tower() {
+            let [fore_aft, side_side] = tower_energies(&self.mass, at, q);
+            e[0] += fore_aft;
+            e[1] += side_side;
         }
         e
     }
@@ -305,4 +411,133 @@ impl Structure for Rotor {
     fn left_out(&self) -> Option<&dyn Structure> {
         self.left_out.as_deref().map(|r| r as &dyn Structure)
     }
+}
+
+/// The rotor's matrices as they are built up.
+struct RotorMatrices {
+    mass: DMatrix<f64>,
+    stiffness: DMatrix<f64>,
+    damping: DMatrix<f64>,
+    gyroscopic: DMatrix<f64>,
+    static_load: DVector<f64>,
+}
+
+impl RotorMatrices {
+    fn zeros(n: usize) -> RotorMatrices {
+        RotorMatrices {
+            mass: DMatrix::zeros(n, n),
+            stiffness: DMatrix::zeros(n, n),
+            damping: DMatrix::zeros(n, n),
+            gyroscopic: DMatrix::zeros(n, n),
+            static_load: DVector::zeros(n),
+        }
+    }
+
+    /// `M += w x xᵀ`-type kinetic energy `½ w (x·q̇)(y·q̇)`: `M += w x yᵀ`.
+    fn add_outer(&mut self, x: &DVector<f64>, y: &DVector<f64>, w: f64) {
+        self.mass += w * x * y.transpose();
+    }
+
+    /// `M += w (x yᵀ + y xᵀ)`: the kinetic energy `w (x·q̇)(y·q̇)`.
+    fn add_symmetric(&mut self, x: &DVector<f64>, y: &DVector<f64>, w: f64) {
+        self.mass += w * (x * y.transpose() + y * x.transpose());
+    }
+
+    /// `G += g (x yᵀ − y xᵀ)`: a skew (gyroscopic) pair.
+    fn add_gyroscopic(&mut self, x: &DVector<f64>, y: &DVector<f64>, g: f64) {
+        self.gyroscopic += g * (x * y.transpose() - y * x.transpose());
+    }
+}
+
+/// Blade `b` (its modes from coordinate `blade_at`) at azimuth `psi` on the tower (its
+/// coordinates from `tower_at`), the rotor at `omega` (rad/s): the blade's rigid motion with
+/// the apex and its modes' coupling with it (docs/model.md §13.6). In apex motions
+/// `h = (u_x, u_y, u_z, θ_x, θ_y)`, with `P_f`, `P_e` the modes' shares of a rigid flap and
+/// edge translation and `S_f` of a rigid tilt (`c = cos ψ`, `s = sin ψ`):
+///
+/// - mass `M[q, h] = [P_f, −c P_e, −s P_e, ·, c S_f]` (the roll is a turning coordinate,
+///   coupled with the others by [`Rotor::new`]);
+/// - Coriolis `C[q, θ_y] = −2Ω s S_f`, `C[u_y, q] = 2Ω s P_eᵀ`, `C[u_z, q] = −2Ω c P_eᵀ`;
+/// - the centrifugal pull of a blade moving in the edge direction and of one swinging
+///   downwind, on the hub: `K[u_y, q] = Ω² c P_eᵀ`, `K[u_z, q] = Ω² s P_eᵀ`,
+///   `K[θ_y, q] = Ω² c S_fᵀ`;
+/// - the blade's rigid mass at the apex: its mass on every translation, `c² J` on the tilt
+///   (J its second moment about the root), its first moment between translation and turn.
+fn on_tower_blade(
+    m: &mut RotorMatrices,
+    coupling: &RotorCoupling,
+    tower: &Tower,
+    blade_at: usize,
+    tower_at: usize,
+    psi: f64,
+    omega: f64,
+) {
+    let k = coupling.rigid.nrows();
+    let t = TOWER_COORDINATES;
+    let (c, s) = (psi.cos(), psi.sin());
+    let col = |r: Rigid| coupling.rigid.column(r as usize).into_owned();
+    let (pf, pe, sf) = (col(Rigid::Flap), col(Rigid::Edge), col(Rigid::Tilt));
+    let rm = |a: Rigid, b: Rigid| coupling.rigid_mass[(a as usize, b as usize)];
+    let a = |h: Apex| h as usize;
+
+    let mut coupled = DMatrix::zeros(k, APEX_MOTIONS);
+    coupled.set_column(a(Apex::X), &pf);
+    coupled.set_column(a(Apex::Y), &(-c * &pe));
+    coupled.set_column(a(Apex::Z), &(-s * &pe));
+    coupled.set_column(a(Apex::Tilt), &(c * &sf));
+    let mut coriolis_on_blade = DMatrix::zeros(k, APEX_MOTIONS);
+    coriolis_on_blade.set_column(a(Apex::Tilt), &(-2.0 * omega * s * &sf));
+    let mut coriolis_on_hub = DMatrix::zeros(APEX_MOTIONS, k);
+    coriolis_on_hub.set_row(a(Apex::Y), &(2.0 * omega * s * pe.transpose()));
+    coriolis_on_hub.set_row(a(Apex::Z), &(-2.0 * omega * c * pe.transpose()));
+    let w2 = omega * omega;
+    let mut pull = DMatrix::zeros(APEX_MOTIONS, k);
+    pull.set_row(a(Apex::Y), &(w2 * c * pe.transpose()));
+    pull.set_row(a(Apex::Z), &(w2 * s * pe.transpose()));
+    pull.set_row(a(Apex::Tilt), &(w2 * c * sf.transpose()));
+
+    let mass = rm(Rigid::Flap, Rigid::Flap);
+    let first = rm(Rigid::Edge, Rigid::Rotation);
+    let mut hub = DMatrix::zeros(APEX_MOTIONS, APEX_MOTIONS);
+    for h in [Apex::X, Apex::Y, Apex::Z] {
+        hub[(a(h), a(h))] = mass;
+    }
+    hub[(a(Apex::Tilt), a(Apex::Tilt))] = c * c * rm(Rigid::Tilt, Rigid::Tilt);
+    let mut pair = |i: Apex, j: Apex, v: f64| {
+        hub[(a(i), a(j))] += v;
+        hub[(a(j), a(i))] += v;
+    };
+    pair(Apex::X, Apex::Tilt, c * rm(Rigid::Flap, Rigid::Tilt));
+    pair(Apex::Y, Apex::Roll, -c * first);
+    pair(Apex::Z, Apex::Roll, -s * first);
+    pair(Apex::Roll, Apex::Tilt, c * rm(Rigid::Rotation, Rigid::Tilt));
+    // The roll's own inertia is a turning coordinate's ([`Rotor::new`]).
+
+    let v = &tower.apex;
+    let blade_tower = &coupled * v;
+    m.mass
+        .view_mut((blade_at, tower_at), (k, t))
+        .copy_from(&blade_tower);
+    m.mass
+        .view_mut((tower_at, blade_at), (t, k))
+        .copy_from(&blade_tower.transpose());
+    let mut tt = m.mass.view_mut((tower_at, tower_at), (t, t));
+    tt += v.transpose() * &hub * v;
+    m.gyroscopic
+        .view_mut((blade_at, tower_at), (k, t))
+        .copy_from(&(&coriolis_on_blade * v));
+    m.gyroscopic
+        .view_mut((tower_at, blade_at), (t, k))
+        .copy_from(&(v.transpose() * &coriolis_on_hub));
+    m.stiffness
+        .view_mut((tower_at, blade_at), (t, k))
+        .copy_from(&(v.transpose() * &pull));
+}
+
+/// The kinetic energy of the fore–aft and the side–side tower coordinates (from `at`) in `q`.
+pub fn tower_energies(mass: &DMatrix<f64>, at: usize, q: &[Complex<f64>]) -> [f64; 2] {
+    [0, 2].map(|first| {
+        let block = mass.view((at + first, at + first), (2, 2)).into_owned();
+        kinetic_energy(&block, &q[at + first..at + first + 2])
+    })
 }

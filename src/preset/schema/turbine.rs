@@ -26,6 +26,9 @@ pub enum TurbineModel {
     Blade,
     /// Three identical blades on the drivetrain, the support rigid, in the ground frame.
     Rotor,
+    /// The rotor on the tower (two fore–aft and two side–side bending modes) with the
+    /// nacelle's and the hub's masses on its top, in the ground frame.
+    Turbine,
 }
 
 /// `turbine.source`.
@@ -52,6 +55,7 @@ impl TurbineModel {
         match self {
             TurbineModel::Blade => "blade",
             TurbineModel::Rotor => "rotor",
+            TurbineModel::Turbine => "turbine",
         }
     }
 }
