@@ -139,11 +139,16 @@ fn heading(p: &ValidPreset, structure: &dyn Structure) -> String {
             )
         }
         Some(_) if p.turbine.model != TurbineModel::Blade => format!(
-            "{name}: {} modes of the rotor ({} blades on a {} drivetrain, support rigid) at {rpm} \
-             rpm, pitch {} deg, in the ground frame",
+            "{name}: {} modes of the {} ({} blades on a {} drivetrain, {}) at {rpm} rpm, pitch \
+             {} deg, in the ground frame",
             structure.coordinates(),
+            p.turbine.model.name(),
             p.operating.blades,
             p.turbine.drivetrain.name(),
+            match p.turbine.model {
+                TurbineModel::Turbine => "on its tower",
+                _ => "support rigid",
+            },
             p.operating.pitch
         ),
         Some(blade) => {

@@ -66,7 +66,7 @@ pub fn rotor_inputs(p: &ValidPreset, rpm: f64) -> Result<Option<RotorInputs>> {
 /// top `YawBrMass`, `NacMass` at `NacCMxn/yn/zn`, `HubMass` at `HubCM` along the shaft from
 /// the apex at `OverHang`, `Twr2Shft`; `HubIner`, `GenIner` and `GBRatio` for what rolls with
 /// the nacelle. `ShftTilt` and `PreCone` are read but not modelled (§13.6 says why).
-fn support_of(t: &ElastoDynTurbine, tower: &ElastoDynTower) -> Result<Support> {
+pub fn support_of(t: &ElastoDynTurbine, tower: &ElastoDynTower) -> Result<Support> {
     let [fa, ss] = [tower.fore_aft_shapes, tower.side_side_shapes];
     let inputs = TowerInputs {
         length: t.tower_height - t.tower_base_height,

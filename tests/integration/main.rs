@@ -32,6 +32,7 @@ mod structure;
 mod sweep;
 mod tabulated;
 mod timoshenko;
+mod tower;
 mod tui_tmux;
 mod turbine;
 mod validation;

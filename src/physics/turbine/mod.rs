@@ -15,6 +15,7 @@ pub mod rotor;
 pub mod tower;
 
 use crate::error::{Error, Result};
+use crate::numeric::mbc::MultiBlade;
 use crate::physics::structure::Structure;
 use crate::physics::system::{LinearSystem, System};
 use ground::GroundRotor;
@@ -24,13 +25,48 @@ use rotor::Rotor;
 use std::sync::Arc;
 
 /// The rotor of `inputs` made of `blade`'s structure and strips, linearised about the blade's
-/// equilibrium state `x_eq` (every blade at it, the drivetrain at rest relative to the hub): the
+/// equilibrium state `x_eq` (every blade at it, the drivetrain and the tower at rest): the
 /// ground-frame state matrix, its states `[a, ȧ, z̄]` in multi-blade coordinates.
 pub fn rotor_system(
     blade: &System,
     x_eq: &DVector<f64>,
     inputs: &RotorInputs,
 ) -> Result<LinearSystem> {
+    let at = rotating_system(blade, x_eq, inputs, 0.0)?;
+    let a = at.layout.transform(&at.system.a, 0.0, inputs.rotor_speed)?;
+    let x_eq = at.layout.to_ground(0.0, inputs.rotor_speed) * &at.system.x_eq;
+    let ground = GroundRotor::new(&at.rotor, inputs.rotor_speed)?;
+    let [tip_twist, tip_flap] = ground.tip_rows();
+    Ok(LinearSystem {
+        a,
+        x_eq,
+        nq: at.rotor.coordinates(),
+        n_aero: at.system.n_aero,
+        tip_twist,
+        tip_flap,
+        tip_offset: at.system.tip_offset,
+        structure: Arc::new(ground),
+    })
+}
+
+/// The rotor linearised in the blades' rotating frames with blade 0 at one azimuth.
+pub struct RotatingSystem {
+    /// Its state matrix, states `[q, q̇, z]` blade by blade.
+    pub system: LinearSystem,
+    /// The multi-blade layout of those states.
+    pub layout: MultiBlade,
+    pub rotor: Arc<Rotor>,
+}
+
+/// [`rotor_system`] before the multi-blade transform, blade 0 at `azimuth` (rad): on a tower
+/// the state matrix turns with the rotor (docs/model.md §13.6); after the transform it does
+/// not.
+pub fn rotating_system(
+    blade: &System,
+    x_eq: &DVector<f64>,
+    inputs: &RotorInputs,
+    azimuth: f64,
+) -> Result<RotatingSystem> {
     let k = blade.nq();
     if x_eq.len() != blade.dim() {
         return Err(Error::numerical(format!(
@@ -43,9 +79,7 @@ pub fn rotor_system(
     let left_out = blade.left_out_response(x_eq);
     let q_eq = x_eq.rows(0, k).into_owned();
     let z_eq = x_eq.rows(2 * k, blade.n_aero()).into_owned();
-    let rotor = Rotor::new(blade.structure_arc(), inputs, &q_eq, 0.0)?;
-    let ground = GroundRotor::new(&rotor, inputs.rotor_speed)?;
-    let rotor = Arc::new(rotor);
+    let rotor = Arc::new(Rotor::new(blade.structure_arc(), inputs, &q_eq, azimuth)?);
     let mut system = blade.on_rotor(Arc::clone(&rotor) as _, n_blades)?;
     if let Some(p) = left_out {
         system = system.with_left_out_at(&repeated(&p, n_blades));
@@ -56,20 +90,12 @@ pub fn rotor_system(
         .copy_from(&repeated(&q_eq, n_blades));
     x.rows_mut(2 * n, system.n_aero())
         .copy_from(&repeated(&z_eq, n_blades));
-    let rotating = system.linearise_at(Some(x.clone()))?;
-    let mbc = ground::layout(&rotor, rotating.dim())?;
-    let a = mbc.transform(&rotating.a, 0.0, inputs.rotor_speed)?;
-    let x_eq = mbc.to_ground(0.0, inputs.rotor_speed) * x;
-    let [tip_twist, tip_flap] = ground.tip_rows();
-    Ok(LinearSystem {
-        a,
-        x_eq,
-        nq: n,
-        n_aero: rotating.n_aero,
-        tip_twist,
-        tip_flap,
-        tip_offset: rotating.tip_offset,
-        structure: Arc::new(ground),
+    let system = system.linearise_at(Some(x))?;
+    let layout = ground::layout(&rotor, system.dim())?;
+    Ok(RotatingSystem {
+        system,
+        layout,
+        rotor,
     })
 }
 

@@ -13,7 +13,7 @@
 
 use super::drivetrain::{Drivetrain, Generator};
 use super::inputs::RotorInputs;
-use super::tower::{strip_rows, Apex, Tower, APEX_MOTIONS, TOWER_COORDINATES};
+use super::tower::{strip_rows, Apex, Tower, APEX_MOTIONS, GRAVITY, TOWER_COORDINATES};
 use crate::error::{Error, Result};
 use crate::physics::blade::fem::Rigid;
 use crate::physics::section::SectionProps;
@@ -144,6 +144,10 @@ impl Rotor {
             m.damping
                 .view_mut((at, at), (t, t))
                 .copy_from(&tower.damping);
+            // The blades' weight on the tower top.
+            let blade_mass = rigid_mass(Rigid::Flap, Rigid::Flap);
+            let mut tt = m.stiffness.view_mut((at, at), (t, t));
+            tt -= GRAVITY * blades as f64 * blade_mass * &tower.sag;
             let mut roll = DVector::zeros(n);
             roll.rows_mut(at, t)
                 .copy_from(&tower.apex.row(Apex::Roll as usize).transpose());

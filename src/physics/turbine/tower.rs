@@ -141,7 +141,14 @@ pub struct Tower {
     pub damping: DMatrix<f64>,
     /// The apex's motion per coordinate (5 × 4, rows in [`Apex`] order).
     pub apex: DMatrix<f64>,
+    /// `∫ φ'ᵢ φ'ⱼ dz`: the stiffness a newton of weight on the tower top takes away (its
+    /// moment as the tower leans, ElastoDyn's gravity term); the rotor adds its blades'.
+    pub sag: DMatrix<f64>,
 }
+
+/// Standard gravity (m/s²), as OpenFAST's input files give it: ElastoDyn's tower softens
+/// under the weight above each section.
+pub const GRAVITY: f64 = 9.80665;
 
 /// Gauss points per interval of the section table: exact for the mass integrand (linear
 /// density times two sixth-degree shapes).
@@ -154,8 +161,17 @@ impl Tower {
         let n = TOWER_COORDINATES;
         let mut own_mass = DMatrix::<f64>::zeros(n, n);
         let mut stiffness = DMatrix::<f64>::zeros(n, n);
+        let mut sag = DMatrix::<f64>::zeros(n, n);
+        let mut own_weight = DMatrix::<f64>::zeros(n, n);
         let rule = gauss_rule(GAUSS_POINTS);
-        for pair in inputs.sections.windows(2) {
+        // The tower's own mass above each station (kg).
+        let mut above = vec![0.0; inputs.sections.len()];
+        for i in (0..inputs.sections.len() - 1).rev() {
+            let (a, b) = (inputs.sections[i], inputs.sections[i + 1]);
+            let dh = b.height_fraction - a.height_fraction;
+            above[i] = above[i + 1] + l * dh * 0.5 * (a.mass_density + b.mass_density);
+        }
+        for (pair, &above_b) in inputs.sections.windows(2).zip(&above[1..]) {
             let (a, b) = (pair[0], pair[1]);
             let dh = b.height_fraction - a.height_fraction;
             for (s, w) in rule.0.iter().zip(&rule.1) {
@@ -170,6 +186,9 @@ impl Tower {
                 ];
                 let phi = inputs.shapes.map(|c| value(&c, h));
                 let curvature = inputs.shapes.map(|c| curvature(&c, h));
+                let slopes = inputs.shapes.map(|c| slope(&c, h));
+                let mass_above =
+                    above_b + l * (b.height_fraction - h) * 0.5 * (mu + b.mass_density);
                 for i in 0..n {
                     for j in 0..n {
                         let same_plane =
@@ -178,6 +197,9 @@ impl Tower {
                             continue;
                         }
                         own_mass[(i, j)] += weight * l * mu * phi[i] * phi[j];
+                        let leaning = weight * slopes[i] * slopes[j] / l;
+                        sag[(i, j)] += leaning;
+                        own_weight[(i, j)] += GRAVITY * mass_above * leaning;
                         let e = ei[usize::from(!TowerMode::ALL[i].fore_aft())];
                         stiffness[(i, j)] += weight * e * curvature[i] * curvature[j] / l.powi(3);
                     }
@@ -189,6 +211,7 @@ impl Tower {
                 stiffness[(i, j)] *= (inputs.tuners[i] * inputs.tuners[j]).sqrt();
             }
         }
+        // ElastoDyn's damping reads each mode's frequency without gravity or the top masses.
         let mut damping = DMatrix::zeros(n, n);
         for j in 0..n {
             let omega = (stiffness[(j, j)] / own_mass[(j, j)]).sqrt();
@@ -196,6 +219,8 @@ impl Tower {
                 damping[(i, j)] = 2.0 * inputs.damping[j] * stiffness[(i, j)] / omega;
             }
         }
+        let top_mass = top.yaw_bearing_mass + top.nacelle_mass + top.hub_mass;
+        let stiffness = stiffness - own_weight - GRAVITY * top_mass * &sag;
         let top_motion = top_motion(inputs);
         let apex = at_offset(&top_motion, [top.overhang, 0.0, top.shaft_height]);
         let mut mass = own_mass;
@@ -215,6 +240,7 @@ impl Tower {
             stiffness,
             damping,
             apex,
+            sag,
         })
     }
 }
