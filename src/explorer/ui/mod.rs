@@ -126,19 +126,29 @@ pub fn sig(v: f64, digits: usize) -> String {
     }
 }
 
-/// A short pole label: `flap 2` → `F2`, `torsion 1` → `T1`.
+/// A short pole label: `flap 2` → `F2`, `torsion 1` → `T1`; a rotor's `BW edge 1` → `BE1`,
+/// `collective flap 2` → `CF2`, a tower's `tower SS 1` → `SS1`.
 pub fn short_label(label: &str) -> String {
-    let initial = label
-        .chars()
-        .next()
-        .map(|c| c.to_ascii_uppercase())
-        .unwrap_or('?');
-    let number = label
-        .split_whitespace()
+    let words: Vec<&str> = label.split_whitespace().collect();
+    let initial = |w: &str| {
+        w.chars()
+            .next()
+            .map(|c| c.to_ascii_uppercase())
+            .unwrap_or('?')
+    };
+    let number = words
         .last()
         .filter(|w| w.chars().all(|c| c.is_ascii_digit()))
+        .copied()
         .unwrap_or("");
-    format!("{initial}{number}")
+    match words.as_slice() {
+        ["tower", plane, ..] => format!("{plane}{number}"),
+        [whirl @ ("BW" | "FW" | "collective"), family, ..] => {
+            format!("{}{}{number}", initial(whirl), initial(family))
+        }
+        [first, ..] => format!("{}{number}", initial(first)),
+        [] => "?".to_string(),
+    }
 }
 
 /// Centre a `w × h` rectangle in `area` (clipped to it).
@@ -177,5 +187,10 @@ mod tests {
         assert_eq!(short_label("flap 2"), "F2");
         assert_eq!(short_label("torsion 1"), "T1");
         assert_eq!(short_label("aero lag 3"), "A3");
+        assert_eq!(short_label("BW edge 1"), "BE1");
+        assert_eq!(short_label("collective flap 2"), "CF2");
+        assert_eq!(short_label("tower SS 1"), "SS1");
+        assert_eq!(short_label("drivetrain 1"), "D1");
+        assert_eq!(short_label("rotor rotation"), "R");
     }
 }
