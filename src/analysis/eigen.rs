@@ -109,6 +109,7 @@ pub fn analyse_system(ls: &LinearSystem) -> Result<Stability> {
                 // damped as its true |λ| says.
                 damping_ratio: Mode::root(lambda.re, lambda.im).damping_ratio,
                 shares: structure.shares(&q),
+                components: structure.components(&q),
                 structural_share: share,
                 shape: normalised_shape(&q),
                 left_shape: normalised_shape(&left),
@@ -128,6 +129,11 @@ pub fn analyse_system(ls: &LinearSystem) -> Result<Stability> {
         // A real root within round-off of zero (a free rotor's azimuth, alone or with the
         // aerodynamic torque's decay) neither decays nor grows.
         m.damping_ratio = 0.0;
+    }
+    for m in named.iter_mut() {
+        m.rotating_hz = structure
+            .rotating_shift_hz(&m.label)
+            .map(|shift| m.frequency_hz + shift);
     }
     named.sort_by(|a, b| b.re.total_cmp(&a.re));
     lags.sort_by(|a, b| b.re.total_cmp(&a.re));

@@ -2,7 +2,7 @@
 //! frequency, damping ratio, name, family, motion shares and structural eigenvector coordinates
 //! ([`crate::analysis::eigen`] computes the roots, [`crate::analysis::identify`] names them).
 
-use crate::physics::structure::{Family, Shares};
+use crate::physics::structure::{Components, Family, Shares};
 use nalgebra::Complex;
 use serde::Serialize;
 
@@ -24,6 +24,14 @@ pub struct Mode {
     pub family: Option<Family>,
     /// Kinetic-energy shares of flap, edge and twist in the root's motion (docs/model.md §6.2).
     pub shares: Shares,
+    /// A rotor's or a turbine's root by component: blades (flap, edge, twist), drivetrain,
+    /// tower (none for one blade).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub components: Option<Components>,
+    /// A rotor's blade-mode root in its blades' rotating frame (Hz): `f + 1P` for a backward
+    /// whirl, `f − 1P` forward, `f` collective (none for one blade, the drivetrain, the tower).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rotating_hz: Option<f64>,
     /// Frequency (Hz) of the in-vacuo natural mode the root is named after.
     pub in_vacuo_hz: Option<f64>,
     /// An overdamped mode (two real roots): σ of its more stable root; `re` is the other.
@@ -56,6 +64,8 @@ impl Mode {
             label: String::new(),
             family: None,
             shares: Shares::from_energies(0.0, 0.0, 0.0),
+            components: None,
+            rotating_hz: None,
             in_vacuo_hz: None,
             second_re: None,
             structural_share: 1.0,

@@ -309,6 +309,69 @@ fn the_commands_name_the_turbines_modes() {
     );
 }
 
+/// `eigen --json` gives each root of the turbine its kinetic energy by component, summing to 1;
+/// the tower's modes are mostly the tower's, the whirling edge modes the blades' edge; one
+/// blade has no components.
+#[test]
+fn the_json_gives_each_root_its_share_by_component() {
+    let json = |model: &str| {
+        let out = flutterscope_ok(&[
+            "eigen",
+            "--preset",
+            "nrel5mw",
+            "--set",
+            &format!("turbine.model={model}"),
+            "--json",
+        ]);
+        serde_json::from_slice::<serde_json::Value>(&out.stdout).unwrap()
+    };
+    let turbine = json("turbine");
+    let roots = turbine["eigenvalues"].as_array().unwrap();
+    let part = |label: &str, component: &str| {
+        let root = roots.iter().find(|r| r["label"] == label).unwrap();
+        let c = &root["components"];
+        let total: f64 = [
+            "blade_flap",
+            "blade_edge",
+            "blade_twist",
+            "drivetrain",
+            "tower",
+        ]
+        .iter()
+        .map(|k| c[k].as_f64().unwrap())
+        .sum();
+        assert!((total - 1.0).abs() < 1e-12, "{label}: {c}");
+        c[component].as_f64().unwrap()
+    };
+    for label in ["tower FA 1", "tower SS 1"] {
+        assert!(part(label, "tower") > 0.9, "{label}");
+    }
+    for label in ["BW edge 1", "FW edge 1"] {
+        assert!(part(label, "blade_edge") > 0.9, "{label}");
+    }
+    assert!(part("BW flap 1", "blade_flap") > 0.5);
+    // Each blade-mode root's frequency in the blades' frame: ground ± 1P.
+    let hz = |label: &str, key: &str| {
+        roots.iter().find(|r| r["label"] == label).unwrap()[key]
+            .as_f64()
+            .unwrap_or(f64::NAN)
+    };
+    let one_p = 12.1 / 60.0;
+    assert!(
+        (hz("BW edge 1", "rotating_hz") - hz("BW edge 1", "frequency_hz") - one_p).abs() < 1e-12
+    );
+    assert!(
+        (hz("FW edge 1", "frequency_hz") - hz("FW edge 1", "rotating_hz") - one_p).abs() < 1e-12
+    );
+    assert_eq!(
+        hz("collective flap 1", "rotating_hz"),
+        hz("collective flap 1", "frequency_hz")
+    );
+    assert!(hz("tower FA 1", "rotating_hz").is_nan());
+    let blade = json("blade");
+    assert!(blade["eigenvalues"][0].get("components").is_none());
+}
+
 #[test]
 fn a_turbine_without_its_files_is_refused_with_the_reason() {
     let err = |overrides: &[String]| Preset::load("nrel5mw", overrides).unwrap_err().to_string();

@@ -186,6 +186,34 @@ pub fn kinetic_energy(m: &DMatrix<f64>, q: &[Complex<f64>]) -> f64 {
     sum
 }
 
+/// A rotor's or a turbine's motion by component (docs/model.md §13.4): the kinetic energy's
+/// shares in the blades' flap, edge and twist (their motion relative to the hub), the
+/// drivetrain's angles and the tower's modes, summing to 1.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Components {
+    pub blade_flap: f64,
+    pub blade_edge: f64,
+    pub blade_twist: f64,
+    pub drivetrain: f64,
+    pub tower: f64,
+}
+
+impl Components {
+    /// Normalised from the five (non-negative) kinetic energies, in the fields' order.
+    pub fn from_energies(energies: [f64; 5]) -> Components {
+        let e = energies.map(|v| v.max(0.0));
+        let total: f64 = e.iter().sum();
+        let s = e.map(|v| if total > 0.0 { v / total } else { 0.0 });
+        Components {
+            blade_flap: s[0],
+            blade_edge: s[1],
+            blade_twist: s[2],
+            drivetrain: s[3],
+            tower: s[4],
+        }
+    }
+}
+
 /// Rows mapping the structural coordinates `q` to the motion of the reference axis at one span
 /// position: `φ = twist·q` (rad), `u = flap·q`, `v = edge·q` (m).
 #[derive(Debug, Clone, PartialEq)]
@@ -268,6 +296,16 @@ pub trait Structure: Send + Sync {
     /// rotor in multi-blade coordinates, §13.5); none: the mass-weighted projection on the
     /// natural modes' shapes.
     fn slot_content(&self, _q: &[Complex<f64>]) -> Option<Vec<f64>> {
+        None
+    }
+    /// How far a root named `label` is seen shifted in its blades' rotating frame (Hz, added to
+    /// its ground-frame frequency): `+1P` for a backward whirl, `−1P` forward, 0 collective;
+    /// none where the name is not a blade mode's in the ground frame.
+    fn rotating_shift_hz(&self, _label: &str) -> Option<f64> {
+        None
+    }
+    /// A motion's shares by component, for a structure made of several (a rotor, a turbine).
+    fn components(&self, _q: &[Complex<f64>]) -> Option<Components> {
         None
     }
 }

@@ -18,7 +18,7 @@ use crate::numeric::mbc::{t1, MultiBlade, Rotating};
 use crate::numeric::{decompose, hungarian};
 use crate::physics::section::SectionProps;
 use crate::physics::structure::{
-    kinetic_energy, Family, MotionRows, NaturalMode, Shares, Structure,
+    kinetic_energy, Components, Family, MotionRows, NaturalMode, Shares, Structure,
 };
 use nalgebra::{Complex, DMatrix, DVector};
 use std::f64::consts::TAU;
@@ -86,6 +86,8 @@ pub struct GroundRotor {
     tower: Option<(usize, DMatrix<f64>)>,
     slots: Vec<Slot>,
     natural: Vec<NaturalMode>,
+    /// Ω (rad/s).
+    omega: f64,
 }
 
 impl GroundRotor {
@@ -138,6 +140,7 @@ impl GroundRotor {
             tower,
             slots,
             natural: Vec::new(),
+            omega,
         };
         let mut frequencies = ground.in_vacuo_frequencies(rotor, omega)?;
         // Ascending in frequency, as a blade's natural modes are.
@@ -380,6 +383,37 @@ impl Structure for GroundRotor {
     }
     fn slot_content(&self, q: &[Complex<f64>]) -> Option<Vec<f64>> {
         Some(self.content(q))
+    }
+    /// `BW …` at `f + 1P`, `FW …` at `f − 1P`, `collective …` at `f` (a backward whirl of a
+    /// blade mode above 1P; below it the ground-frame root would be `1P − f`).
+    fn rotating_shift_hz(&self, label: &str) -> Option<f64> {
+        let one_p = self.omega / TAU;
+        match label.split_whitespace().next()? {
+            "BW" => Some(one_p),
+            "FW" => Some(-one_p),
+            "collective" => Some(0.0),
+            _ => None,
+        }
+    }
+    /// The blades' own motion averaged over the azimuth as in [`GroundRotor::shares`], the
+    /// drivetrain's and the tower's coordinates on their own mass.
+    fn components(&self, q: &[Complex<f64>]) -> Option<Components> {
+        let k = self.per_blade;
+        let mut e = [0.0; 5];
+        for (acc, m) in e.iter_mut().zip(&self.family_energy) {
+            *acc = 3.0 * kinetic_energy(m, &q[..k])
+                + 1.5 * (kinetic_energy(m, &q[k..2 * k]) + kinetic_energy(m, &q[2 * k..3 * k]));
+        }
+        let block = |at: usize, len: usize| {
+            let m = self.mass.view((at, at), (len, len)).into_owned();
+            kinetic_energy(&m, &q[at..at + len])
+        };
+        let tower_at = self.tower.as_ref().map_or(self.mass.nrows(), |(at, _)| *at);
+        e[3] = block(3 * k, tower_at - 3 * k);
+        if self.tower.is_some() {
+            e[4] = block(tower_at, TOWER_COORDINATES);
+        }
+        Some(Components::from_energies(e))
     }
     /// The azimuth of a drivetrain free to turn.
     fn rigid_body_roots(&self) -> usize {
