@@ -72,6 +72,15 @@ fn key_to_solved_frame_160x48_iea15mw(bencher: divan::Bencher, case: &str) {
     key_to_frame(bencher, state, row);
 }
 
+/// The same on the whole IEA 15MW turbine (`turbine.model = "turbine"`: 3 blades × 12 modes,
+/// the drivetrain and the tower in the ground frame), theodorsen (target < 100 ms).
+#[divan::bench(args = ["rotor speed", "wind speed"], sample_count = 10)]
+fn key_to_solved_frame_160x48_iea15mw_turbine(bencher: divan::Bencher, row: &str) {
+    let p = Preset::load("iea15mw", &["turbine.model=turbine".to_string()]).expect("iea15mw loads");
+    let state = settled_state("iea15mw", p, &Physics, ViewKind::Main, MarkerKind::Braille);
+    key_to_frame(bencher, state, row);
+}
+
 /// One key press on parameter row `row`, its solve (what the worker's solver thread runs) and the
 /// 160×48 frame drawn from the result.
 fn key_to_frame(bencher: divan::Bencher, state: AppState, row: &str) {

@@ -114,3 +114,40 @@ fn campbell_along_the_schedule_hgm(bencher: divan::Bencher) {
     let grid: Vec<f64> = (3..=25).map(f64::from).collect();
     bencher.bench(|| track(divan::black_box(&p), "operating.wind_speed", &grid).unwrap());
 }
+
+fn turbine() -> ValidPreset {
+    Preset::load("iea15mw", &["turbine.model=turbine".to_string()]).unwrap()
+}
+
+/// The whole turbine (3 blades × 12 modes, the free drivetrain, four tower modes, Theodorsen at
+/// 30 stations per blade) at one operating point: equilibrium, linearisation, multi-blade
+/// transform, eigen-analysis and names (target < 30 ms).
+#[divan::bench]
+fn stability_at_an_operating_point_turbine(bencher: divan::Bencher) {
+    let p = turbine();
+    bencher.bench(|| analyse(divan::black_box(&p)).unwrap());
+}
+
+/// Its ground-frame state matrix alone: the operating point, the rotor and tower built, the
+/// rotating-frame linearisation and the transform.
+#[divan::bench]
+fn ground_frame_system_turbine(bencher: divan::Bencher) {
+    let p = turbine();
+    bencher.bench(|| linear_system(divan::black_box(&p)).unwrap());
+}
+
+/// Its eigen-analysis alone, on the system built once.
+#[divan::bench]
+fn eigen_analysis_of_the_operating_point_turbine(bencher: divan::Bencher) {
+    let ls = linear_system(&turbine()).unwrap();
+    bencher.bench(|| analyse_system(divan::black_box(&ls)).unwrap());
+}
+
+/// The ground-frame Campbell diagram of the whole turbine along the schedule, 3–25 m/s
+/// (target < 1 s on two cores).
+#[divan::bench(sample_count = 3)]
+fn campbell_along_the_schedule_turbine(bencher: divan::Bencher) {
+    let p = turbine();
+    let grid: Vec<f64> = (3..=25).map(f64::from).collect();
+    bencher.bench(|| track(divan::black_box(&p), "operating.wind_speed", &grid).unwrap());
+}
