@@ -133,13 +133,30 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
     frame.render_widget(table, area);
 }
 
-/// A rotor's long names shortened to fit `width` (`collective flap 1` → `coll flap 1`), so the
-/// mode's number stays in view; any other name as it is.
+/// A rotor's or a turbine's long names shortened to fit `width` (`collective flap 1` →
+/// `coll flap 1`, `tower SS 2` → `twr SS 2`), and cut before the mode's number rather than
+/// through it, so that two modes never read alike; any other name as it is.
 fn fitted(label: &str, width: usize) -> String {
-    if label.chars().count() <= width {
+    let fits = |s: &str| s.chars().count() <= width;
+    if fits(label) {
         return label.to_string();
     }
-    label.replacen("collective ", "coll ", 1)
+    let short = label
+        .replacen("collective ", "coll ", 1)
+        .replacen("tower ", "twr ", 1)
+        .replacen("drivetrain ", "drive ", 1)
+        .replacen("rotor rotation", "rotation", 1);
+    // A blade's own names (`torsion 1`) are left whole: the table shows them past `width`.
+    if fits(&short) || short == label {
+        return short;
+    }
+    match short.rsplit_once(' ') {
+        Some((head, number)) if number.chars().all(|c| c.is_ascii_digit()) => {
+            let keep = width.saturating_sub(number.len() + 1);
+            format!("{} {number}", head.chars().take(keep).collect::<String>())
+        }
+        _ => short,
+    }
 }
 
 /// ζ with 3 significant digits; in a narrow pane, where the column shows 5 characters and
@@ -153,6 +170,17 @@ fn zeta_text(zeta: f64, narrow: bool) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn long_names_keep_their_number() {
+        assert_eq!(fitted("collective flap 1", 11), "coll flap 1");
+        assert_eq!(fitted("tower SS 2", 9), "twr SS 2");
+        assert_eq!(fitted("collective torsion 2", 9), "coll to 2");
+        assert_eq!(fitted("drivetrain 1", 9), "drive 1");
+        assert_eq!(fitted("rotor rotation", 9), "rotation");
+        assert_eq!(fitted("flap 1", 9), "flap 1");
+        assert_eq!(fitted("torsion 1", 7), "torsion 1");
+    }
 
     #[test]
     fn trend_arrows() {
