@@ -14,7 +14,9 @@
 //!    state dimensions. The roots that hold them are those with the largest structural
 //!    participation (a complex pair fills two dimensions, a real root one); the rest are
 //!    aerodynamic. Counting instead of a fixed threshold keeps the number of structural roots equal
-//!    to what the structure can have, so none is left without a mode to be named after.
+//!    to what the structure can have, so none is left without a mode to be named after. A rotor
+//!    in multi-blade coordinates, whose slots name its roots, decides by the assignment instead
+//!    ([`candidates`]; docs/model.md §13.4).
 //! 2. **Names.** A root's family is the family of the largest share of its motion's kinetic energy
 //!    (flap, edge, twist; [`Structure::shares`], the measure that names the natural modes too).
 //!    Roots are assigned to natural modes one-to-one (Kuhn–Munkres) maximising the summed modal
@@ -46,17 +48,29 @@ pub struct Identified {
 /// Split `roots` (each with its structural share and shape) into named structural modes and
 /// aerodynamic roots. `nq` is the number of structural coordinates.
 pub fn identify(roots: Vec<Mode>, nq: usize, structure: &dyn Structure) -> Result<Identified> {
-    let (structural, mut aero) = split_structural(roots, nq);
+    let slots = |r: &Mode| structure.slot_content(&r.shape, Complex::new(r.re, r.im));
+    let by_slots = roots.first().is_some_and(|r| slots(r).is_some());
+    let (structural, mut aero) = if by_slots {
+        candidates(roots)
+    } else {
+        split_structural(roots, nq)
+    };
     if structural.is_empty() {
         return Ok(Identified { structural, aero });
     }
     let natural = structure.natural_modes()?;
     let content = structural
         .iter()
-        .map(|r| structure.slot_content(&r.shape))
+        .map(slots)
         .collect::<Option<Vec<_>>>()
         .unwrap_or_else(|| modal_content(&structural, &natural, structure));
-    let (groups, left) = assign(&structural, &content, &natural);
+    // Where the slots name the roots, a root's claim on a slot is its content there weighted
+    // by how structural it is (rule 1 by assignment, below).
+    let weight: Vec<f64> = structural
+        .iter()
+        .map(|r| if by_slots { r.structural_share } else { 1.0 })
+        .collect();
+    let (groups, left) = assign(&structural, &content, &weight, by_slots, &natural);
     let mut named: Vec<Mode> = Vec::new();
     for (k, group) in groups {
         let mut modes: Vec<Mode> = group.iter().map(|&i| structural[i].clone()).collect();
@@ -105,6 +119,26 @@ fn split_structural(roots: Vec<Mode>, nq: usize) -> (Vec<Mode>, Vec<Mode>) {
         }
     }
     (structural, aero)
+}
+
+/// Below this structural share a root is an aerodynamic lag wherever the slots name the
+/// roots: no structural name is worth its while.
+const CANDIDATE_SHARE: f64 = 0.05;
+
+/// Rule 1 where the structure names its roots by slots of its own (a rotor in multi-blade
+/// coordinates, [`Structure::slot_content`]): every root holding some structural motion is a
+/// candidate, and the assignment of rule 2, weighing each root's content in a slot by its
+/// structural share, decides which are structural (those it names). Counting the largest
+/// shares first, as for one blade, does not carry over: one blade root appears on a rotor as
+/// its collective image and its two whirls, the collective coupled with the drivetrain, and a
+/// heavily damped root's images then take dimensions the images of an overdamped mode need,
+/// whose names pass down the line (the IEA 15MW above 13 m/s, where flap 1 is overdamped).
+/// Each slot still takes one oscillating root or two real ones, so the named roots fill the
+/// structural dimensions as rule 1's count does.
+fn candidates(roots: Vec<Mode>) -> (Vec<Mode>, Vec<Mode>) {
+    roots
+        .into_iter()
+        .partition(|r| r.structural_share >= CANDIDATE_SHARE)
 }
 
 /// Modal energy shares `|η_k|²/Σ|η|²` of each root on the natural modes, `η = Φ̂ᵀ M q` with `Φ̂`
@@ -164,8 +198,16 @@ const UNNAMED: f64 = FAMILY_PENALTY + 1.0;
 fn assign(
     roots: &[Mode],
     content: &[Vec<f64>],
+    weight: &[f64],
+    by_slots: bool,
     natural: &[NaturalMode],
 ) -> (Vec<(usize, Vec<usize>)>, Vec<usize>) {
+    // Where the slots name the roots the candidates outnumber the names, and a candidate left
+    // unnamed is an aerodynamic lag, a loss of its structural share; for one blade every
+    // structural root is owed a name.
+    let leave_share = |i: usize| weight[i];
+    let leave: Option<&dyn Fn(usize) -> f64> = if by_slots { Some(&leave_share) } else { None };
+    let unnamed = |i: usize| leave.map_or(UNNAMED, |l| l(i));
     let rigid = |k: usize| natural[k].frequency_hz == 0.0;
     let cost = |i: usize, k: usize| -> f64 {
         // A rigid body (a free rotor's speed) takes only a root that is mostly its motion:
@@ -173,12 +215,7 @@ fn assign(
         if rigid(k) && content[i][k] < 0.5 {
             return MISFIT;
         }
-        let penalty = if roots[i].shares.family() == natural[k].family {
-            0.0
-        } else {
-            FAMILY_PENALTY
-        };
-        penalty - content[i][k]
+        penalty(&roots[i], &natural[k], by_slots) - weight[i] * content[i][k]
     };
     let oscillating: Vec<usize> = (0..roots.len()).filter(|&i| roots[i].im > 0.0).collect();
     let real: Vec<usize> = (0..roots.len()).filter(|&i| roots[i].im == 0.0).collect();
@@ -188,10 +225,10 @@ fn assign(
             .iter()
             .flat_map(|(k, group)| group.iter().map(move |&i| cost(i, *k)))
             .sum();
-        named + UNNAMED * left.len() as f64
+        named + left.iter().map(|&i| unnamed(i)).sum::<f64>()
     };
-    let (mut named, mut left, free) = name_oscillating(&oscillating, &modes, &cost);
-    let (pairs, unpaired) = name_real(&real, &free, &cost, &rigid);
+    let (mut named, mut left, free) = name_oscillating(&oscillating, &modes, &cost, leave);
+    let (pairs, unpaired) = name_real(&real, &free, &cost, &rigid, leave);
     named.extend(pairs.iter().cloned());
     left.extend(unpaired.iter().copied());
     let oscillating_first = (named, left);
@@ -205,10 +242,10 @@ fn assign(
             cost(i, k)
         }
     };
-    let (mut named, mut left, free) = name_units(&units, &modes, &pair_cost);
-    let (single, unnamed, _) = name_oscillating(&oscillating, &free, &cost);
+    let (mut named, mut left, free) = name_units(&units, &modes, &pair_cost, leave);
+    let (single, unnamed_roots, _) = name_oscillating(&oscillating, &free, &cost, leave);
     named.extend(single);
-    left.extend(unnamed);
+    left.extend(unnamed_roots);
     left.extend(unpaired);
     let pairs_first = (named, left);
     if total(&pairs_first) < total(&oscillating_first) - 1e-9 {
@@ -218,6 +255,26 @@ fn assign(
     }
 }
 
+/// What naming `root` after natural mode `n` of another family costs: [`FAMILY_PENALTY`] if
+/// the root's family is neither the one the name says nor the one the mode's motion in vacuo
+/// has (a rotor's `collective flap 6`, its blades' flap 6 swinging the hub, can be mostly
+/// edge). `graded` (a rotor's slots): the penalty times how much more of the root's energy
+/// lies in its own family than in the name's, so that a root split evenly between flap and
+/// edge (a large blade's edge 2 in the wind) fits either family's name as well.
+fn penalty(root: &Mode, n: &NaturalMode, graded: bool) -> f64 {
+    let family = root.shares.family();
+    if family == n.family || family == n.shares.family() {
+        return 0.0;
+    }
+    if !graded {
+        return FAMILY_PENALTY;
+    }
+    let s = root.shares.array();
+    let own = s[family.index()];
+    let named = s[n.family.index()].max(s[n.shares.family().index()]);
+    FAMILY_PENALTY * (own - named).max(0.0)
+}
+
 /// Cost of a name a root cannot take (an overdamped pair for a rigid mode's one real root):
 /// far above any other, so it is taken only when nothing else is left.
 const MISFIT: f64 = 1e3;
@@ -225,25 +282,33 @@ const MISFIT: f64 = 1e3;
 /// Named groups, roots left unnamed, and the natural modes still free.
 type Naming = (Vec<(usize, Vec<usize>)>, Vec<usize>, Vec<usize>);
 
-/// Oscillating roots, one natural mode each, among `modes`.
+/// Oscillating roots, one natural mode each, among `modes` ([`one_to_one`]'s `leave`).
 fn name_oscillating(
     roots: &[usize],
     modes: &[usize],
     cost: &dyn Fn(usize, usize) -> f64,
+    leave: Option<&dyn Fn(usize) -> f64>,
 ) -> Naming {
     let units: Vec<Vec<usize>> = roots.iter().map(|&i| vec![i]).collect();
-    name_units(&units, modes, cost)
+    name_units(&units, modes, cost, leave)
 }
 
 /// Groups of roots (an oscillating root, an overdamped pair), one natural mode each, among
 /// `modes`, at the summed cost of their roots.
-fn name_units(units: &[Vec<usize>], modes: &[usize], cost: &dyn Fn(usize, usize) -> f64) -> Naming {
+fn name_units(
+    units: &[Vec<usize>],
+    modes: &[usize],
+    cost: &dyn Fn(usize, usize) -> f64,
+    leave: Option<&dyn Fn(usize) -> f64>,
+) -> Naming {
     let rows: Vec<usize> = (0..units.len()).collect();
     let unit_cost = |u: usize, k: usize| units[u].iter().map(|&i| cost(i, k)).sum::<f64>();
+    let unit_leave = |u: usize| leave.map_or(0.0, |l| units[u].iter().map(|&i| l(i)).sum());
+    let leave: Option<&dyn Fn(usize) -> f64> = leave.map(|_| &unit_leave as &dyn Fn(usize) -> f64);
     let mut named = Vec::new();
     let mut left = Vec::new();
     let mut free = modes.to_vec();
-    for (&u, k) in rows.iter().zip(one_to_one(&rows, modes, &unit_cost)) {
+    for (&u, k) in rows.iter().zip(one_to_one(&rows, modes, &unit_cost, leave)) {
         match k {
             Some(k) => {
                 named.push((k, units[u].clone()));
@@ -263,6 +328,7 @@ fn name_real(
     modes: &[usize],
     cost: &dyn Fn(usize, usize) -> f64,
     rigid: &dyn Fn(usize) -> bool,
+    leave: Option<&dyn Fn(usize) -> f64>,
 ) -> (Vec<(usize, Vec<usize>)>, Vec<usize>) {
     let slots: Vec<usize> = modes
         .iter()
@@ -270,7 +336,7 @@ fn name_real(
         .collect();
     let mut groups: Vec<(usize, Vec<usize>)> = Vec::new();
     let mut left = Vec::new();
-    for (&i, k) in roots.iter().zip(one_to_one(roots, &slots, cost)) {
+    for (&i, k) in roots.iter().zip(one_to_one(roots, &slots, cost, leave)) {
         match k {
             Some(k) => match groups.iter_mut().find(|(m, _)| *m == k) {
                 Some((_, r)) => r.push(i),
@@ -282,15 +348,22 @@ fn name_real(
     (groups, left)
 }
 
-/// For each row, the column it is assigned to (minimum total `cost`), or none when there are
-/// more rows than columns.
+/// For each row, the column it is assigned to (minimum total `cost`), or none. Without `leave`
+/// as many rows as there are columns are assigned, whatever it costs; with it, row `i` may
+/// stay unassigned at cost `leave(i)` and a column empty at none (a name no candidate fits
+/// stays free).
 fn one_to_one(
     rows: &[usize],
     columns: &[usize],
     cost: &dyn Fn(usize, usize) -> f64,
+    leave: Option<&dyn Fn(usize) -> f64>,
 ) -> Vec<Option<usize>> {
-    let size = rows.len().max(columns.len());
-    if size == 0 {
+    let (n, m) = (rows.len(), columns.len());
+    let size = match leave {
+        None => n.max(m),
+        Some(_) => n + m,
+    };
+    if n == 0 {
         return Vec::new();
     }
     let matrix: Vec<Vec<f64>> = (0..size)
@@ -298,15 +371,14 @@ fn one_to_one(
             (0..size)
                 .map(|b| match (rows.get(a), columns.get(b)) {
                     (Some(&i), Some(&k)) => cost(i, k),
+                    (Some(&i), None) => leave.map_or(0.0, |l| l(i)),
                     _ => 0.0,
                 })
                 .collect()
         })
         .collect();
     let assigned = hungarian(&matrix);
-    (0..rows.len())
-        .map(|a| columns.get(assigned[a]).copied())
-        .collect()
+    (0..n).map(|a| columns.get(assigned[a]).copied()).collect()
 }
 
 /// One mode from a candidate's roots: the root itself, or for an overdamped pair the less stable

@@ -101,13 +101,37 @@ pub fn match_modes(previous: &[Mode], next: &[Mode]) -> Matching {
 /// Whether root `i`'s match swaps frequency order with another matched root: a crossing within
 /// the step, which a veering narrower than the step looks like too (the shapes swap over the
 /// veering, so a coarse step matches them across it); only a finer step tells the two apart.
+///
+/// A rotor's roots in the ground frame cross only where they can veer: two roots of different
+/// whirls (backward, forward, collective: [`whirl`]) are two blade roots 1P or 2P apart in the
+/// blades' own frame, far from the near-resonance a veering needs, so their lines (which
+/// cross everywhere on a Campbell diagram) are crossings, not refined.
 fn crosses(previous: &[Mode], next: &[Mode], partner: &[Option<usize>], i: usize) -> bool {
     let Some(j) = partner[i] else { return false };
     partner.iter().enumerate().any(|(k, p)| {
         p.is_some_and(|l| {
-            k != i && (previous[i].im - previous[k].im) * (next[j].im - next[l].im) < 0.0
+            k != i
+                && may_veer(&previous[i], &previous[k])
+                && (previous[i].im - previous[k].im) * (next[j].im - next[l].im) < 0.0
         })
     })
+}
+
+/// The whirl a rotor's root is named with (`BW`, `FW`, `collective`), none for any other
+/// name (one blade's, the tower's, the drivetrain's).
+fn whirl(label: &str) -> Option<&str> {
+    label
+        .split_whitespace()
+        .next()
+        .filter(|w| matches!(*w, "BW" | "FW" | "collective"))
+}
+
+/// Whether two roots could veer: not a rotor's roots of two different whirls.
+fn may_veer(a: &Mode, b: &Mode) -> bool {
+    match (whirl(&a.label), whirl(&b.label)) {
+        (Some(x), Some(y)) => x == y,
+        _ => true,
+    }
 }
 
 /// The roots of one solved point along the parameter.
@@ -256,6 +280,28 @@ mod tests {
         assert!((mac(&a, &b) - 1.0).abs() < 1e-14);
         let c = [Complex::new(-0.5, 0.0), Complex::new(1.0, 0.0)];
         assert!(mac(&a, &c).abs() < 1e-14);
+    }
+
+    /// Two lines of a rotor's Campbell diagram crossing: of different whirls they are a
+    /// crossing, matched without refinement; of one whirl (or one blade's) they could be a
+    /// veering narrower than the step, and the match is left to refinement.
+    #[test]
+    fn only_roots_of_one_whirl_can_veer() {
+        let cross = |a: &str, b: &str| {
+            let before = [mode(a, 1.0, &[1.0, 0.0]), mode(b, 2.0, &[0.0, 1.0])];
+            let after = [mode(a, 2.0, &[1.0, 0.0]), mode(b, 1.0, &[0.0, 1.0])];
+            match_modes(&before, &after)
+        };
+        let m = cross("BW edge 2", "FW flap 3");
+        assert_eq!(m.partner, [Some(0), Some(1)]);
+        assert_eq!(m.ambiguous, [false, false]);
+        for (a, b) in [
+            ("BW edge 2", "BW flap 3"),
+            ("edge 2", "flap 3"),
+            ("tower FA 2", "FW flap 1"),
+        ] {
+            assert_eq!(cross(a, b).ambiguous, [true, true], "{a} and {b}");
+        }
     }
 
     #[test]

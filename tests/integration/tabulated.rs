@@ -169,7 +169,9 @@ fn a_tabulated_blade_in_the_system_has_its_modes_as_roots() {
 }
 
 /// The tip of a tabulated blade: a downwind (flap) kick moves the tip downwind, read through the
-/// system's tip rows at the reference axis.
+/// system's tip rows at the reference axis; every mode is turned so that its tip moves
+/// positively in its own family (a coordinate's sign must not flip between two operating
+/// points, or the tracking would not know the motion again).
 #[test]
 fn tip_rows_of_a_tabulated_blade_read_its_mode_shapes_at_the_tip() {
     let p = Preset::load("liu2017", &[]).unwrap();
@@ -183,11 +185,22 @@ fn tip_rows_of_a_tabulated_blade_read_its_mode_shapes_at_the_tip() {
         .geometry
         .reference_axis_at(blade.geometry.table.length())
         .unwrap();
-    for (k, m) in modes.iter().enumerate() {
+    for (k, (m, raw)) in structure.modes().iter().zip(&modes).enumerate() {
         let motion = map.motion(&m.shape);
         assert_eq!(tip.flap[k], motion.flap);
         assert_eq!(tip.twist[k], motion.twist);
         assert_eq!(tip.edge[k], motion.edge);
+        let own = match m.family() {
+            Family::Flap => motion.flap,
+            Family::Edge => motion.edge,
+            Family::Torsion => motion.twist,
+        };
+        assert!(own > 0.0, "mode {k}: its tip moves {own} in its own family");
+        // The eigensolver's mode, at most turned over.
+        let turned = (&m.shape - &raw.shape)
+            .norm()
+            .min((&m.shape + &raw.shape).norm());
+        assert!(turned <= 1e-12 * raw.shape.norm(), "mode {k} changed");
     }
     let natural = structure.natural_modes().unwrap();
     assert_eq!(natural[0].family, Family::Flap);

@@ -291,11 +291,11 @@ pub trait Structure: Send + Sync {
     fn rotor_coupling(&self) -> Option<RotorCoupling> {
         None
     }
-    /// Each root's content in the named slots of [`Structure::natural_modes`], in their order
-    /// (shares summing to 1), where the structure names its roots by a measure of its own (a
-    /// rotor in multi-blade coordinates, §13.5); none: the mass-weighted projection on the
-    /// natural modes' shapes.
-    fn slot_content(&self, _q: &[Complex<f64>]) -> Option<Vec<f64>> {
+    /// The content of a root (eigenvalue `lambda`, motion `q`) in the named slots of
+    /// [`Structure::natural_modes`], in their order (shares summing to 1), where the structure
+    /// names its roots by a measure of its own (a rotor in multi-blade coordinates, §13.5);
+    /// none: the mass-weighted projection on the natural modes' shapes.
+    fn slot_content(&self, _q: &[Complex<f64>], _lambda: Complex<f64>) -> Option<Vec<f64>> {
         None
     }
     /// How far a root named `label` is seen shifted in its blades' rotating frame (Hz, added to

@@ -30,6 +30,33 @@ pub struct TabulatedStructure {
     left_out: Option<Box<TabulatedStructure>>,
 }
 
+/// `modes` each turned so that the tip moves positively in the mode's own family (flap,
+/// edge or twist): an eigensolver's sign is arbitrary, and a coordinate whose sign flipped
+/// between two rotor speeds or pitches would make the same motion look unlike itself to the
+/// tracking's eigenvector correlation (a rotor's whirl modes, mixing several blade modes,
+/// lost their match between neighbouring wind speeds) and turn a kick's tip response over.
+fn signed(blade: &ModalBlade, mut modes: Vec<BladeMode>) -> Vec<BladeMode> {
+    let Ok(tip) = blade
+        .geometry
+        .reference_axis_at(blade.geometry.table.length())
+    else {
+        return modes;
+    };
+    for m in &mut modes {
+        let motion = tip.motion(&m.shape);
+        let own = match m.family() {
+            Family::Flap => motion.flap,
+            Family::Edge => motion.edge,
+            Family::Torsion => motion.twist,
+        };
+        if own < 0.0 {
+            m.shape.neg_mut();
+            m.coordinates.neg_mut();
+        }
+    }
+    modes
+}
+
 impl TabulatedStructure {
     /// The blade's `modes` (from [`ModalBlade::modes`] at rotor speed `rotor_speed`, rad/s), each
     /// damped by its own [`BladeMode::damping_ratio`].
@@ -41,6 +68,7 @@ impl TabulatedStructure {
         if modes.is_empty() {
             return Err(Error::numerical("tabulated blade: no modes retained"));
         }
+        let modes = signed(&blade, modes);
         let ratios: Vec<f64> = modes.iter().map(|m| m.damping_ratio).collect();
         let k = modes.len();
         let omega: Vec<f64> = modes.iter().map(|m| TAU * m.frequency_hz).collect();

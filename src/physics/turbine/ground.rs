@@ -46,6 +46,10 @@ impl Whirl {
     }
 }
 
+/// How close to 1P, against its decay rate, a root is taken for a non-oscillating blade
+/// root's image (its damping ratio in the blades' frame above 0.995).
+const UNDECIDED_WHIRL: f64 = 0.1;
+
 /// One slot a root can be named after.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Slot {
@@ -293,6 +297,33 @@ impl GroundRotor {
         crate::numeric::shares(self.slot_energies(q))
     }
 
+    /// [`GroundRotor::content`] of a root with eigenvalue `lambda`. A root at 1P decaying far
+    /// faster than it turns away from 1P is the image of a blade root that does not oscillate
+    /// in its own frame (an overdamped mode's decay): its ground-frame motion is a forward
+    /// whirl at `+1P` and, equally, a backward one at `−1P`, so each blade mode's whirl
+    /// energy is split between its two whirl slots, the backward one a thousandth ahead so
+    /// that of two such roots the one with the larger claim takes the backward name, every
+    /// time.
+    fn root_content(&self, q: &[Complex<f64>], lambda: Complex<f64>) -> Vec<f64> {
+        let mut e = self.slot_energies(q);
+        let away = lambda.im.abs() - self.omega;
+        if away.abs() <= UNDECIDED_WHIRL * lambda.re.abs() {
+            for mode in 0..self.per_blade {
+                let at = |whirl| {
+                    self.slots
+                        .iter()
+                        .position(|s| *s == Slot::Blade { mode, whirl })
+                };
+                if let (Some(b), Some(f)) = (at(Whirl::Backward), at(Whirl::Forward)) {
+                    let half = 0.5 * (e[b] + e[f]);
+                    e[b] = half * (1.0 + 1e-3);
+                    e[f] = half * (1.0 - 1e-3);
+                }
+            }
+        }
+        crate::numeric::shares(e)
+    }
+
     /// Blade 0's tip rows at zero azimuth over the ground coordinates (twist, flap).
     pub fn tip_rows(&self) -> [DVector<f64>; 2] {
         let r = self.motion_rows(self.length());
@@ -381,8 +412,8 @@ impl Structure for GroundRotor {
     fn span_points(&self) -> Vec<f64> {
         self.blade.span_points()
     }
-    fn slot_content(&self, q: &[Complex<f64>]) -> Option<Vec<f64>> {
-        Some(self.content(q))
+    fn slot_content(&self, q: &[Complex<f64>], lambda: Complex<f64>) -> Option<Vec<f64>> {
+        Some(self.root_content(q, lambda))
     }
     /// `BW …` at `f + 1P`, `FW …` at `f − 1P`, `collective …` at `f` (a backward whirl of a
     /// blade mode above 1P; below it the ground-frame root would be `1P − f`).
