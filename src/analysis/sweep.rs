@@ -143,8 +143,20 @@ struct TrackedPoint {
     /// the point's modes, if it has one there.
     index: Vec<Option<usize>>,
     /// Names (by index) that moved to another root branch over the step into this point, with
-    /// where (the step's midpoint).
+    /// where (the step's midpoint); complete once the doubts are settled ([`settle`]).
     switches: Vec<(usize, f64)>,
+    /// Names whose match over the step into this point is in doubt, to be followed through
+    /// re-solved midpoints.
+    doubts: Vec<Doubt>,
+}
+
+/// A name whose root at a point may not continue its root at the last point holding it.
+struct Doubt {
+    name: usize,
+    before: Arc<Held>,
+    /// The name's root at `before` and at the point in doubt.
+    from: usize,
+    to: usize,
 }
 
 /// Mode tracking along one line, fed its points in order.
@@ -167,12 +179,13 @@ struct LineTracker {
 impl LineTracker {
     /// Track the next point of the line: its value and its structural modes, or none where it
     /// could not be solved (no name is held there; the tracks cross it).
-    fn push(&mut self, value: f64, modes: Option<Vec<Mode>>, resolve: &Resolve) -> TrackedPoint {
+    fn push(&mut self, value: f64, modes: Option<Vec<Mode>>) -> TrackedPoint {
         let Some(modes) = modes else {
             return TrackedPoint {
                 held: None,
                 index: vec![None; self.names.len()],
                 switches: Vec::new(),
+                doubts: Vec::new(),
             };
         };
         let here = Arc::new(Held { value, modes });
@@ -187,7 +200,7 @@ impl LineTracker {
                 }
             }
         }
-        let switches = self.switches(&here, &index, resolve);
+        let (switches, doubts) = self.switches(&here, &index);
         for (k, j) in index.iter().enumerate() {
             if let Some(j) = *j {
                 self.last[k] = Some((Arc::clone(&here), j));
@@ -197,25 +210,27 @@ impl LineTracker {
             held: Some(here),
             index,
             switches,
+            doubts,
         }
     }
 
     /// The names whose root at `here` is not the branch continuation of their root at the last
-    /// point holding them. The matching of two points serves every name checked over that step;
-    /// only a name whose match is ambiguous is followed through re-solved midpoints.
-    fn switches(
-        &self,
-        here: &Held,
-        index: &[Option<usize>],
-        resolve: &Resolve,
-    ) -> Vec<(usize, f64)> {
+    /// point holding them, where the matching of the two points says so clearly, and the names
+    /// whose match is in doubt ([`settle`] follows those). The matching of two points serves
+    /// every name checked over that step.
+    fn switches(&self, here: &Held, index: &[Option<usize>]) -> (Vec<(usize, f64)>, Vec<Doubt>) {
         let mut matchings: Vec<(*const Held, Matching)> = Vec::new();
-        let mut doubtful: Vec<(usize, &Held, usize, usize)> = Vec::new();
+        let mut doubts = Vec::new();
         let mut switches = Vec::new();
         for (k, j) in index.iter().enumerate() {
             let (Some(j), Some((before, i))) = (*j, &self.last[k]) else {
                 continue;
             };
+            // A rigid body's root (a free rotor's rotation, coupled with the air's lag or not)
+            // is its one root at every point: no branch to follow.
+            if here.modes[j].in_vacuo_hz == Some(0.0) {
+                continue;
+            }
             let key = Arc::as_ptr(before);
             let m = match matchings.iter().position(|(p, _)| *p == key) {
                 Some(at) => &matchings[at].1,
@@ -225,41 +240,62 @@ impl LineTracker {
                 }
             };
             if m.ambiguous[*i] {
-                doubtful.push((k, before, *i, j));
+                doubts.push(Doubt {
+                    name: k,
+                    before: Arc::clone(before),
+                    from: *i,
+                    to: j,
+                });
             } else if m.partner[*i] != Some(j) {
                 switches.push((k, 0.5 * (before.value + here.value)));
             }
         }
-        if doubtful.is_empty() {
-            return switches;
-        }
-        // Names whose matches over the same step are in doubt share its midpoints: solve each
-        // once (a real blade's re-solve rebuilds its operating point), the names in parallel.
-        let solved: Mutex<Vec<(f64, Option<Vec<Mode>>)>> = Mutex::default();
-        let once = |value: f64| -> Option<Vec<Mode>> {
-            let known = solved
-                .lock()
-                .ok()
-                .and_then(|s| s.iter().find(|(v, _)| *v == value).map(|(_, m)| m.clone()));
-            known.unwrap_or_else(|| {
-                let modes = resolve(value);
-                if let Ok(mut s) = solved.lock() {
-                    s.push((value, modes.clone()));
-                }
-                modes
-            })
+        (switches, doubts)
+    }
+}
+
+/// Follow every doubtful match of `points` through re-solved midpoints, all of them at once
+/// on every core (the steps are independent), each midpoint solved once however many names
+/// and steps need it (a real blade's re-solve rebuilds its operating point; a turbine's costs
+/// tens of milliseconds), and add the switches found to their points.
+fn settle(points: &mut [TrackedPoint], resolve: &Resolve) {
+    type Solved = Arc<std::sync::OnceLock<Option<Vec<Mode>>>>;
+    let solved: Mutex<std::collections::HashMap<u64, Solved>> = Mutex::default();
+    let once = |value: f64| -> Option<Vec<Mode>> {
+        let cell = match solved.lock() {
+            Ok(mut s) => Arc::clone(s.entry(value.to_bits()).or_default()),
+            Err(_) => return resolve(value),
         };
-        let b = here.point();
-        let refined: Vec<(usize, f64)> = doubtful
-            .into_par_iter()
-            .filter(|&(_, before, i, j)| {
-                follow(&before.point(), i, &b, REFINEMENT_DEPTH, &once) != Some(j)
-            })
-            .map(|(k, before, _, _)| (k, 0.5 * (before.value + here.value)))
-            .collect();
-        switches.extend(refined);
-        switches.sort_by_key(|&(k, _)| k);
-        switches
+        cell.get_or_init(|| resolve(value)).clone()
+    };
+    let doubts: Vec<(usize, &Doubt, &Held)> = points
+        .iter()
+        .enumerate()
+        .flat_map(|(p, t)| {
+            t.held
+                .iter()
+                .flat_map(move |here| t.doubts.iter().map(move |d| (p, d, here.as_ref())))
+        })
+        .collect();
+    let found: Vec<(usize, usize, f64)> = doubts
+        .into_par_iter()
+        .filter(|(_, d, here)| {
+            follow(
+                &d.before.point(),
+                d.from,
+                &here.point(),
+                REFINEMENT_DEPTH,
+                &once,
+            ) != Some(d.to)
+        })
+        .map(|(p, d, here)| (p, d.name, 0.5 * (d.before.value + here.value)))
+        .collect();
+    for (p, name, at) in found {
+        points[p].switches.push((name, at));
+    }
+    for t in points.iter_mut() {
+        t.switches.sort_by_key(|&(k, _)| k);
+        t.doubts.clear();
     }
 }
 
@@ -274,9 +310,14 @@ fn tracked_with_gaps(
 ) -> TrackedSweep {
     let failed = failed_points(grid, &points);
     let mut tracker = LineTracker::default();
+    let mut tracked: Vec<TrackedPoint> = points
+        .into_iter()
+        .zip(grid)
+        .map(|(r, &value)| tracker.push(value, r.ok().map(|s| s.eigenvalues)))
+        .collect();
+    settle(&mut tracked, resolve);
     let mut modes: Vec<TrackedMode> = Vec::new();
-    for (k, (r, &value)) in points.into_iter().zip(grid).enumerate() {
-        let t = tracker.push(value, r.ok().map(|s| s.eigenvalues), resolve);
+    for (k, t) in tracked.into_iter().enumerate() {
         for (n, i) in t.index.iter().enumerate() {
             if n == modes.len() {
                 modes.push(TrackedMode {
@@ -486,39 +527,70 @@ pub fn grid_sweep(
         for received in chunks {
             let (at, points) = received?;
             let mut rows = Vec::new();
+            // The chunk's points by line (a line's doubts re-solve along its own key values),
+            // each point with its flat index and failure, and the names known at the line's
+            // last point in the chunk (names are only added along a line: a point's are a
+            // prefix of them).
+            type Line = (Vec<(usize, TrackedPoint, Option<String>)>, Vec<String>);
+            let mut lines: Vec<Line> = Vec::new();
             for (i, point) in (at..).zip(points) {
                 if i % line == 0 {
+                    if let Some(l) = lines.last_mut() {
+                        l.1 = tracker.names.clone();
+                    }
                     tracker = LineTracker::default();
                 }
+                if i % line == 0 || lines.is_empty() {
+                    lines.push((Vec::new(), Vec::new()));
+                }
                 let values = grid.values(i);
+                let (modes, failure) = match point {
+                    Ok(s) => (Some(s.eigenvalues), None),
+                    Err(e) => (None, Some(e.to_string())),
+                };
+                let tracked = tracker.push(values[values.len() - 1], modes);
+                if let Some(l) = lines.last_mut() {
+                    l.0.push((i, tracked, failure));
+                }
+            }
+            if let Some(l) = lines.last_mut() {
+                l.1 = tracker.names.clone();
+            }
+            for (points, names) in lines {
+                let Some(&(first, ..)) = points.first() else {
+                    continue;
+                };
+                let values = grid.values(first);
                 let resolve = |v: f64| {
-                    let mut values = values.clone();
-                    if let Some(last) = values.last_mut() {
-                        *last = v;
-                    }
-                    let keyed: Vec<(&str, f64)> =
-                        grid.keys.iter().map(String::as_str).zip(values).collect();
+                    let keyed: Vec<(&str, f64)> = grid
+                        .keys
+                        .iter()
+                        .map(String::as_str)
+                        .zip(with_last(&values, v))
+                        .collect();
                     p.with_all(&keyed)
                         .and_then(|q| analyse(&q))
                         .ok()
                         .map(|s| s.eigenvalues)
                 };
-                let value = values[values.len() - 1];
-                let (modes, failure) = match point {
-                    Ok(s) => (Some(s.eigenvalues), None),
-                    Err(e) => (None, Some(e.to_string())),
-                };
-                let tracked = tracker.push(value, modes, &resolve);
-                if !own.contains(&i) {
-                    continue;
+                let (meta, mut tracked): (Vec<_>, Vec<TrackedPoint>) = points
+                    .into_iter()
+                    .map(|(i, t, failure)| ((i, failure), t))
+                    .unzip();
+                settle(&mut tracked, &resolve);
+                for ((i, failure), t) in meta.into_iter().zip(tracked) {
+                    if !own.contains(&i) {
+                        continue;
+                    }
+                    let values = grid.values(i);
+                    summary
+                        .switches
+                        .extend(t.switches.iter().map(|&(n, at)| NameSwitch {
+                            values: with_last(&values, at),
+                            mode: names[n].clone(),
+                        }));
+                    point_rows(&mut rows, values, &t, &names, failure);
                 }
-                summary
-                    .switches
-                    .extend(tracked.switches.iter().map(|&(n, at)| NameSwitch {
-                        values: with_last(&values, at),
-                        mode: tracker.names[n].clone(),
-                    }));
-                point_rows(&mut rows, values, &tracked, &tracker.names, failure);
             }
             rows.iter().for_each(|r| summary.count(r));
             sink(&rows)?;
