@@ -64,13 +64,7 @@ pub fn identify(roots: Vec<Mode>, nq: usize, structure: &dyn Structure) -> Resul
         .map(slots)
         .collect::<Option<Vec<_>>>()
         .unwrap_or_else(|| modal_content(&structural, &natural, structure));
-    // Where the slots name the roots, a root's claim on a slot is its content there weighted
-    // by how structural it is (rule 1 by assignment, below).
-    let weight: Vec<f64> = structural
-        .iter()
-        .map(|r| if by_slots { r.structural_share } else { 1.0 })
-        .collect();
-    let (groups, left) = assign(&structural, &content, &weight, by_slots, &natural);
+    let (groups, left) = assign(&structural, &content, by_slots, &natural);
     let mut named: Vec<Mode> = Vec::new();
     for (k, group) in groups {
         let mut modes: Vec<Mode> = group.iter().map(|&i| structural[i].clone()).collect();
@@ -198,15 +192,21 @@ const UNNAMED: f64 = FAMILY_PENALTY + 1.0;
 fn assign(
     roots: &[Mode],
     content: &[Vec<f64>],
-    weight: &[f64],
     by_slots: bool,
     natural: &[NaturalMode],
 ) -> (Vec<(usize, Vec<usize>)>, Vec<usize>) {
-    // Where the slots name the roots the candidates outnumber the names, and a candidate left
-    // unnamed is an aerodynamic lag, a loss of its structural share; for one blade every
-    // structural root is owed a name.
-    let leave_share = |i: usize| weight[i];
-    let leave: Option<&dyn Fn(usize) -> f64> = if by_slots { Some(&leave_share) } else { None };
+    // Where the slots name the roots, a root's claim on a slot is its content there weighted
+    // by how structural it is (rule 1 by assignment, [`candidates`]); the candidates outnumber
+    // the names, and one left unnamed is an aerodynamic lag, a loss of its structural share.
+    // For one blade every structural root is owed a name.
+    let weight = |i: usize| {
+        if by_slots {
+            roots[i].structural_share
+        } else {
+            1.0
+        }
+    };
+    let leave: Option<&dyn Fn(usize) -> f64> = if by_slots { Some(&weight) } else { None };
     let unnamed = |i: usize| leave.map_or(UNNAMED, |l| l(i));
     let rigid = |k: usize| natural[k].frequency_hz == 0.0;
     let cost = |i: usize, k: usize| -> f64 {
@@ -215,7 +215,7 @@ fn assign(
         if rigid(k) && content[i][k] < 0.5 {
             return MISFIT;
         }
-        penalty(&roots[i], &natural[k], by_slots) - weight[i] * content[i][k]
+        penalty(&roots[i], &natural[k], by_slots) - weight(i) * content[i][k]
     };
     let oscillating: Vec<usize> = (0..roots.len()).filter(|&i| roots[i].im > 0.0).collect();
     let real: Vec<usize> = (0..roots.len()).filter(|&i| roots[i].im == 0.0).collect();

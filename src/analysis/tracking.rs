@@ -17,6 +17,7 @@
 
 use crate::analysis::mode::Mode;
 use crate::numeric::hungarian;
+use crate::physics::turbine::ground::Whirl;
 use nalgebra::Complex;
 
 /// Modal Assurance Criterion of two complex shapes (0…1; 0 if either is zero).
@@ -103,7 +104,7 @@ pub fn match_modes(previous: &[Mode], next: &[Mode]) -> Matching {
 /// veering, so a coarse step matches them across it); only a finer step tells the two apart.
 ///
 /// A rotor's roots in the ground frame cross only where they can veer: two roots of different
-/// whirls (backward, forward, collective: [`whirl`]) are two blade roots 1P or 2P apart in the
+/// whirls (backward, forward, collective: [`Whirl::of_name`]) are two blade roots 1P or 2P apart in the
 /// blades' own frame, far from the near-resonance a veering needs, so their lines (which
 /// cross everywhere on a Campbell diagram) are crossings, not refined.
 fn crosses(previous: &[Mode], next: &[Mode], partner: &[Option<usize>], i: usize) -> bool {
@@ -117,18 +118,9 @@ fn crosses(previous: &[Mode], next: &[Mode], partner: &[Option<usize>], i: usize
     })
 }
 
-/// The whirl a rotor's root is named with (`BW`, `FW`, `collective`), none for any other
-/// name (one blade's, the tower's, the drivetrain's).
-fn whirl(label: &str) -> Option<&str> {
-    label
-        .split_whitespace()
-        .next()
-        .filter(|w| matches!(*w, "BW" | "FW" | "collective"))
-}
-
 /// Whether two roots could veer: not a rotor's roots of two different whirls.
 fn may_veer(a: &Mode, b: &Mode) -> bool {
-    match (whirl(&a.label), whirl(&b.label)) {
+    match (Whirl::of_name(&a.label), Whirl::of_name(&b.label)) {
         (Some(x), Some(y)) => x == y,
         _ => true,
     }

@@ -44,6 +44,13 @@ impl Whirl {
             Whirl::Forward => "FW",
         }
     }
+
+    /// The whirl a root's name begins with ([`Whirl::prefix`]), none for a name that is not a
+    /// blade mode's in the ground frame (the tower's, the drivetrain's, one blade's).
+    pub fn of_name(label: &str) -> Option<Whirl> {
+        let first = label.split_whitespace().next()?;
+        Whirl::ALL.into_iter().find(|w| w.prefix() == first)
+    }
 }
 
 /// How close to 1P, against its decay rate, a root is taken for a non-oscillating blade
@@ -419,12 +426,11 @@ impl Structure for GroundRotor {
     /// blade mode above 1P; below it the ground-frame root would be `1P − f`).
     fn rotating_shift_hz(&self, label: &str) -> Option<f64> {
         let one_p = self.omega / TAU;
-        match label.split_whitespace().next()? {
-            "BW" => Some(one_p),
-            "FW" => Some(-one_p),
-            "collective" => Some(0.0),
-            _ => None,
-        }
+        Some(match Whirl::of_name(label)? {
+            Whirl::Backward => one_p,
+            Whirl::Forward => -one_p,
+            Whirl::Collective => 0.0,
+        })
     }
     /// The blades' own motion averaged over the azimuth as in [`GroundRotor::shares`], the
     /// drivetrain's and the tower's coordinates on their own mass.
