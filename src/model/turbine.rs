@@ -99,6 +99,8 @@ pub fn support_of(t: &ElastoDynTurbine, tower: &ElastoDynTower) -> Result<Suppor
         yaw_bearing_mass: t.yaw_bearing_mass,
         nacelle_mass: t.nacelle_mass,
         nacelle_cm: t.nacelle_cm,
+        // ElastoDyn's nacelle turns only in yaw (`NacYIner`), which its tower cannot do.
+        nacelle_inertia: [0.0; 3],
         hub_mass: t.hub_mass,
         hub_cm: t.hub_cm,
         overhang: t.overhang,

@@ -13,7 +13,7 @@ use flutterscope::numeric::decompose;
 use flutterscope::physics::structure::Structure;
 use flutterscope::physics::turbine::rotating_system;
 use flutterscope::physics::turbine::rotor::Rotor;
-use flutterscope::physics::turbine::tower::TOWER_COORDINATES;
+
 use flutterscope::preset::{Preset, ValidPreset};
 use nalgebra::{Complex, DMatrix};
 use std::f64::consts::TAU;
@@ -213,7 +213,7 @@ fn the_turbine_in_the_ground_frame_is_its_floquet_analysis() {
     };
     let (a0, rotor) = state_matrix(0.0);
     let dim = a0.nrows();
-    assert_eq!(dim, 2 * (3 * 4 + 1 + TOWER_COORDINATES));
+    assert_eq!(dim, 2 * (3 * 4 + 1 + 4));
     let period = TAU / omega;
     let steps = 8000;
     let h = period / steps as f64;

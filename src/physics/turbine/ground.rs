@@ -11,8 +11,8 @@
 //! undamped rotor (gyroscopic terms kept) that holds most of it.
 
 use super::drivetrain::Generator;
-use super::rotor::{tower_energies, Rotor};
-use super::tower::{strip_rows, TowerMode, TOWER_COORDINATES};
+use super::rotor::Rotor;
+use super::tower::{strip_rows, Plane, Tower, TowerMode};
 use crate::error::{Error, Result};
 use crate::numeric::mbc::{t1, MultiBlade, Rotating};
 use crate::numeric::{decompose, hungarian};
@@ -93,8 +93,8 @@ pub struct GroundRotor {
     /// over all coordinates, and each one's name (fore–aft or side–side, counted up in
     /// frequency).
     tower_modes: Vec<(DVector<f64>, TowerMode)>,
-    /// The first tower coordinate and the apex's motion, on a tower.
-    tower: Option<(usize, DMatrix<f64>)>,
+    /// The first tower coordinate and the tower, on one.
+    tower: Option<(usize, Tower)>,
     slots: Vec<Slot>,
     natural: Vec<NaturalMode>,
     /// Ω (rad/s).
@@ -124,7 +124,7 @@ impl GroundRotor {
             collective_modes(&mass, &stiffness, k, at, rotor.drivetrain_coordinates())?;
         let tower = rotor.tower().map(|(at, apex)| (at, apex.clone()));
         let tower_modes = match &tower {
-            Some((at, _)) => tower_modes(&mass, &stiffness, *at)?,
+            Some((at, tower)) => tower_modes(&mass, &stiffness, *at, tower)?,
             None => Vec::new(),
         };
         let blade_natural = rotor.blade().natural_modes()?;
@@ -373,10 +373,10 @@ impl Structure for GroundRotor {
         if self.generator.is_some() {
             rows.edge[3 * k] = radius;
         }
-        if let Some((at, apex)) = &self.tower {
-            let [flap, edge] = strip_rows(apex, 0.0, radius);
-            rows.flap.rows_mut(*at, TOWER_COORDINATES).copy_from(&flap);
-            rows.edge.rows_mut(*at, TOWER_COORDINATES).copy_from(&edge);
+        if let Some((at, tower)) = &self.tower {
+            let [flap, edge] = strip_rows(&tower.apex, 0.0, radius);
+            rows.flap.rows_mut(*at, flap.len()).copy_from(&flap);
+            rows.edge.rows_mut(*at, edge.len()).copy_from(&edge);
         }
         rows
     }
@@ -395,10 +395,11 @@ impl Structure for GroundRotor {
         if self.generator.is_some() {
             e[1] += self.mass[(3 * k, 3 * k)] * q[3 * k].norm_sqr();
         }
-        if let Some((at, _)) = &self.tower {
-            let [fore_aft, side_side] = tower_energies(&self.mass, *at, q);
+        if let Some((at, tower)) = &self.tower {
+            let [fore_aft, side_side, torsion] = tower.plane_energies(&self.mass, *at, q);
             e[0] += fore_aft;
             e[1] += side_side;
+            e[2] += torsion;
         }
         Shares::from_energies(e[0], e[1], e[2])
     }
@@ -447,8 +448,8 @@ impl Structure for GroundRotor {
         };
         let tower_at = self.tower.as_ref().map_or(self.mass.nrows(), |(at, _)| *at);
         e[3] = block(3 * k, tower_at - 3 * k);
-        if self.tower.is_some() {
-            e[4] = block(tower_at, TOWER_COORDINATES);
+        if let Some((_, tower)) = &self.tower {
+            e[4] = block(tower_at, tower.coordinates());
         }
         Some(Components::from_energies(e))
     }
@@ -591,28 +592,34 @@ fn projected(w: &DVector<f64>, q: &[Complex<f64>]) -> f64 {
 
 /// The tower's modes (coordinates from `at`) on the ground coordinates' mass `m` and
 /// stiffness `k` with everything else held: `φᵀ M` over all coordinates, mass-normalised, and
-/// each mode's name: fore–aft where its fore–aft coordinates hold more of its kinetic energy,
-/// numbered in frequency within its plane.
+/// each mode's name: the plane (fore–aft, side–side, torsion) whose coordinates hold most of its
+/// kinetic energy, numbered in frequency within its plane.
 fn tower_modes(
     m: &DMatrix<f64>,
     k: &DMatrix<f64>,
     at: usize,
+    tower: &Tower,
 ) -> Result<Vec<(DVector<f64>, TowerMode)>> {
-    let t = TOWER_COORDINATES;
+    let t = tower.coordinates();
     let mt = m.view((at, at), (t, t)).into_owned();
     let kt = k.view((at, at), (t, t)).into_owned();
     let (_, phi) = undamped_modes(&mt, &kt)?;
-    let mut counts = [0usize; 2];
+    let mut counts = [0usize; 3];
     let n = m.nrows();
     Ok((0..t)
         .map(|i| {
             let phi = phi.column(i);
             let mphi = &mt * phi;
-            let fore_aft = phi[0] * mphi[0] + phi[1] * mphi[1];
-            let side_side = phi[2] * mphi[2] + phi[3] * mphi[3];
-            let plane = usize::from(side_side > fore_aft);
-            counts[plane] += 1;
-            let mode = TowerMode::named(plane == 0, counts[plane]);
+            let mut energy = [0.0; 3];
+            for (j, mode) in tower.modes.iter().enumerate() {
+                energy[mode.plane() as usize] += phi[j] * mphi[j];
+            }
+            let plane = [Plane::ForeAft, Plane::SideSide, Plane::Torsion]
+                .into_iter()
+                .max_by(|a, b| energy[*a as usize].total_cmp(&energy[*b as usize]))
+                .unwrap_or(Plane::ForeAft);
+            counts[plane as usize] += 1;
+            let mode = TowerMode::named(plane, counts[plane as usize]);
             let mut weights = DVector::zeros(n);
             weights.rows_mut(at, t).copy_from(&mphi);
             (weights, mode)

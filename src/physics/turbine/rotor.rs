@@ -13,7 +13,7 @@
 
 use super::drivetrain::{Drivetrain, Generator};
 use super::inputs::RotorInputs;
-use super::tower::{strip_rows, Apex, Tower, APEX_MOTIONS, GRAVITY, TOWER_COORDINATES};
+use super::tower::{strip_rows, Apex, Tower, APEX_MOTIONS, GRAVITY};
 use crate::error::{Error, Result};
 use crate::physics::blade::fem::Rigid;
 use crate::physics::section::SectionProps;
@@ -40,8 +40,8 @@ pub struct Rotor {
     /// Modes per blade.
     per_blade: usize,
     drivetrain: Option<Drivetrain>,
-    /// The tower's [`super::tower::Tower::apex`], on a tower.
-    tower: Option<DMatrix<f64>>,
+    /// The tower, on one.
+    tower: Option<Tower>,
     /// Blade 0's azimuth (rad).
     azimuth: f64,
     mass: DMatrix<f64>,
@@ -97,7 +97,7 @@ impl Rotor {
         });
         let drivetrain = inputs.drivetrain.clone();
         let fixed = drivetrain.as_ref().map_or(0, Drivetrain::coordinates);
-        let on_tower = usize::from(inputs.support.is_some()) * TOWER_COORDINATES;
+        let on_tower = inputs.support.as_ref().map_or(0, |s| s.tower.coordinates());
         let n = blades * k + fixed + on_tower;
         let mut m = RotorMatrices::zeros(n);
         let own_load = blade.static_load();
@@ -136,7 +136,7 @@ impl Rotor {
         if let Some(support) = &inputs.support {
             let at = blades * k + fixed;
             let tower = &support.tower;
-            let t = TOWER_COORDINATES;
+            let t = tower.coordinates();
             m.mass.view_mut((at, at), (t, t)).copy_from(&tower.mass);
             m.stiffness
                 .view_mut((at, at), (t, t))
@@ -202,7 +202,7 @@ impl Rotor {
             blades,
             per_blade: k,
             drivetrain,
-            tower: inputs.support.as_ref().map(|s| s.tower.apex.clone()),
+            tower: inputs.support.as_ref().map(|s| s.tower.clone()),
             azimuth,
             mass: m.mass,
             stiffness: m.stiffness,
@@ -291,10 +291,10 @@ impl Rotor {
         self.drivetrain.as_ref().map_or(0, Drivetrain::coordinates)
     }
 
-    /// The first tower coordinate and the tower's apex motion, on a tower.
-    pub fn tower(&self) -> Option<(usize, &DMatrix<f64>)> {
+    /// The first tower coordinate and the tower, on one.
+    pub fn tower(&self) -> Option<(usize, &Tower)> {
         let at = self.drivetrain_at() + self.drivetrain_coordinates();
-        self.tower.as_ref().map(|apex| (at, apex))
+        self.tower.as_ref().map(|tower| (at, tower))
     }
 
     /// The rotation's part of the damping ([`Rotor::damping`] less the structure's).
@@ -314,11 +314,11 @@ impl Rotor {
         if self.drivetrain.is_some() {
             rows.edge[self.drivetrain_at()] = radius;
         }
-        if let Some((at, apex)) = self.tower() {
+        if let Some((at, tower)) = self.tower() {
             let psi = self.azimuth + TAU * b as f64 / self.blades as f64;
-            let [flap, edge] = strip_rows(apex, psi, radius);
-            rows.flap.rows_mut(at, TOWER_COORDINATES).copy_from(&flap);
-            rows.edge.rows_mut(at, TOWER_COORDINATES).copy_from(&edge);
+            let [flap, edge] = strip_rows(&tower.apex, psi, radius);
+            rows.flap.rows_mut(at, flap.len()).copy_from(&flap);
+            rows.edge.rows_mut(at, edge.len()).copy_from(&edge);
         }
         rows
     }
@@ -339,10 +339,11 @@ impl Rotor {
             let at = self.drivetrain_at();
             e[1] += self.mass[(at, at)] * q[at].norm_sqr();
         }
-        if let Some((at, _)) = self.tower() {
-            let [fore_aft, side_side] = tower_energies(&self.mass, at, q);
+        if let Some((at, tower)) = self.tower() {
+            let [fore_aft, side_side, torsion] = tower.plane_energies(&self.mass, at, q);
             e[0] += fore_aft;
             e[1] += side_side;
+            e[2] += torsion;
         }
         e
     }
@@ -456,17 +457,23 @@ impl RotorMatrices {
 /// Blade `b` (its modes from coordinate `blade_at`) at azimuth `psi` on the tower (its
 /// coordinates from `tower_at`), the rotor at `omega` (rad/s): the blade's rigid motion with
 /// the apex and its modes' coupling with it (docs/model.md §13.6). In apex motions
-/// `h = (u_x, u_y, u_z, θ_x, θ_y)`, with `P_f`, `P_e` the modes' shares of a rigid flap and
-/// edge translation and `S_f` of a rigid tilt (`c = cos ψ`, `s = sin ψ`):
+/// `h = (u_x, u_y, u_z, θ_x, θ_y, θ_z)`, with `P_f`, `P_e` the modes' shares of a rigid flap and
+/// edge translation and `S_f` of a rigid tilt (`c = cos ψ`, `s = sin ψ`); the yaw swings the
+/// blade downwind by `r sin ψ` as the tilt does by `r cos ψ`, so its terms are the tilt's at
+/// `ψ − 90°`:
 ///
-/// - mass `M[q, h] = [P_f, −c P_e, −s P_e, ·, c S_f]` (the roll is a turning coordinate,
-///   coupled with the others by [`Rotor::new`]);
-/// - Coriolis `C[q, θ_y] = −2Ω s S_f`, `C[u_y, q] = 2Ω s P_eᵀ`, `C[u_z, q] = −2Ω c P_eᵀ`;
+/// - mass `M[q, h] = [P_f, −c P_e, −s P_e, ·, c S_f, s S_f]` (the roll is a turning
+///   coordinate, coupled with the others by [`Rotor::new`]);
+/// - Coriolis `C[q, θ_y] = −2Ω s S_f`, `C[q, θ_z] = 2Ω c S_f`, `C[u_y, q] = 2Ω s P_eᵀ`,
+///   `C[u_z, q] = −2Ω c P_eᵀ`;
 /// - the centrifugal pull of a blade moving in the edge direction and of one swinging
 ///   downwind, on the hub: `K[u_y, q] = Ω² c P_eᵀ`, `K[u_z, q] = Ω² s P_eᵀ`,
-///   `K[θ_y, q] = Ω² c S_fᵀ`;
-/// - the blade's rigid mass at the apex: its mass on every translation, `c² J` on the tilt
-///   (J its second moment about the root), its first moment between translation and turn.
+///   `K[θ_y, q] = Ω² c S_fᵀ`, `K[θ_z, q] = Ω² s S_fᵀ`;
+/// - the blade's rigid mass at the apex: its mass on every translation, `[c², cs; cs, s²] J`
+///   on the tilt and yaw (J its second moment about the apex), its first moment between
+///   translation and turn;
+/// - its spin's gyroscopic moment: tilting the spinning blade yaws it, `G[θ_y, θ_z] = J_x Ω =
+///   −G[θ_z, θ_y]` (`J_x` its moment of inertia about the shaft).
 fn on_tower_blade(
     m: &mut RotorMatrices,
     coupling: &RotorCoupling,
@@ -477,7 +484,7 @@ fn on_tower_blade(
     omega: f64,
 ) {
     let k = coupling.rigid.nrows();
-    let t = TOWER_COORDINATES;
+    let t = tower.coordinates();
     let (c, s) = (psi.cos(), psi.sin());
     let col = |r: Rigid| coupling.rigid.column(r as usize).into_owned();
     let (pf, pe, sf) = (col(Rigid::Flap), col(Rigid::Edge), col(Rigid::Tilt));
@@ -489,8 +496,10 @@ fn on_tower_blade(
     coupled.set_column(a(Apex::Y), &(-c * &pe));
     coupled.set_column(a(Apex::Z), &(-s * &pe));
     coupled.set_column(a(Apex::Tilt), &(c * &sf));
+    coupled.set_column(a(Apex::Yaw), &(s * &sf));
     let mut coriolis_on_blade = DMatrix::zeros(k, APEX_MOTIONS);
     coriolis_on_blade.set_column(a(Apex::Tilt), &(-2.0 * omega * s * &sf));
+    coriolis_on_blade.set_column(a(Apex::Yaw), &(2.0 * omega * c * &sf));
     let mut coriolis_on_hub = DMatrix::zeros(APEX_MOTIONS, k);
     coriolis_on_hub.set_row(a(Apex::Y), &(2.0 * omega * s * pe.transpose()));
     coriolis_on_hub.set_row(a(Apex::Z), &(-2.0 * omega * c * pe.transpose()));
@@ -499,6 +508,7 @@ fn on_tower_blade(
     pull.set_row(a(Apex::Y), &(w2 * c * pe.transpose()));
     pull.set_row(a(Apex::Z), &(w2 * s * pe.transpose()));
     pull.set_row(a(Apex::Tilt), &(w2 * c * sf.transpose()));
+    pull.set_row(a(Apex::Yaw), &(w2 * s * sf.transpose()));
 
     let mass = rm(Rigid::Flap, Rigid::Flap);
     let first = rm(Rigid::Edge, Rigid::Rotation);
@@ -506,7 +516,9 @@ fn on_tower_blade(
     for h in [Apex::X, Apex::Y, Apex::Z] {
         hub[(a(h), a(h))] = mass;
     }
-    hub[(a(Apex::Tilt), a(Apex::Tilt))] = c * c * rm(Rigid::Tilt, Rigid::Tilt);
+    let tilt_inertia = rm(Rigid::Tilt, Rigid::Tilt);
+    hub[(a(Apex::Tilt), a(Apex::Tilt))] = c * c * tilt_inertia;
+    hub[(a(Apex::Yaw), a(Apex::Yaw))] = s * s * tilt_inertia;
     let mut pair = |i: Apex, j: Apex, v: f64| {
         hub[(a(i), a(j))] += v;
         hub[(a(j), a(i))] += v;
@@ -515,6 +527,13 @@ fn on_tower_blade(
     pair(Apex::Y, Apex::Roll, -c * first);
     pair(Apex::Z, Apex::Roll, -s * first);
     pair(Apex::Roll, Apex::Tilt, c * rm(Rigid::Rotation, Rigid::Tilt));
+    pair(Apex::X, Apex::Yaw, s * rm(Rigid::Flap, Rigid::Tilt));
+    pair(Apex::Roll, Apex::Yaw, s * rm(Rigid::Rotation, Rigid::Tilt));
+    pair(Apex::Tilt, Apex::Yaw, c * s * tilt_inertia);
+    let mut spin = DMatrix::zeros(APEX_MOTIONS, APEX_MOTIONS);
+    let spin_moment = omega * rm(Rigid::Rotation, Rigid::Rotation);
+    spin[(a(Apex::Tilt), a(Apex::Yaw))] = spin_moment;
+    spin[(a(Apex::Yaw), a(Apex::Tilt))] = -spin_moment;
     // The roll's own inertia is a turning coordinate's ([`Rotor::new`]).
 
     let v = &tower.apex;
@@ -533,15 +552,9 @@ fn on_tower_blade(
     m.gyroscopic
         .view_mut((tower_at, blade_at), (t, k))
         .copy_from(&(v.transpose() * &coriolis_on_hub));
+    let mut tt = m.gyroscopic.view_mut((tower_at, tower_at), (t, t));
+    tt += v.transpose() * &spin * v;
     m.stiffness
         .view_mut((tower_at, blade_at), (t, k))
         .copy_from(&(v.transpose() * &pull));
-}
-
-/// The kinetic energy of the fore–aft and the side–side tower coordinates (from `at`) in `q`.
-pub fn tower_energies(mass: &DMatrix<f64>, at: usize, q: &[Complex<f64>]) -> [f64; 2] {
-    [0, 2].map(|first| {
-        let block = mass.view((at + first, at + first), (2, 2)).into_owned();
-        kinetic_energy(&block, &q[at + first..at + first + 2])
-    })
 }

@@ -1,18 +1,20 @@
 //! The tower and what sits on it (docs/model.md §13.6): ElastoDyn's assumed-mode tower, two
 //! fore–aft and two side–side bending modes on the polynomial shapes its file gives, carrying
 //! the yaw bearing, the nacelle and the hub as point masses. Plain inputs; out: the mass,
-//! stiffness and damping over its four coordinates and how they move the rotor apex, where the
-//! rotor ([`super::rotor::Rotor`]) hangs its blades.
+//! stiffness and damping over its coordinates and how they move the rotor apex, where the
+//! rotor ([`super::rotor::Rotor`]) hangs its blades. A HAWC2 tower, a beam with torsion, is
+//! [`super::tower_beam`]'s; both end in a [`Tower`].
 //!
 //! Frame: x downwind along the (untilted) shaft, z up the tower, y = z × x (lateral). The
 //! tower top moves by `u_x = Σ φ_FA q`, `u_y = Σ φ_SS q` and turns by `θ_y = Σ φ'_FA(L) q`
-//! (its vertical tipping downwind), `θ_x = −Σ φ'_SS(L) q`. The tower has no torsion: an
-//! ElastoDyn tower file gives no torsional stiffness, and none is assumed.
+//! (its vertical tipping downwind), `θ_x = −Σ φ'_SS(L) q`, and with torsion `θ_z = Σ φ_T q`.
+//! An ElastoDyn tower has no torsion: its file gives no torsional stiffness, and none is
+//! assumed.
 
 use crate::error::{Error, Result};
 use crate::physics::basis::gauss_rule;
-use crate::physics::structure::Family;
-use nalgebra::{DMatrix, DVector, Vector3};
+use crate::physics::structure::{kinetic_energy, Family};
+use nalgebra::{Complex, DMatrix, DVector, Vector3};
 
 /// One station of the tower's distributed properties, the file's factors applied.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -50,6 +52,9 @@ pub struct TowerTop {
     /// kg, at `nacelle_cm` from the tower top (x, y, z).
     pub nacelle_mass: f64,
     pub nacelle_cm: [f64; 3],
+    /// The nacelle's moments of inertia about its centre of mass and the axes x (roll), y
+    /// (tilt), z (yaw), kg·m².
+    pub nacelle_inertia: [f64; 3],
     /// kg, at `hub_cm` downwind of the apex along the shaft.
     pub hub_mass: f64,
     pub hub_cm: f64,
@@ -59,48 +64,61 @@ pub struct TowerTop {
     pub shaft_height: f64,
 }
 
-/// How many coordinates the tower has.
-pub const TOWER_COORDINATES: usize = 4;
-
-/// The tower's coordinates, in order.
+/// One of the tower's coordinates: the mode it is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum TowerMode {
-    ForeAft1 = 0,
-    ForeAft2 = 1,
-    SideSide1 = 2,
-    SideSide2 = 3,
+    ForeAft1,
+    ForeAft2,
+    SideSide1,
+    SideSide2,
+    Torsion1,
+}
+
+/// The direction a tower mode moves its top in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Plane {
+    ForeAft = 0,
+    SideSide = 1,
+    Torsion = 2,
 }
 
 impl TowerMode {
-    pub const ALL: [TowerMode; TOWER_COORDINATES] = [
+    /// An ElastoDyn tower's four, in its coordinates' order.
+    pub const BENDING: [TowerMode; 4] = [
         TowerMode::ForeAft1,
         TowerMode::ForeAft2,
         TowerMode::SideSide1,
         TowerMode::SideSide2,
     ];
 
-    pub fn fore_aft(self) -> bool {
-        matches!(self, TowerMode::ForeAft1 | TowerMode::ForeAft2)
+    pub fn plane(self) -> Plane {
+        match self {
+            TowerMode::ForeAft1 | TowerMode::ForeAft2 => Plane::ForeAft,
+            TowerMode::SideSide1 | TowerMode::SideSide2 => Plane::SideSide,
+            TowerMode::Torsion1 => Plane::Torsion,
+        }
     }
 
-    /// The `number`-th (from 1) fore–aft or side–side mode; beyond the second, the second.
-    pub fn named(fore_aft: bool, number: usize) -> TowerMode {
-        match (fore_aft, number) {
-            (true, 1) => TowerMode::ForeAft1,
-            (true, _) => TowerMode::ForeAft2,
-            (false, 1) => TowerMode::SideSide1,
-            (false, _) => TowerMode::SideSide2,
+    /// The `number`-th (from 1) mode of `plane`; beyond the last the tower holds, the last.
+    pub fn named(plane: Plane, number: usize) -> TowerMode {
+        match (plane, number) {
+            (Plane::ForeAft, 1) => TowerMode::ForeAft1,
+            (Plane::ForeAft, _) => TowerMode::ForeAft2,
+            (Plane::SideSide, 1) => TowerMode::SideSide1,
+            (Plane::SideSide, _) => TowerMode::SideSide2,
+            (Plane::Torsion, _) => TowerMode::Torsion1,
         }
     }
 
     /// The motion family a tower mode reads as on a blade (fore–aft moves the blades in flap,
-    /// side–side in edge) and its number.
+    /// side–side in edge; torsion yaws the rotor, read as the tower's twist) and its number.
     pub fn family_and_number(self) -> (Family, usize) {
         match self {
             TowerMode::ForeAft1 => (Family::Flap, 1),
             TowerMode::ForeAft2 => (Family::Flap, 2),
             TowerMode::SideSide1 => (Family::Edge, 1),
             TowerMode::SideSide2 => (Family::Edge, 2),
+            TowerMode::Torsion1 => (Family::Torsion, 1),
         }
     }
 
@@ -111,12 +129,13 @@ impl TowerMode {
             TowerMode::ForeAft2 => "tower FA 2",
             TowerMode::SideSide1 => "tower SS 1",
             TowerMode::SideSide2 => "tower SS 2",
+            TowerMode::Torsion1 => "tower torsion 1",
         }
     }
 }
 
 /// The rotor apex's motion, the rows of [`Tower::apex`]: translation and the turn of the
-/// shaft about x (roll, which adds to the rotor's azimuth) and about y (tilt).
+/// shaft about x (roll, which adds to the rotor's azimuth), about y (tilt) and about z (yaw).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Apex {
     X = 0,
@@ -124,22 +143,23 @@ pub enum Apex {
     Z = 2,
     Roll = 3,
     Tilt = 4,
+    Yaw = 5,
 }
 
 /// How many [`Apex`] motions there are.
-pub const APEX_MOTIONS: usize = 5;
+pub const APEX_MOTIONS: usize = 6;
 
 /// The tower with its top masses.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Tower {
-    /// Over the four coordinates: the tower's own with the yaw bearing, the nacelle and the
-    /// hub as point masses (the blades are the rotor's).
+    /// What each coordinate is, in order.
+    pub modes: Vec<TowerMode>,
+    /// Over the coordinates: the tower's own with the yaw bearing, the nacelle and the hub as
+    /// rigid masses (the blades are the rotor's).
     pub mass: DMatrix<f64>,
     pub stiffness: DMatrix<f64>,
-    /// ElastoDyn's modal damping: each mode's ratio on its tower-alone frequency (top masses
-    /// left out), `C = 2 ζ K / ω` column by column.
     pub damping: DMatrix<f64>,
-    /// The apex's motion per coordinate (5 × 4, rows in [`Apex`] order).
+    /// The apex's motion per coordinate (rows in [`Apex`] order).
     pub apex: DMatrix<f64>,
     /// `∫ φ'ᵢ φ'ⱼ dz`: the stiffness a newton of weight on the tower top takes away (its
     /// moment as the tower leans, ElastoDyn's gravity term); the rotor adds its blades'.
@@ -155,23 +175,17 @@ pub const GRAVITY: f64 = 9.80665;
 const GAUSS_POINTS: usize = 7;
 
 impl Tower {
+    /// ElastoDyn's assumed-mode tower: fore–aft 1, 2 and side–side 1, 2 on the file's shapes.
     pub fn new(inputs: &TowerInputs, top: &TowerTop) -> Result<Tower> {
         check(inputs, top)?;
         let l = inputs.length;
-        let n = TOWER_COORDINATES;
+        let modes = TowerMode::BENDING.to_vec();
+        let n = modes.len();
         let mut own_mass = DMatrix::<f64>::zeros(n, n);
         let mut stiffness = DMatrix::<f64>::zeros(n, n);
-        let mut sag = DMatrix::<f64>::zeros(n, n);
-        let mut own_weight = DMatrix::<f64>::zeros(n, n);
         let rule = gauss_rule(GAUSS_POINTS);
-        // The tower's own mass above each station (kg).
-        let mut above = vec![0.0; inputs.sections.len()];
-        for i in (0..inputs.sections.len() - 1).rev() {
-            let (a, b) = (inputs.sections[i], inputs.sections[i + 1]);
-            let dh = b.height_fraction - a.height_fraction;
-            above[i] = above[i + 1] + l * dh * 0.5 * (a.mass_density + b.mass_density);
-        }
-        for (pair, &above_b) in inputs.sections.windows(2).zip(&above[1..]) {
+        let same_plane = |i: usize, j: usize| modes[i].plane() == modes[j].plane();
+        for pair in inputs.sections.windows(2) {
             let (a, b) = (pair[0], pair[1]);
             let dh = b.height_fraction - a.height_fraction;
             for (s, w) in rule.0.iter().zip(&rule.1) {
@@ -186,21 +200,10 @@ impl Tower {
                 ];
                 let phi = inputs.shapes.map(|c| value(&c, h));
                 let curvature = inputs.shapes.map(|c| curvature(&c, h));
-                let slopes = inputs.shapes.map(|c| slope(&c, h));
-                let mass_above =
-                    above_b + l * (b.height_fraction - h) * 0.5 * (mu + b.mass_density);
                 for i in 0..n {
-                    for j in 0..n {
-                        let same_plane =
-                            TowerMode::ALL[i].fore_aft() == TowerMode::ALL[j].fore_aft();
-                        if !same_plane {
-                            continue;
-                        }
+                    for j in (0..n).filter(|&j| same_plane(i, j)) {
                         own_mass[(i, j)] += weight * l * mu * phi[i] * phi[j];
-                        let leaning = weight * slopes[i] * slopes[j] / l;
-                        sag[(i, j)] += leaning;
-                        own_weight[(i, j)] += GRAVITY * mass_above * leaning;
-                        let e = ei[usize::from(!TowerMode::ALL[i].fore_aft())];
+                        let e = ei[modes[i].plane() as usize];
                         stiffness[(i, j)] += weight * e * curvature[i] * curvature[j] / l.powi(3);
                     }
                 }
@@ -219,11 +222,61 @@ impl Tower {
                 damping[(i, j)] = 2.0 * inputs.damping[j] * stiffness[(i, j)] / omega;
             }
         }
+        let density: Vec<(f64, f64)> = inputs
+            .sections
+            .iter()
+            .map(|s| (s.height_fraction * l, s.mass_density))
+            .collect();
+        let slopes = |z: f64| {
+            let mut d = DMatrix::zeros(2, n);
+            for (j, c) in inputs.shapes.iter().enumerate() {
+                d[(modes[j].plane() as usize, j)] = slope(c, z / l) / l;
+            }
+            d
+        };
+        let (sag, own_weight) = leaning(&density, &[], n, &slopes);
+        let mut top_motion = DMatrix::zeros(APEX_MOTIONS, n);
+        for (j, mode) in modes.iter().enumerate() {
+            let c = &inputs.shapes[j];
+            let slope = slope(c, 1.0) / l;
+            if mode.plane() == Plane::ForeAft {
+                top_motion[(Apex::X as usize, j)] = value(c, 1.0);
+                top_motion[(Apex::Tilt as usize, j)] = slope;
+            } else {
+                top_motion[(Apex::Y as usize, j)] = value(c, 1.0);
+                top_motion[(Apex::Roll as usize, j)] = -slope;
+            }
+        }
+        Ok(Tower::on_top(
+            modes,
+            own_mass,
+            stiffness,
+            damping,
+            own_weight,
+            sag,
+            &top_motion,
+            top,
+        ))
+    }
+
+    /// The tower of `modes` with its own `mass`, `stiffness`, `damping`, gravity terms and its
+    /// top's motion `top_motion` ([`Apex`] rows), carrying `top`'s masses: their inertia added,
+    /// their weight on the lean, the apex placed.
+    #[allow(clippy::too_many_arguments)]
+    pub fn on_top(
+        modes: Vec<TowerMode>,
+        mass: DMatrix<f64>,
+        stiffness: DMatrix<f64>,
+        damping: DMatrix<f64>,
+        own_weight: DMatrix<f64>,
+        sag: DMatrix<f64>,
+        top_motion: &DMatrix<f64>,
+        top: &TowerTop,
+    ) -> Tower {
         let top_mass = top.yaw_bearing_mass + top.nacelle_mass + top.hub_mass;
         let stiffness = stiffness - own_weight - GRAVITY * top_mass * &sag;
-        let top_motion = top_motion(inputs);
-        let apex = at_offset(&top_motion, [top.overhang, 0.0, top.shaft_height]);
-        let mut mass = own_mass;
+        let apex = at_offset(top_motion, [top.overhang, 0.0, top.shaft_height]);
+        let mut mass = mass;
         for (m, offset) in [
             (top.yaw_bearing_mass, [0.0; 3]),
             (top.nacelle_mass, top.nacelle_cm),
@@ -232,35 +285,102 @@ impl Tower {
                 [top.overhang + top.hub_cm, 0.0, top.shaft_height],
             ),
         ] {
-            let v = at_offset(&top_motion, offset).rows(0, 3).into_owned();
+            let v = at_offset(top_motion, offset).rows(0, 3).into_owned();
             mass += m * v.transpose() * v;
         }
-        Ok(Tower {
+        for (axis, inertia) in [Apex::Roll, Apex::Tilt, Apex::Yaw]
+            .into_iter()
+            .zip(top.nacelle_inertia)
+        {
+            let turn = top_motion.row(axis as usize);
+            mass += inertia * turn.transpose() * turn;
+        }
+        Tower {
+            modes,
             mass,
             stiffness,
             damping,
             apex,
             sag,
-        })
+        }
+    }
+
+    /// How many coordinates it has.
+    pub fn coordinates(&self) -> usize {
+        self.modes.len()
+    }
+
+    /// The kinetic energy in each [`Plane`] of its coordinates `q`, on its rows `mass` of the
+    /// whole system's (the blades' coupling left out).
+    pub fn plane_energies(&self, mass: &DMatrix<f64>, at: usize, q: &[Complex<f64>]) -> [f64; 3] {
+        let mut e = [0.0; 3];
+        for plane in [Plane::ForeAft, Plane::SideSide, Plane::Torsion] {
+            let picked: Vec<usize> = (0..self.coordinates())
+                .filter(|&i| self.modes[i].plane() == plane)
+                .collect();
+            let block = DMatrix::from_fn(picked.len(), picked.len(), |i, j| {
+                mass[(at + picked[i], at + picked[j])]
+            });
+            let v: Vec<Complex<f64>> = picked.iter().map(|&i| q[at + i]).collect();
+            e[plane as usize] = kinetic_energy(&block, &v);
+        }
+        e
     }
 }
 
-/// The tower top's translation and turn per coordinate, in [`Apex`] rows (z zero: the tower
-/// does not stretch).
-fn top_motion(inputs: &TowerInputs) -> DMatrix<f64> {
-    let mut m = DMatrix::zeros(APEX_MOTIONS, TOWER_COORDINATES);
-    for (j, mode) in TowerMode::ALL.iter().enumerate() {
-        let c = &inputs.shapes[j];
-        let slope = slope(c, 1.0) / inputs.length;
-        if mode.fore_aft() {
-            m[(Apex::X as usize, j)] = value(c, 1.0);
-            m[(Apex::Tilt as usize, j)] = slope;
-        } else {
-            m[(Apex::Y as usize, j)] = value(c, 1.0);
-            m[(Apex::Roll as usize, j)] = -slope;
+/// The gravity terms of a tower whose coordinates' slopes `slopes` gives at height z (m): a
+/// 2 × n matrix, the lean downwind and sideways (rad) per unit of each coordinate. Its mass
+/// density `density`: (z, kg/m) stations, linear between. Out: `sag = ∫ φ'ᵀ φ' dz` and the
+/// softening of its own weight `∫ g N(z) φ'ᵀ φ' dz`, `N` the tower's mass above z, integrated
+/// on every interval between the stations and `breaks` (where the slopes change form).
+pub fn leaning(
+    density: &[(f64, f64)],
+    breaks: &[f64],
+    n: usize,
+    slopes: &dyn Fn(f64) -> DMatrix<f64>,
+) -> (DMatrix<f64>, DMatrix<f64>) {
+    let mut points: Vec<f64> = density
+        .iter()
+        .map(|d| d.0)
+        .chain(breaks.iter().copied())
+        .collect();
+    points.sort_by(f64::total_cmp);
+    points.dedup_by(|a, b| (*a - *b).abs() < 1e-12);
+    // The density on the interval [za, zb] (inside one station interval): at its two ends.
+    let ends = |za: f64, zb: f64| {
+        let mid = 0.5 * (za + zb);
+        let i = density
+            .windows(2)
+            .position(|w| mid <= w[1].0)
+            .unwrap_or(density.len() - 2);
+        let (a, b) = (density[i], density[i + 1]);
+        let at = |z: f64| a.1 + (z - a.0) / (b.0 - a.0) * (b.1 - a.1);
+        (at(za), at(zb))
+    };
+    let mut above = vec![0.0; points.len()];
+    for i in (0..points.len() - 1).rev() {
+        let (ma, mb) = ends(points[i], points[i + 1]);
+        above[i] = above[i + 1] + (points[i + 1] - points[i]) * 0.5 * (ma + mb);
+    }
+    let rule = gauss_rule(GAUSS_POINTS);
+    let mut sag = DMatrix::zeros(n, n);
+    let mut own = DMatrix::zeros(n, n);
+    for (i, w) in points.windows(2).enumerate() {
+        let (za, zb) = (w[0], w[1]);
+        let dz = zb - za;
+        let (ma, mb) = ends(za, zb);
+        for (s, gw) in rule.0.iter().zip(&rule.1) {
+            let t = 0.5 * (s + 1.0);
+            let z = za + t * dz;
+            let mu = ma + t * (mb - ma);
+            let mass_above = above[i + 1] + (zb - z) * 0.5 * (mu + mb);
+            let d = slopes(z);
+            let leaning = 0.5 * gw * dz * d.transpose() * &d;
+            own += GRAVITY * mass_above * &leaning;
+            sag += leaning;
         }
     }
-    m
+    (sag, own)
 }
 
 /// The motion of a point rigidly `offset` from the tower top: translation `u + θ × d`, the
@@ -272,7 +392,7 @@ fn at_offset(top: &DMatrix<f64>, offset: [f64; 3]) -> DMatrix<f64> {
         let theta = Vector3::new(
             top[(Apex::Roll as usize, j)],
             top[(Apex::Tilt as usize, j)],
-            0.0,
+            top[(Apex::Yaw as usize, j)],
         );
         let u = theta.cross(&d);
         for axis in 0..3 {
@@ -338,6 +458,14 @@ fn check(inputs: &TowerInputs, top: &TowerTop) -> Result<()> {
             return Err(bad("a damping ratio", *z, "finite and ≥ 0"));
         }
     }
+    check_top(top)
+}
+
+/// Every mass and inertia on the tower top finite and not negative, every offset finite.
+pub fn check_top(top: &TowerTop) -> Result<()> {
+    let bad = |what: &str, v: f64, rule: &str| {
+        Error::numerical(format!("tower: {what} is {v}; it must be {rule}"))
+    };
     for (what, v) in [
         ("the yaw bearing's mass", top.yaw_bearing_mass),
         ("the nacelle's mass", top.nacelle_mass),
@@ -345,6 +473,15 @@ fn check(inputs: &TowerInputs, top: &TowerTop) -> Result<()> {
     ] {
         if !(v.is_finite() && v >= 0.0) {
             return Err(bad(what, v, "finite and ≥ 0"));
+        }
+    }
+    for v in top.nacelle_inertia {
+        if !(v.is_finite() && v >= 0.0) {
+            return Err(bad(
+                "a moment of inertia of the nacelle",
+                v,
+                "finite and ≥ 0",
+            ));
         }
     }
     for v in top
@@ -362,13 +499,13 @@ fn check(inputs: &TowerInputs, top: &TowerTop) -> Result<()> {
 /// The flap and edge motion (rows over the tower's coordinates) of a blade's strip at
 /// `radius` from the apex, the blade at `azimuth` (rad, zero up, turning about +x): the apex's
 /// translation seen along the blade's flap (downwind) and edge (its direction of rotation)
-/// axes, the tilt swinging it downwind by `radius cos ψ`, the roll turning it as the rotor
-/// turns.
+/// axes, the tilt swinging it downwind by `radius cos ψ` and the yaw by `radius sin ψ`, the
+/// roll turning it as the rotor turns.
 pub fn strip_rows(apex: &DMatrix<f64>, azimuth: f64, radius: f64) -> [DVector<f64>; 2] {
     let (c, s) = (azimuth.cos(), azimuth.sin());
     let row = |a: Apex| apex.row(a as usize).transpose();
     [
-        row(Apex::X) + row(Apex::Tilt) * (radius * c),
+        row(Apex::X) + row(Apex::Tilt) * (radius * c) + row(Apex::Yaw) * (radius * s),
         row(Apex::Y) * (-c) - row(Apex::Z) * s + row(Apex::Roll) * radius,
     ]
 }
