@@ -227,21 +227,21 @@ impl Block {
 
 /// Where in the model a block sits, for errors: `new_htc_structure › main_body blade1 › c2_def`.
 #[derive(Debug, Clone)]
-struct Trail(Vec<String>);
+pub(super) struct Trail(pub(super) Vec<String>);
 
 impl Trail {
-    fn within(&self, block: &Block) -> Trail {
+    pub(super) fn within(&self, block: &Block) -> Trail {
         let mut t = self.0.clone();
         t.push(block.title());
         Trail(t)
     }
 
-    fn error(&self, file: &str, line: usize, message: impl std::fmt::Display) -> Error {
+    pub(super) fn error(&self, file: &str, line: usize, message: impl std::fmt::Display) -> Error {
         Error::format(file, line, format!("in {}: {message}", self.0.join(" › ")))
     }
 
     /// The error for a statement `block` lacks.
-    fn missing(&self, block: &Block, expected: &str) -> Error {
+    pub(super) fn missing(&self, block: &Block, expected: &str) -> Error {
         self.error(
             &block.file,
             block.line,
@@ -367,7 +367,11 @@ pub fn blade(model: &Block, name: &str) -> Result<HtcBlade> {
 
 /// The `main_body` block called `name`, or the one it copies (`copy_main_body`), with the name
 /// of the block whose statements it has.
-fn main_body<'a>(structure: &'a Block, name: &str, trail: &Trail) -> Result<(&'a Block, String)> {
+pub(super) fn main_body<'a>(
+    structure: &'a Block,
+    name: &str,
+    trail: &Trail,
+) -> Result<(&'a Block, String)> {
     let name_of = |b: &Block| {
         b.statement("name")
             .and_then(|s| s.values.first())
@@ -405,7 +409,7 @@ fn main_body<'a>(structure: &'a Block, name: &str, trail: &Trail) -> Result<(&'a
 }
 
 /// The numbers of `s`, exactly `n` of them, or the error saying `expected`.
-fn numbers(s: &Statement, n: usize, trail: &Trail, expected: &str) -> Result<Vec<f64>> {
+pub(super) fn numbers(s: &Statement, n: usize, trail: &Trail, expected: &str) -> Result<Vec<f64>> {
     let values: Option<Vec<f64>> = s.values.iter().map(|v| parse_number(v)).collect();
     match values {
         Some(v) if v.len() == n => Ok(v),
@@ -422,14 +426,14 @@ fn numbers(s: &Statement, n: usize, trail: &Trail, expected: &str) -> Result<Vec
 }
 
 /// A whole number ≥ 1 written as a number.
-fn count(v: f64) -> Option<usize> {
+pub(super) fn count(v: f64) -> Option<usize> {
     (v.fract() == 0.0 && (1.0..=1e6).contains(&v)).then_some(v as usize)
 }
 
 const SEC: &str = "sec <i> <x> <y> <z> <twist>;";
 
 /// `nsec n;` and its `n` sections, numbered 1…n, in number order.
-fn c2_def(c2: &Block, trail: &Trail) -> Result<Vec<C2Section>> {
+pub(super) fn c2_def(c2: &Block, trail: &Trail) -> Result<Vec<C2Section>> {
     let nsec = c2
         .statement("nsec")
         .ok_or_else(|| trail.missing(c2, "'nsec <count>;'"))?;
@@ -488,7 +492,7 @@ fn c2_def(c2: &Block, trail: &Trail) -> Result<Vec<C2Section>> {
 
 /// The body's `timoschenko_input` block (HAWC2's spelling; `timoshenko_input` is taken too):
 /// `filename`, `set`, and `FPM` (0 unless given).
-fn timoshenko_input(body: &Block, trail: &Trail) -> Result<TimoshenkoInput> {
+pub(super) fn timoshenko_input(body: &Block, trail: &Trail) -> Result<TimoshenkoInput> {
     let t = body
         .block("timoschenko_input")
         .or_else(|| body.block("timoshenko_input"))
@@ -543,7 +547,7 @@ fn timoshenko_input(body: &Block, trail: &Trail) -> Result<TimoshenkoInput> {
 }
 
 /// The body's `damping_posdef` or `damping_aniso` statement, if it has one.
-fn damping(body: &Block, trail: &Trail) -> Result<Option<HtcDamping>> {
+pub(super) fn damping(body: &Block, trail: &Trail) -> Result<Option<HtcDamping>> {
     let found = body.items.iter().find_map(|i| match i {
         Item::Statement(s) if matches!(s.keyword.as_str(), "damping_posdef" | "damping_aniso") => {
             Some(s)

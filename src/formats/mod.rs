@@ -25,6 +25,7 @@ pub mod elastodyn_turbine;
 pub mod hawc2_aero;
 pub mod hawc2_st;
 pub mod htc;
+pub mod htc_turbine;
 pub mod text;
 pub mod text_file;
 pub mod windio;

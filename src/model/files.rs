@@ -15,10 +15,14 @@
 
 use super::htc::htc_files;
 use super::kept::Kept;
+use super::turbine_htc::{hawc2_turbine, Hawc2Turbine};
 use crate::error::{Error, Result};
 use crate::formats::elastodyn_tower::{parse_tower, ElastoDynTower};
 use crate::formats::elastodyn_turbine::{parse_turbine, ElastoDynTurbine};
-use crate::formats::text_file::TextFile;
+use crate::formats::hawc2_st::parse_st;
+use crate::formats::htc::{parse_htc, TimoshenkoInput};
+use crate::formats::htc_turbine;
+use crate::formats::text_file::{ModelRoot, TextFile};
 use crate::formats::windio::{self, WindIo};
 use crate::physics::blade::source::{
     read_twist, BeamDynFiles, BladeFiles, Hawc2Files, TabulatedBlade, TurnRequest, WindIoFiles,
@@ -112,6 +116,12 @@ impl ReadFiles {
         self.turbine.turbine.as_ref()
     }
 
+    /// The HAWC2 model's turbine `turbine.htc_file` names (`None` without one), and its
+    /// display name.
+    pub fn hawc2_turbine(&self) -> Option<&(Arc<Hawc2Turbine>, String)> {
+        self.turbine.hawc2.as_ref()
+    }
+
     /// The tower file the turbine file names, read for `turbine.model = "turbine"` (`None`
     /// otherwise), and its display name.
     pub fn tower(&self) -> Option<&(Arc<ElastoDynTower>, String)> {
@@ -197,14 +207,16 @@ struct TableFile {
     table: Option<Arc<ScheduleTable>>,
 }
 
-/// The turbine file and the keys it was read from (`turbine.source`, `turbine.file`, and
-/// whether the model holds the tower).
+/// The turbine file and the keys it was read from (`turbine.source`, `turbine.file` or
+/// `turbine.htc_file`, and whether the model holds the tower).
 #[derive(Debug)]
 struct TurbineFile {
     key: (String, String, bool),
     turbine: Option<(Arc<ElastoDynTurbine>, String)>,
     /// The tower file the main file names, read for `turbine.model = "turbine"` only.
     tower: Option<(Arc<ElastoDynTower>, String)>,
+    /// A HAWC2 model's turbine, its tower built for `turbine.model = "turbine"` only.
+    hawc2: Option<(Arc<Hawc2Turbine>, String)>,
 }
 
 /// How many station counts are kept (the most recently built): an operating point and a
@@ -375,7 +387,7 @@ pub fn read_rotor(
     let (aero_keys, table_key) = rotor_keys(p);
     let turbine_key = (
         format!("{:?}", p.turbine.source),
-        p.turbine.file.trim().to_string(),
+        format!("{}|{}", p.turbine.file.trim(), p.turbine.htc_file.trim()),
         p.turbine.model == TurbineModel::Turbine,
     );
     if let Some(h) = held {
@@ -391,9 +403,16 @@ pub fn read_rotor(
             return Ok(Arc::clone(h));
         }
     }
-    let (turbine, tower) = match held.filter(|h| h.turbine.key == turbine_key) {
-        Some(h) => (h.turbine.turbine.clone(), h.turbine.tower.clone()),
-        None => read_turbine_files(p)?,
+    let (turbine, tower, hawc2) = match held.filter(|h| h.turbine.key == turbine_key) {
+        Some(h) => (
+            h.turbine.turbine.clone(),
+            h.turbine.tower.clone(),
+            h.turbine.hawc2.clone(),
+        ),
+        None => {
+            let (turbine, tower) = read_turbine_files(p)?;
+            (turbine, tower, read_hawc2_turbine(p)?)
+        }
     };
     let aero = match held.filter(|h| h.aero.keys == aero_keys) {
         Some(h) => AeroFiles {
@@ -432,8 +451,44 @@ pub fn read_rotor(
             key: turbine_key,
             turbine,
             tower,
+            hawc2,
         },
     }))
+}
+
+/// The turbine of the HAWC2 model `turbine.htc_file` names, with its display name; none
+/// unless `turbine.source = "hawc2"`. Its st files resolve from the folder above the htc
+/// file's, as its `continue_in_file`s do.
+fn read_hawc2_turbine(p: &Preset) -> Result<Named<Hawc2Turbine>> {
+    let name = p.turbine.htc_file.trim();
+    if p.turbine.source != TurbineSource::Hawc2 || name.is_empty() {
+        return Ok(None);
+    }
+    let keys = format!("turbine.htc_file = \"{name}\"");
+    let htc = p.base.resolve(name);
+    let root = ModelRoot::above_folder_of(&htc);
+    let display = htc.display();
+    let read = || -> Result<Hawc2Turbine> {
+        let text = htc.read()?;
+        let mut include = |path: &str| {
+            let file = root.file(path);
+            Ok((file.display(), file.read()?))
+        };
+        let model = parse_htc(&text, &display, &mut include)?;
+        let described = htc_turbine::turbine(&model)?;
+        let mut st = |input: &TimoshenkoInput| {
+            let file = root.file(&input.filename);
+            let st_name = file.display();
+            parse_st(&file.read()?, &st_name)
+        };
+        hawc2_turbine(
+            &described,
+            &mut st,
+            p.turbine.model == TurbineModel::Turbine,
+        )
+    };
+    let turbine = read().map_err(|e| file_error(p, &keys, e))?;
+    Ok(Some((Arc::new(turbine), display)))
 }
 
 /// A file read with its display name.

@@ -21,6 +21,7 @@ pub mod section;
 pub mod structure;
 pub mod system;
 pub mod turbine;
+pub mod turbine_htc;
 
 pub use section::section_properties;
 pub use structure::{assemble, for_preset};

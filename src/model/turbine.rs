@@ -24,6 +24,25 @@ pub fn rotor_inputs(p: &ValidPreset, rpm: f64) -> Result<Option<RotorInputs>> {
         DrivetrainModel::Free => Some(Generator::Free),
         DrivetrainModel::Locked => Some(Generator::Locked),
     };
+    if let Some((hawc2, name)) = p.files().hawc2_turbine() {
+        let drivetrain = generator.map(|generator| Drivetrain {
+            generator,
+            ..hawc2.drivetrain.clone()
+        });
+        let support = match p.turbine.model {
+            TurbineModel::Turbine => Some(hawc2.support.clone().ok_or_else(|| Error::Invalid {
+                origin: p.origin.clone(),
+                message: format!("{name}: its tower was not read"),
+            })?),
+            _ => None,
+        };
+        return Ok(Some(RotorInputs {
+            blades: p.operating.blades,
+            drivetrain,
+            support,
+            rotor_speed: rpm * PI / 30.0,
+        }));
+    }
     let turbine_file = || {
         p.files().turbine().ok_or_else(|| Error::Invalid {
             origin: p.origin.clone(),
@@ -100,7 +119,7 @@ pub fn support_of(t: &ElastoDynTurbine, tower: &ElastoDynTower) -> Result<Suppor
         nacelle_mass: t.nacelle_mass,
         nacelle_cm: t.nacelle_cm,
         // ElastoDyn's nacelle turns only in yaw (`NacYIner`), which its tower cannot do.
-        nacelle_inertia: [0.0; 3],
+        nacelle_inertia: [[0.0; 3]; 3],
         hub_mass: t.hub_mass,
         hub_cm: t.hub_cm,
         overhang: t.overhang,

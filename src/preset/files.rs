@@ -107,7 +107,7 @@ pub static BUILTIN_FILES: &[(&str, &str)] = &[
         include_str!("../../presets/blades/iea15mw/IEA_15MW_RWT_Onshore.opt"),
     ),
     // The IEA 15MW HAWC2 model in its own folders: the htc files the onshore model reads and
-    // the st, ae and pc files they name for the blade.
+    // the st, ae and pc files they name for the blade, the tower and the shaft.
     (
         "blades/iea15mw-hawc2/IEA-15-240-RWT-Onshore/htc/IEA_15MW_RWT_Onshore.htc",
         include_str!("../../presets/blades/iea15mw-hawc2/IEA-15-240-RWT-Onshore/htc/IEA_15MW_RWT_Onshore.htc"),
@@ -127,6 +127,14 @@ pub static BUILTIN_FILES: &[(&str, &str)] = &[
     (
         "blades/iea15mw-hawc2/IEA-15-240-RWT/IEA_15MW_RWT_WTG_aero.htc",
         include_str!("../../presets/blades/iea15mw-hawc2/IEA-15-240-RWT/IEA_15MW_RWT_WTG_aero.htc"),
+    ),
+    (
+        "blades/iea15mw-hawc2/IEA-15-240-RWT-Onshore/data/IEA_15MW_RWT_Tower_st.dat",
+        include_str!("../../presets/blades/iea15mw-hawc2/IEA-15-240-RWT-Onshore/data/IEA_15MW_RWT_Tower_st.dat"),
+    ),
+    (
+        "blades/iea15mw-hawc2/IEA-15-240-RWT/IEA_15MW_RWT_Shaft_st.dat",
+        include_str!("../../presets/blades/iea15mw-hawc2/IEA-15-240-RWT/IEA_15MW_RWT_Shaft_st.dat"),
     ),
     (
         "blades/iea15mw-hawc2/IEA-15-240-RWT/IEA_15MW_RWT_Blade_st_noFPM.st",

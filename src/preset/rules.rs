@@ -478,17 +478,41 @@ pub fn check(p: &Preset, files: &ReadFiles) -> Result<()> {
 fn turbine_is_complete(p: &Preset, files: &ReadFiles) -> std::result::Result<(), String> {
     let t = &p.turbine;
     let named = !t.file.trim().is_empty();
-    match (t.source, named) {
-        (TurbineSource::None, true) => {
+    let htc_named = !t.htc_file.trim().is_empty();
+    match (t.source, named, htc_named) {
+        (TurbineSource::None, true, _) => {
             return Err(format!(
-                "turbine.file = \"{}\" without turbine.source: set turbine.source =                  \"elastodyn\" for an ElastoDyn main file",
+                "turbine.file = \"{}\" without turbine.source: set turbine.source = \
+                 \"elastodyn\" for an ElastoDyn main file",
                 t.file
             ))
         }
-        (TurbineSource::Elastodyn, false) => {
-            return Err("turbine.source = \"elastodyn\" needs turbine.file: the ElastoDyn main \
+        (TurbineSource::None | TurbineSource::Elastodyn, _, true) => {
+            return Err(format!(
+                "turbine.htc_file = \"{}\" is a HAWC2 model's: set turbine.source = \"hawc2\"",
+                t.htc_file
+            ))
+        }
+        (TurbineSource::Elastodyn, false, _) => {
+            return Err(
+                "turbine.source = \"elastodyn\" needs turbine.file: the ElastoDyn main \
                         file, relative to the preset file"
-                .to_string())
+                    .to_string(),
+            )
+        }
+        (TurbineSource::Hawc2, _, false) => {
+            return Err(
+                "turbine.source = \"hawc2\" needs turbine.htc_file: the HAWC2 model's \
+                        htc file, relative to the preset file"
+                    .to_string(),
+            )
+        }
+        (TurbineSource::Hawc2, true, _) => {
+            return Err(format!(
+                "turbine.file = \"{}\" is an ElastoDyn main file's key: a HAWC2 turbine is read \
+                 from turbine.htc_file alone",
+                t.file
+            ))
         }
         _ => {}
     }
@@ -500,6 +524,16 @@ fn turbine_is_complete(p: &Preset, files: &ReadFiles) -> std::result::Result<(),
             ));
         }
     }
+    if let Some((turbine, name)) = files.hawc2_turbine() {
+        if turbine.blades != p.operating.blades {
+            return Err(format!(
+                "operating.blades = {} but {name} hangs {} hubs on its shaft: the rotor is the \
+                 file's",
+                p.operating.blades, turbine.blades
+            ));
+        }
+    }
+    let has_file = files.turbine().is_some() || files.hawc2_turbine().is_some();
     if t.model == TurbineModel::Blade {
         return Ok(());
     }
@@ -519,19 +553,21 @@ fn turbine_is_complete(p: &Preset, files: &ReadFiles) -> std::result::Result<(),
             p.operating.blades
         ));
     }
-    if t.model == TurbineModel::Turbine && files.turbine().is_none() {
+    if t.model == TurbineModel::Turbine && !has_file {
         return Err(
-            "turbine.model = \"turbine\" reads the tower (its file, height and base), \
-                    the nacelle, the hub and the drivetrain from an ElastoDyn main file: set \
-                    turbine.source = \"elastodyn\" and turbine.file"
+            "turbine.model = \"turbine\" reads the tower, the nacelle, the hub and the \
+             drivetrain from a turbine file: set turbine.source = \"elastodyn\" and \
+             turbine.file (an ElastoDyn main file) or turbine.source = \"hawc2\" and \
+             turbine.htc_file"
                 .to_string(),
         );
     }
-    if t.drivetrain != DrivetrainModel::Rigid && files.turbine().is_none() {
+    if t.drivetrain != DrivetrainModel::Rigid && !has_file {
         return Err(format!(
             "turbine.model = \"{}\" with turbine.drivetrain = \"{}\" reads the hub's and the \
              drivetrain's inertia, stiffness and damping from the turbine file: set \
-             turbine.source = \"elastodyn\" and turbine.file, or turbine.drivetrain = \"rigid\" \
+             turbine.source = \"elastodyn\" and turbine.file (or \"hawc2\" and \
+             turbine.htc_file), or turbine.drivetrain = \"rigid\" \
              for a hub turning at exactly the rotor speed",
             t.model.name(),
             t.drivetrain.name()

@@ -66,7 +66,7 @@ pub enum Beam {
 
 /// Local dofs of an element's node: both beams share this numbering, the Euler–Bernoulli beam
 /// leaving the shear strains out.
-const LOCAL: usize = 7;
+pub const LOCAL: usize = 7;
 const U: usize = 0;
 const GU: usize = 2;
 const V: usize = 3;
@@ -126,6 +126,13 @@ impl Beam {
             },
             Beam::Timoshenko => Some(2 + (node - 1) * LOCAL + k),
         }
+    }
+
+    /// The free dofs of node `node` (0 the root) in the order `[u, u', γ_u, v, v', γ_v, φ]`
+    /// (`None`: held by the clamp, or a shear strain the Euler–Bernoulli beam has not). Its
+    /// section turns by `u' − γ_u` and `v' − γ_v`.
+    pub fn node_dofs(self, node: usize) -> [Option<usize>; LOCAL] {
+        std::array::from_fn(|k| self.global(node, k))
     }
 
     /// The free dof of each of element `element`'s local dofs.

@@ -198,7 +198,7 @@ impl<F: TextFile> BladeFiles for HtcFiles<F> {
 /// damping, `kx` on the bending about `x_c2` (flap, as `E I_x`) and the flapwise shear, `ky` on
 /// the edge bending and shear, `kz` on torsion. Mass-proportional terms are not modelled: a body that states them is refused
 /// rather than damped otherwise than its file says.
-fn htc_damping(d: &HtcDamping) -> Result<SourceDamping> {
+pub fn htc_damping(d: &HtcDamping) -> Result<SourceDamping> {
     if d.mass.iter().any(|&m| m != 0.0) {
         return Err(Error::format(
             &d.file,

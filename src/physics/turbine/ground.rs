@@ -568,10 +568,10 @@ fn undamped_modes(m: &DMatrix<f64>, k: &DMatrix<f64>) -> Result<(DVector<f64>, D
     let l_inv = m
         .clone()
         .cholesky()
-        .ok_or_else(|| Error::numerical("the rotor's mass matrix is not positive definite"))?
+        .ok_or_else(|| Error::numerical("a mass matrix is not positive definite"))?
         .l()
         .try_inverse()
-        .ok_or_else(|| Error::numerical("the rotor's mass matrix is singular"))?;
+        .ok_or_else(|| Error::numerical("a mass matrix is singular"))?;
     let a = &l_inv * k * l_inv.transpose();
     let eig = ((&a + a.transpose()) * 0.5).symmetric_eigen();
     let mut order: Vec<usize> = (0..a.nrows()).collect();

@@ -13,6 +13,7 @@ pub mod ground;
 pub mod inputs;
 pub mod rotor;
 pub mod tower;
+pub mod tower_beam;
 
 use crate::error::{Error, Result};
 use crate::numeric::mbc::MultiBlade;

@@ -14,7 +14,7 @@
 use crate::error::{Error, Result};
 use crate::physics::basis::gauss_rule;
 use crate::physics::structure::{kinetic_energy, Family};
-use nalgebra::{Complex, DMatrix, DVector, Vector3};
+use nalgebra::{Complex, DMatrix, DVector, Matrix3, Vector3};
 
 /// One station of the tower's distributed properties, the file's factors applied.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -52,9 +52,9 @@ pub struct TowerTop {
     /// kg, at `nacelle_cm` from the tower top (x, y, z).
     pub nacelle_mass: f64,
     pub nacelle_cm: [f64; 3],
-    /// The nacelle's moments of inertia about its centre of mass and the axes x (roll), y
-    /// (tilt), z (yaw), kg·m².
-    pub nacelle_inertia: [f64; 3],
+    /// The nacelle's inertia tensor about its centre of mass in the axes x (roll), y (tilt), z
+    /// (yaw), kg·m².
+    pub nacelle_inertia: [[f64; 3]; 3],
     /// kg, at `hub_cm` downwind of the apex along the shaft.
     pub hub_mass: f64,
     pub hub_cm: f64,
@@ -276,7 +276,22 @@ impl Tower {
         let top_mass = top.yaw_bearing_mass + top.nacelle_mass + top.hub_mass;
         let stiffness = stiffness - own_weight - GRAVITY * top_mass * &sag;
         let apex = at_offset(top_motion, [top.overhang, 0.0, top.shaft_height]);
-        let mut mass = mass;
+        let mass = mass + Tower::top_inertia(top_motion, top);
+        Tower {
+            modes,
+            mass,
+            stiffness,
+            damping,
+            apex,
+            sag,
+        }
+    }
+
+    /// The mass matrix of `top`'s rigid bodies over the coordinates whose tower-top motion
+    /// `top_motion` gives ([`Apex`] rows).
+    pub fn top_inertia(top_motion: &DMatrix<f64>, top: &TowerTop) -> DMatrix<f64> {
+        let n = top_motion.ncols();
+        let mut mass = DMatrix::zeros(n, n);
         for (m, offset) in [
             (top.yaw_bearing_mass, [0.0; 3]),
             (top.nacelle_mass, top.nacelle_cm),
@@ -288,21 +303,10 @@ impl Tower {
             let v = at_offset(top_motion, offset).rows(0, 3).into_owned();
             mass += m * v.transpose() * v;
         }
-        for (axis, inertia) in [Apex::Roll, Apex::Tilt, Apex::Yaw]
-            .into_iter()
-            .zip(top.nacelle_inertia)
-        {
-            let turn = top_motion.row(axis as usize);
-            mass += inertia * turn.transpose() * turn;
-        }
-        Tower {
-            modes,
-            mass,
-            stiffness,
-            damping,
-            apex,
-            sag,
-        }
+        let turn = top_motion.rows(Apex::Roll as usize, 3);
+        let inertia = Matrix3::from_fn(|i, j| top.nacelle_inertia[i][j]);
+        mass += turn.transpose() * inertia * turn;
+        mass
     }
 
     /// How many coordinates it has.
@@ -475,14 +479,21 @@ pub fn check_top(top: &TowerTop) -> Result<()> {
             return Err(bad(what, v, "finite and ≥ 0"));
         }
     }
-    for v in top.nacelle_inertia {
-        if !(v.is_finite() && v >= 0.0) {
-            return Err(bad(
-                "a moment of inertia of the nacelle",
-                v,
-                "finite and ≥ 0",
-            ));
-        }
+    let inertia = Matrix3::from_fn(|i, j| top.nacelle_inertia[i][j]);
+    let scale = inertia.norm();
+    let symmetric = (inertia - inertia.transpose()).norm() <= 1e-9 * scale;
+    let finite = inertia.iter().all(|v| v.is_finite());
+    if !(finite
+        && symmetric
+        && inertia
+            .symmetric_eigenvalues()
+            .iter()
+            .all(|&v| v >= -1e-9 * scale))
+    {
+        return Err(Error::numerical(format!(
+            "tower: the nacelle's inertia tensor {:?} must be finite, symmetric and not negative",
+            top.nacelle_inertia
+        )));
     }
     for v in top
         .nacelle_cm

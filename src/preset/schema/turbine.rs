@@ -8,10 +8,14 @@ use serde::{Deserialize, Serialize};
 #[serde(deny_unknown_fields, default)]
 pub struct Turbine {
     pub model: TurbineModel,
-    /// What gives the hub's and the drivetrain's values: `elastodyn` (an ElastoDyn main file).
+    /// What gives the hub's and the drivetrain's values: `elastodyn` (an ElastoDyn main file)
+    /// or `hawc2` (a HAWC2 model's htc file).
     pub source: TurbineSource,
     /// The turbine file (relative to the preset's directory).
     pub file: String,
+    /// A HAWC2 model's htc file (relative to the preset's directory) for `source = "hawc2"`:
+    /// its paths resolve from the folder above the htc file's, as HAWC2 runs.
+    pub htc_file: String,
     /// The drivetrain of a `rotor`: the generator `free` (open loop, held by its constant
     /// torque), `locked` (a held brake), or `rigid`: no drivetrain, the hub turning at exactly
     /// the rotor speed (no file needed).
@@ -39,6 +43,8 @@ pub enum TurbineSource {
     None,
     /// An OpenFAST ElastoDyn main file.
     Elastodyn,
+    /// A HAWC2 model's htc file.
+    Hawc2,
 }
 
 /// `turbine.drivetrain`.
@@ -76,6 +82,7 @@ impl Default for Turbine {
             model: TurbineModel::Blade,
             source: TurbineSource::None,
             file: String::new(),
+            htc_file: String::new(),
             drivetrain: DrivetrainModel::Free,
         }
     }
