@@ -455,6 +455,30 @@ fn a_turbine_without_its_files_is_refused_with_the_reason() {
         e.contains("NRELOffshrBsline5MW_Onshore_ElastoDyn_Tower.dat") && e.contains("TwrFile"),
         "{e}"
     );
+    // A HAWC2 turbine's key without its source, the source without its key, the ElastoDyn key
+    // beside it.
+    let htc =
+        "turbine.htc_file=blades/iea15mw-hawc2/IEA-15-240-RWT-Onshore/htc/IEA_15MW_RWT_Onshore.htc";
+    for (overrides, says) in [
+        (
+            vec![htc.to_string()],
+            "is a HAWC2 model's: set turbine.source = \"hawc2\"",
+        ),
+        (
+            vec![
+                "turbine.source=hawc2".to_string(),
+                "turbine.file=".to_string(),
+            ],
+            "turbine.source = \"hawc2\" needs turbine.htc_file",
+        ),
+        (
+            vec!["turbine.source=hawc2".to_string(), htc.to_string()],
+            "is an ElastoDyn main file's key",
+        ),
+    ] {
+        let e = err(&overrides);
+        assert!(e.contains(says), "{overrides:?}: {e}");
+    }
 }
 
 /// The lowest root of `f` in `(a, b)` (where it changes sign), by bisection.
