@@ -27,6 +27,7 @@ pub fn rotor_inputs(p: &ValidPreset, rpm: f64) -> Result<Option<RotorInputs>> {
     if let Some((hawc2, name)) = p.files().hawc2_turbine() {
         let drivetrain = generator.map(|generator| Drivetrain {
             generator,
+            torque_slope: p.turbine.torque_slope,
             ..hawc2.drivetrain.clone()
         });
         let support = match p.turbine.model {
@@ -57,7 +58,10 @@ pub fn rotor_inputs(p: &ValidPreset, rpm: f64) -> Result<Option<RotorInputs>> {
         None => None,
         Some(generator) => {
             let (file, name) = turbine_file()?;
-            Some(drivetrain_of(file, generator).map_err(|e| e.at(name.clone()))?)
+            Some(
+                drivetrain_of(file, generator, p.turbine.torque_slope)
+                    .map_err(|e| e.at(name.clone()))?,
+            )
         }
     };
     let support = match p.turbine.model {
@@ -136,13 +140,18 @@ pub fn support_of(t: &ElastoDynTurbine, tower: &ElastoDynTower) -> Result<Suppor
 /// The drivetrain an ElastoDyn main file gives: `HubIner`, `GenIner · GBRatio²`, `DTTorSpr`,
 /// `DTTorDmp` (the file's `GenDOF` and `DrTrDOF` switches are not read: `turbine.drivetrain`
 /// says what turns).
-fn drivetrain_of(t: &ElastoDynTurbine, generator: Generator) -> Result<Drivetrain> {
+fn drivetrain_of(
+    t: &ElastoDynTurbine,
+    generator: Generator,
+    torque_slope: f64,
+) -> Result<Drivetrain> {
     Drivetrain {
         hub_inertia: t.hub_inertia,
         generator_inertia: t.generator_inertia * t.gearbox_ratio * t.gearbox_ratio,
         stiffness: t.drivetrain_stiffness,
         damping: t.drivetrain_damping,
         generator,
+        torque_slope,
     }
     .checked()
 }

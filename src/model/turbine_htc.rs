@@ -182,6 +182,7 @@ pub fn hawc2_turbine(
         stiffness,
         damping,
         generator: Generator::Free,
+        torque_slope: 0.0,
     };
     let axis = shaft_frame.turn * Vector3::z();
     let tilt_deg = (-axis.z)

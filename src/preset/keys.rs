@@ -227,6 +227,7 @@ pub static KEYS: &[KeySpec] = &[
     optional!("aero.hgm.b2", "", 0.0, 10.0, open = true, aero.hgm.b2),
     optional!("aero.hgm.tau_p", "", 0.0, 100.0, open = true, aero.hgm.tau_p),
     optional!("aero.hgm.tau_f", "", 0.0, 100.0, open = true, aero.hgm.tau_f),
+    real!("turbine.torque_slope", "N·m·s/rad", 0.0, 1e12, open = false, turbine.torque_slope),
     real!("simulation.kick_twist", "deg", -90.0, 90.0, open = false, simulation.kick_twist),
     real!("simulation.kick_flap", "m", -100.0, 100.0, open = false, simulation.kick_flap),
     real!("simulation.duration", "s", 0.0, 1e4, open = true, simulation.duration),

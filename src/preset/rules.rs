@@ -534,6 +534,14 @@ fn turbine_is_complete(p: &Preset, files: &ReadFiles) -> std::result::Result<(),
         }
     }
     let has_file = files.turbine().is_some() || files.hawc2_turbine().is_some();
+    if t.torque_slope != 0.0 && t.drivetrain != DrivetrainModel::Free {
+        return Err(format!(
+            "turbine.torque_slope = {} with turbine.drivetrain = \"{}\": only a free generator \
+             turns against its torque's slope",
+            t.torque_slope,
+            t.drivetrain.name()
+        ));
+    }
     if t.model == TurbineModel::Blade {
         return Ok(());
     }

@@ -330,3 +330,63 @@ fn a_rotors_edge_names_stay_on_their_roots_while_its_flap_modes_mix_in_the_wind(
         }
     }
 }
+
+/// With its torque held constant (open loop) the IEA 15MW's free generator lets the rotor run
+/// away slowly at 7 m/s (the rotor's aerodynamic torque rises with its speed there); a
+/// generator torque that rises with speed, region 2's `Q = k Ω²` through the operating point
+/// (slope `2 Q / Ω`, Q = 8.905 MN·m at 5 rpm), holds it: the rotation's root moves left by about
+/// the slope over the drivetrain's whole inertia, and every root decays.
+#[test]
+fn a_generator_torque_that_rises_with_speed_holds_the_free_rotor() {
+    let rotation = |slope: f64| {
+        let p = Preset::load(
+            "iea15mw",
+            &[
+                "turbine.model=rotor".to_string(),
+                "operating.wind_speed=7".to_string(),
+                format!("turbine.torque_slope={slope}"),
+            ],
+        )
+        .unwrap();
+        let stability = analyse(&p).unwrap();
+        let root = stability
+            .eigenvalues
+            .iter()
+            .find(|m| m.label == "rotor rotation")
+            .unwrap()
+            .re;
+        let worst = stability
+            .eigenvalues
+            .iter()
+            .map(|m| m.re)
+            .fold(f64::NEG_INFINITY, f64::max);
+        (root, worst)
+    };
+    let slope = 2.0 * 8.9046e6 / (5.0 * std::f64::consts::PI / 30.0);
+    let (open, _) = rotation(0.0);
+    let (held, worst) = rotation(slope);
+    assert!(open > 0.0, "open loop: the rotation's σ = {open}");
+    assert!(
+        held < 0.0 && worst < 0.0,
+        "held: σ = {held}, largest {worst}"
+    );
+    // The drivetrain's inertia about the shaft: the hub's, the generator's and three blades'.
+    let shift = open - held;
+    assert!(
+        (0.07..0.12).contains(&shift),
+        "the slope moved the rotation's root by {shift} 1/s"
+    );
+    let locked = Preset::load(
+        "iea15mw",
+        &[
+            "turbine.drivetrain=locked".to_string(),
+            format!("turbine.torque_slope={slope}"),
+        ],
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        locked.contains("only a free generator turns against its torque's slope"),
+        "{locked}"
+    );
+}

@@ -33,6 +33,9 @@ pub struct Drivetrain {
     pub stiffness: f64,
     pub damping: f64,
     pub generator: Generator,
+    /// The generator torque's rise per unit of the generator's speed (N·m·s/rad, low-speed
+    /// side): a damper on the generator's turning while it is free; 0 holds its torque.
+    pub torque_slope: f64,
 }
 
 impl Drivetrain {
@@ -50,6 +53,12 @@ impl Drivetrain {
                     "drivetrain: {what} is {v}; it must be finite and positive"
                 )));
             }
+        }
+        if !(self.torque_slope.is_finite() && self.torque_slope >= 0.0) {
+            return Err(Error::numerical(format!(
+                "drivetrain: the generator torque slope is {}; it must be finite and ≥ 0",
+                self.torque_slope
+            )));
         }
         if !(self.damping.is_finite() && self.damping >= 0.0) {
             return Err(Error::numerical(format!(
@@ -70,16 +79,19 @@ impl Drivetrain {
 
     /// Mass (the hub's and the generator's inertia; the blades add theirs to `θ_r`), stiffness
     /// and damping over [`Drivetrain::coordinates`]: `θ_r` (and `δ`). The generator turns by
-    /// `θ_r − δ`, so its kinetic energy `½ J_g (θ̇_r − δ̇)²` couples the two.
+    /// `θ_r − δ`, so its kinetic energy `½ J_g (θ̇_r − δ̇)²` couples the two, and so does its
+    /// torque's slope `c_g`: `−c_g (θ̇_r − δ̇)` on it.
     pub fn matrices(&self) -> [DMatrix<f64>; 3] {
         let (jh, jg) = (self.hub_inertia, self.generator_inertia);
         match self.generator {
             Generator::Free => {
                 let shaft = |k: f64| DMatrix::from_row_slice(2, 2, &[0.0, 0.0, 0.0, k]);
+                let c = self.torque_slope;
+                let generator = DMatrix::from_row_slice(2, 2, &[c, -c, -c, c]);
                 [
                     DMatrix::from_row_slice(2, 2, &[jh + jg, -jg, -jg, jg]),
                     shaft(self.stiffness),
-                    shaft(self.damping),
+                    shaft(self.damping) + generator,
                 ]
             }
             Generator::Locked => [

@@ -20,6 +20,10 @@ pub struct Turbine {
     /// torque), `locked` (a held brake), or `rigid`: no drivetrain, the hub turning at exactly
     /// the rotor speed (no file needed).
     pub drivetrain: DrivetrainModel,
+    /// The generator torque's rise per unit of its speed (N·m·s/rad, on the low-speed shaft)
+    /// with the generator free: 0 holds its torque constant (open loop); a speed controller's
+    /// slope damps the drivetrain (region 2's `Q = k Ω²`: `2 Q / Ω`).
+    pub torque_slope: f64,
 }
 
 /// `turbine.model`.
@@ -84,6 +88,7 @@ impl Default for Turbine {
             file: String::new(),
             htc_file: String::new(),
             drivetrain: DrivetrainModel::Free,
+            torque_slope: 0.0,
         }
     }
 }
