@@ -477,8 +477,14 @@ impl Simulator {
             return;
         }
         let l = &self.linear;
-        let shapes = l.structure.kick_shapes();
-        let tip = |s: &DVector<f64>| (l.tip_twist.dot(s), l.tip_flap.dot(s));
+        let now = self.next as f64 * self.interval;
+        let shapes = l.kick_shapes_at(now);
+        let [twist_row, flap_row] = l.tip_rows_at(now);
+        let nq = l.nq;
+        let tip = |s: &DVector<f64>| {
+            let q = s.rows(0, nq);
+            (twist_row.dot(&q), flap_row.dot(&q))
+        };
         let ((t0, f0), (t1, f1)) = (tip(&shapes[0]), tip(&shapes[1]));
         let det = t0 * f1 - t1 * f0;
         if det == 0.0 || !det.is_finite() {
@@ -486,7 +492,7 @@ impl Simulator {
         }
         let a = (twist_rad * f1 - flap_m * t1) / det;
         let b = (flap_m * t0 - twist_rad * f0) / det;
-        let mut q = self.y.rows_mut(0, l.nq);
+        let mut q = self.y.rows_mut(0, 2 * nq);
         q.axpy(a, &shapes[0], 1.0);
         q.axpy(b, &shapes[1], 1.0);
         self.restart_history();
@@ -527,7 +533,8 @@ impl Simulator {
     }
 
     fn tip(&self) -> (f64, f64) {
-        self.linear.tip(&self.state())
+        self.linear
+            .tip_at(&self.state(), self.next as f64 * self.interval)
     }
 
     /// A kick or a new start invalidates the remainder's history.

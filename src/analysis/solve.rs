@@ -6,7 +6,7 @@
 use crate::analysis::eigen::{analyse_system, Stability};
 use crate::analysis::mode_shape::{mode_shape, ModeShape, SpanRows};
 use crate::analysis::simulate::Simulator;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::physics::system::{LinearSystem, System};
 use crate::preset::{Start, TurbineModel, ValidPreset};
 use nalgebra::DVector;
@@ -65,22 +65,21 @@ impl Solution {
     /// The tip response of `simulation.*` (docs/model.md §7), stepping the linearisation of this
     /// build: exactly for the affine models, split about it for the nonlinear ones. A run from
     /// rest of a nonlinear model without an equilibrium is split about the rest state instead.
+    /// A rotor or turbine steps its ground-frame linearisation, time-invariant for the
+    /// isotropic rotor, and reads blade 1's tip as it turns (docs/model.md §13.8): a nonlinear
+    /// model's stall is then linearised about the equilibrium
+    /// ([`ValidPreset::stall_linearised_in_time`]).
     pub fn simulator(self, p: &ValidPreset) -> Result<Simulator> {
-        if p.turbine.model != TurbineModel::Blade {
-            // The ground frame's states hold blade 1's tip only through the azimuth, which
-            // the stepper would have to turn with time.
-            return Err(Error::Invalid {
-                origin: p.origin.clone(),
-                message: format!(
-                    "the time response is of one clamped blade; turbine.model = \"{}\" is \
-                     analysed in the ground frame (eigen, modes, sweep, flutter), not simulated: \
-                     set turbine.model = \"blade\" for the tip response",
-                    p.turbine.model.name()
-                ),
-            });
-        }
         let sim = &p.simulation;
         let length = self.system.structure().length();
+        if p.turbine.model != TurbineModel::Blade {
+            let mut s = Simulator::from_linear(self.linear?, sim.sample_rate, length)?;
+            if sim.start == Start::Rest {
+                s.start_from_rest();
+            }
+            s.kick(sim.kick_twist.to_radians(), sim.kick_flap);
+            return Ok(s);
+        }
         let affine = self.system.model().nonlinear_support().is_affine();
         let mut s = match (self.linear, affine, sim.start) {
             (Ok(linear), true, _) => Simulator::from_linear(linear, sim.sample_rate, length)?,

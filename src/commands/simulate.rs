@@ -47,9 +47,18 @@ pub fn summary(p: &ValidPreset, r: &Response) -> String {
     };
     let last = |v: &[f64]| v.last().copied().unwrap_or(0.0);
     let mut out = format!(
-        "{} — {} aerodynamics, start {:?}, {} samples over {:.3} s\n",
+        "{} — {}{} aerodynamics{}, start {:?}, {} samples over {:.3} s\n",
         p.display_name(),
+        match r.rotor_blade {
+            Some(b) => format!("blade {b}'s tip on the {}, ", p.turbine.model.name()),
+            None => String::new(),
+        },
         p.aero.model.name(),
+        if r.stall_linearised {
+            " (stall linearised about the equilibrium)"
+        } else {
+            ""
+        },
         p.simulation.start,
         r.t.len(),
         r.t.last().copied().unwrap_or(0.0)

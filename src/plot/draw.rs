@@ -1,7 +1,7 @@
 //! The plotters backend: draws a [`Figure`] on any plotters drawing area (the SVG string and the
 //! in-memory bitmap behind `output`), panel by panel, where `layout` says things go.
 
-use super::figure::{Figure, Guide, GuideKind, Mark, Panel, Rgb, GUIDE_GREY};
+use super::figure::{Dash, Figure, Guide, GuideKind, Mark, Panel, Rgb, GUIDE_GREY};
 use super::layout::{
     clip_segment, far_end, format_tick, guide_ends, inside, legend_line_height, legend_size,
     notes_width, text_width, visible_runs, Corner, LegendEntry, Occupancy, PanelLayout,
@@ -145,9 +145,13 @@ where
         let mark = series.style.mark;
         if matches!(mark, Mark::Line | Mark::LinePoints) {
             for run in visible_runs(&series.points, xr, yr) {
-                chart
-                    .draw_series(std::iter::once(PathElement::new(run, line_style)))
-                    .map_err(draw_error)?;
+                match dash_pattern(series.style.dash) {
+                    None => chart.draw_series(std::iter::once(PathElement::new(run, line_style))),
+                    Some((on, off)) => {
+                        chart.draw_series(DashedLineSeries::new(run, on, off, line_style))
+                    }
+                }
+                .map_err(draw_error)?;
             }
         }
         if matches!(mark, Mark::Points | Mark::LinePoints) {
@@ -438,12 +442,19 @@ where
         let cy = y0 + (LEGEND_PAD + (i as f64 + 0.5) * line) as i32;
         // Swatches are rectangles and circles, never polylines (one polyline per data run).
         if matches!(e.mark, Mark::Line | Mark::LinePoints) {
-            target
-                .draw(&Rectangle::new(
-                    [(sx, cy - 2), (sx + LEGEND_SWATCH as i32, cy + 2)],
-                    color(e.color).filled(),
-                ))
-                .map_err(draw_error)?;
+            let swatch = LEGEND_SWATCH as i32;
+            let (on, off) = dash_pattern(e.dash).unwrap_or((swatch, 0));
+            let mut x = sx;
+            while x < sx + swatch {
+                let end = (x + on).min(sx + swatch);
+                target
+                    .draw(&Rectangle::new(
+                        [(x, cy - 2), (end, cy + 2)],
+                        color(e.color).filled(),
+                    ))
+                    .map_err(draw_error)?;
+                x = end + off.max(1);
+            }
         } else {
             target
                 .draw(&Circle::new(
@@ -464,4 +475,13 @@ where
             .map_err(draw_error)?;
     }
     Ok(())
+}
+
+/// A stroke's dash and gap lengths (pixels), none for a solid line.
+fn dash_pattern(dash: Dash) -> Option<(i32, i32)> {
+    match dash {
+        Dash::Solid => None,
+        Dash::Dashed => Some((10, 6)),
+        Dash::Dotted => Some((3, 5)),
+    }
 }

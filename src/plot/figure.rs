@@ -40,10 +40,20 @@ pub enum Mark {
     LinePoints,
 }
 
+/// How a line is stroked: a rotor's backward and forward whirls of one blade mode share its
+/// colour and differ in stroke.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Dash {
+    Solid,
+    Dashed,
+    Dotted,
+}
+
 /// The look of a series.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Style {
     pub mark: Mark,
+    pub dash: Dash,
     /// `None`: the next palette colour.
     pub color: Option<Rgb>,
     /// Line width in pixels at the default size.
@@ -54,6 +64,7 @@ impl Style {
     pub fn new(mark: Mark) -> Self {
         Style {
             mark,
+            dash: Dash::Solid,
             color: None,
             width: 2,
         }
@@ -96,6 +107,10 @@ impl Series {
     }
     pub fn with_color(mut self, color: Rgb) -> Self {
         self.style.color = Some(color);
+        self
+    }
+    pub fn with_dash(mut self, dash: Dash) -> Self {
+        self.style.dash = dash;
         self
     }
     /// Line width in pixels at the default size (at least 1).

@@ -2,7 +2,7 @@
 //! result type. They only arrange numbers the engine computed (the one derived quantity, the
 //! n-per-revolution lines `f = nΩ/60` on a Campbell diagram, is a unit conversion).
 
-use super::{Figure, Guide, Mark, Marker, Panel, Series, PALETTE};
+use super::{Dash, Figure, Guide, Mark, Marker, Panel, Series, PALETTE};
 use crate::analysis::campbell::{typical, ROTOR_SPEED_KEY};
 use crate::analysis::flutter::{BoundaryKind, Search};
 use crate::analysis::response::Response;
@@ -10,6 +10,7 @@ use crate::analysis::simulate::RunStatus;
 use crate::analysis::sweep::{FailedPoint, SweepRow, TrackedMode, TrackedSweep};
 use crate::physics::cross_section::Mesh;
 use crate::physics::laminate::LayupSection;
+use crate::physics::turbine::ground::Whirl;
 
 /// "key (unit)" for a preset key, or the bare key when it has no unit or is unknown.
 pub fn key_label(key: &str) -> String {
@@ -52,19 +53,44 @@ fn mode_panels(s: &TrackedSweep, x_label: &str) -> (Panel, Panel) {
         f(a).total_cmp(&f(b))
     });
     let order: Vec<usize> = on_scale.shown.iter().copied().chain(off_scale).collect();
+    // A rotor's whirls of one blade mode (`BW edge 1`, `collective edge 1`, `FW edge 1`) share
+    // its colour, stroked by whirl: backward dashed, collective solid, forward dotted.
+    let mut hues: Vec<&str> = Vec::new();
     for (rank, &i) in order.iter().enumerate() {
         let m = &s.modes[i];
-        let color = PALETTE[rank % PALETTE.len()];
+        let (hue, dash) = match Whirl::of_name(&m.label) {
+            Some(whirl) => (
+                m.label
+                    .split_once(' ')
+                    .map_or(m.label.as_str(), |(_, mode)| mode),
+                match whirl {
+                    Whirl::Backward => Dash::Dashed,
+                    Whirl::Collective => Dash::Solid,
+                    Whirl::Forward => Dash::Dotted,
+                },
+            ),
+            None => (m.label.as_str(), Dash::Solid),
+        };
+        let hue_rank = hues.iter().position(|h| *h == hue).unwrap_or_else(|| {
+            hues.push(hue);
+            hues.len() - 1
+        });
+        let color = PALETTE[hue_rank % PALETTE.len()];
         let name = if rank < on_scale.shown.len() {
             freq.series.push(
-                Series::from_xy(&m.label, &s.values, &m.frequency_hz, mark).with_color(color),
+                Series::from_xy(&m.label, &s.values, &m.frequency_hz, mark)
+                    .with_color(color)
+                    .with_dash(dash),
             );
             m.label.clone()
         } else {
             off_scale_name(m)
         };
-        damp.series
-            .push(Series::from_xy(name, &s.values, &m.damping_ratio, mark).with_color(color));
+        damp.series.push(
+            Series::from_xy(name, &s.values, &m.damping_ratio, mark)
+                .with_color(color)
+                .with_dash(dash),
+        );
     }
     if on_scale.left_off > 0 {
         freq.notes.push(format!(
@@ -192,9 +218,20 @@ pub fn tip_response(preset: &str, aero: &str, r: &Response) -> Figure {
         }
         twist_panel.notes.push(note);
     }
-    Figure::new(format!("Tip response — {preset}, {aero} aerodynamics"))
-        .with_panel(twist_panel)
-        .with_panel(flap_panel)
+    let whose = match r.rotor_blade {
+        Some(b) => format!("Blade {b}'s tip response"),
+        None => "Tip response".to_string(),
+    };
+    let linearised = if r.stall_linearised {
+        " (stall linearised)"
+    } else {
+        ""
+    };
+    Figure::new(format!(
+        "{whose} — {preset}, {aero} aerodynamics{linearised}"
+    ))
+    .with_panel(twist_panel)
+    .with_panel(flap_panel)
 }
 
 /// The tracked sweep of a one-key `sweep` rebuilt from its output rows (grid order: the key's

@@ -2,7 +2,7 @@
 //! plot, where a legend or notes fit, and text sizes. Nothing here draws; the plotters backend
 //! (`draw`) and the terminal renderer (`text`) both place things by these rules.
 
-use super::figure::{GuideKind, Mark, Panel, Rgb, PALETTE};
+use super::figure::{Dash, GuideKind, Mark, Panel, Rgb, PALETTE};
 use plotters::style::IntoFont;
 
 /// Typography, in plotters' font size (1.24 × the em): the layout measures text at these sizes
@@ -385,6 +385,7 @@ pub(super) struct LegendEntry {
     pub(super) name: String,
     pub(super) color: Rgb,
     pub(super) mark: Mark,
+    pub(super) dash: Dash,
 }
 
 pub(super) const LEGEND_PAD: f64 = 8.0;
@@ -460,6 +461,7 @@ impl PanelLayout {
                     name: s.name.clone(),
                     color: c,
                     mark: s.style.mark,
+                    dash: s.style.dash,
                 })
                 .collect()
         } else {

@@ -33,7 +33,7 @@ mod output;
 pub mod text;
 
 pub use figure::{
-    Figure, Guide, GuideKind, Mark, Marker, Panel, Rgb, Series, Style, DEFAULT_SIZE, PALETTE,
+    Dash, Figure, Guide, GuideKind, Mark, Marker, Panel, Rgb, Series, Style, DEFAULT_SIZE, PALETTE,
 };
 pub use layout::visible_runs;
 pub use output::{format_for, render_png, render_svg, write, Format};

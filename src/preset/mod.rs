@@ -354,6 +354,12 @@ impl Preset {
         toml::to_string(self).unwrap_or_default()
     }
 
+    /// True when the time response steps the linearisation of a model whose stall is
+    /// nonlinear: a rotor or turbine in the ground frame (docs/model.md §13.8).
+    pub fn stall_linearised_in_time(&self) -> bool {
+        self.turbine.model != TurbineModel::Blade && self.aero.model.stalls()
+    }
+
     /// A display name: `meta.name`, else the origin.
     pub fn display_name(&self) -> &str {
         if self.meta.name.is_empty() {

@@ -442,7 +442,7 @@ mod from_results {
     use flutterscope::analysis::simulate::RunStatus;
     use flutterscope::analysis::sweep::{RowStatus, SweepRow, TrackedMode, TrackedSweep};
     use flutterscope::plot::from_results;
-    use flutterscope::plot::{GuideKind, PALETTE};
+    use flutterscope::plot::{Dash, GuideKind, PALETTE};
 
     fn mode(label: &str, f: Vec<f64>, z: Vec<f64>) -> TrackedMode {
         let re = z.iter().map(|z| -z).collect();
@@ -654,6 +654,54 @@ mod from_results {
         );
     }
 
+    /// A rotor's Campbell diagram: the whirls of one blade mode share its colour, backward
+    /// dashed, collective solid, forward dotted; other modes keep colours of their own.
+    #[test]
+    fn a_rotors_whirls_share_their_blade_modes_colour_and_differ_in_stroke() {
+        let row = |v: f64, mode: &str, f: f64| SweepRow {
+            values: vec![v],
+            mode: Some(mode.into()),
+            frequency_hz: f,
+            damping_ratio: 0.01,
+            re: -0.1,
+            second_re: f64::NAN,
+            status: RowStatus::Ok,
+            error: None,
+        };
+        let mut rows = Vec::new();
+        for v in [5.0, 10.0] {
+            for (mode, f) in [
+                ("tower FA 1", 0.25),
+                ("BW edge 1", 0.5),
+                ("collective edge 1", 0.7),
+                ("FW edge 1", 0.9),
+                ("BW flap 1", 0.4),
+            ] {
+                rows.push(row(v, mode, f));
+            }
+        }
+        let t = from_results::tracked_from_rows("operating.wind_speed", &rows);
+        let fig = from_results::sweep("test", &t);
+        let look = |name: &str| {
+            let s = fig.panels[0]
+                .series
+                .iter()
+                .find(|s| s.name == name)
+                .unwrap_or_else(|| panic!("no {name}"));
+            (s.style.color.unwrap(), s.style.dash)
+        };
+        let (edge, bw) = look("BW edge 1");
+        assert_eq!(bw, Dash::Dashed);
+        assert_eq!(look("collective edge 1"), (edge, Dash::Solid));
+        assert_eq!(look("FW edge 1"), (edge, Dash::Dotted));
+        let (flap, _) = look("BW flap 1");
+        let (tower, tower_dash) = look("tower FA 1");
+        assert_eq!(tower_dash, Dash::Solid);
+        assert!(flap != edge && tower != edge && tower != flap);
+        assert!(flutterscope::plot::render_svg(&fig).is_ok());
+        assert!(flutterscope::plot::render_png(&fig).is_ok());
+    }
+
     #[test]
     fn flutter_figure_marks_the_boundary() {
         let mut tracked = rotor_sweep();
@@ -723,6 +771,8 @@ mod from_results {
             tip_twist: t.iter().map(|t| (5.0 * t).exp() * 1e-3).collect(),
             tip_flap: t.iter().map(|t| 0.1 * t).collect(),
             diverged_at: Some(0.99),
+            rotor_blade: None,
+            stall_linearised: false,
             t,
         };
         let fig = from_results::tip_response("test", "quasi-steady", &r);

@@ -39,7 +39,7 @@ fn paper_stall_case_reaches_equilibrium_and_is_stable_in_the_coupled_form() {
     let system = flutterscope::model::system(&p).unwrap();
     assert_static_equilibrium(&system);
     let lin = linear_system(&p).unwrap();
-    let (twist, flap) = lin.tip(&lin.x_eq);
+    let (twist, flap) = lin.tip_at(&lin.x_eq, 0.0);
     // The aerodynamic torsional stiffness dominates the soft blade: the tip twists toward
     // feather almost to zero angle of attack (α_r = 10.65°), below stall.
     let alpha_r = system.stations()[0].alpha_r;
@@ -194,7 +194,7 @@ fn linear_response_matches_the_exact_exponential_solution() {
     for k in [1usize, 7, 100, 1000, 2000] {
         let t = k as f64 / p.simulation.sample_rate;
         let x = &lin.x_eq + (&lin.a * t).exp() * &y0;
-        let (twist, flap) = lin.tip(&x);
+        let (twist, flap) = lin.tip_at(&x, 0.0);
         let s = samples[k];
         assert!((s.t - t).abs() < 1e-12);
         assert!(
@@ -257,7 +257,7 @@ fn linear_growth_rate_equals_the_largest_sigma() {
     let r = simulate(&p).unwrap();
     assert_eq!(r.status, RunStatus::Ok);
     let lin = linear_system(&p).unwrap();
-    let (twist_eq, _) = lin.tip(&lin.x_eq);
+    let (twist_eq, _) = lin.tip_at(&lin.x_eq, 0.0);
     let dev: Vec<f64> = r.tip_twist.iter().map(|v| v - twist_eq).collect();
     let rate = envelope_rate(&r.t, &dev, period, 3.0, 8.0);
     assert!(
@@ -280,7 +280,7 @@ fn stall_response_from_a_kick_decays_at_the_largest_sigma() {
     let (sigma, period) = (mode.re, 2.0 * std::f64::consts::PI / mode.im);
     let r = simulate(&p).unwrap();
     let lin = linear_system(&p).unwrap();
-    let (_, flap_eq) = lin.tip(&lin.x_eq);
+    let (_, flap_eq) = lin.tip_at(&lin.x_eq, 0.0);
     let dev: Vec<f64> = r.tip_flap.iter().map(|v| v - flap_eq).collect();
     let rate = envelope_rate(&r.t, &dev, period, 1.0, 6.0);
     assert!(
@@ -420,7 +420,7 @@ fn streaming_equals_one_run_and_kicks_move_the_tip() {
     assert_eq!(whole, parts);
     let before = b.state();
     b.kick(0.01, 0.02);
-    let (dt, du) = b.linear().tip(&(b.state() - before));
+    let (dt, du) = b.linear().tip_at(&(b.state() - before), 0.0);
     assert!((dt - 0.01).abs() < 1e-12 && (du - 0.02).abs() < 1e-12);
     // The kicked run goes on, and differs from the unkicked one.
     let next = b.advance(5).unwrap();

@@ -283,7 +283,7 @@ fn rest_start_settles_to_equilibrium_and_flutter_diverges_cleanly() {
         ],
     );
     let lin = linear_system(&p).unwrap();
-    let (twist_eq, flap_eq) = lin.tip(&lin.x_eq);
+    let (twist_eq, flap_eq) = lin.tip_at(&lin.x_eq, 0.0);
     assert!(twist_eq.abs() > 0.0 && flap_eq.abs() > 0.0);
     let r = simulate(&p).unwrap();
     assert_eq!(r.status, RunStatus::Ok);
@@ -322,7 +322,7 @@ fn incremental_stepping_equals_one_run_and_kicks_move_the_tip() {
     let before = b.state();
     b.kick(0.01, 0.02);
     let lin = b.linear();
-    let (dt, du) = lin.tip(&(b.state() - before));
+    let (dt, du) = lin.tip_at(&(b.state() - before), 0.0);
     assert!((dt - 0.01).abs() < 1e-12 && (du - 0.02).abs() < 1e-12);
 }
 

@@ -5,9 +5,11 @@
 use super::flutterscope_ok;
 use flutterscope::analysis::eigen::{analyse, linear_system};
 use flutterscope::analysis::mode::Mode;
+use flutterscope::analysis::response::{simulate, simulator};
+use flutterscope::analysis::simulate::Simulator;
 use flutterscope::numeric::decompose;
 use flutterscope::preset::{Preset, ValidPreset};
-use nalgebra::Complex;
+use nalgebra::{Complex, DVector};
 use std::f64::consts::TAU;
 
 fn preset(name: &str, overrides: &[&str]) -> ValidPreset {
@@ -389,4 +391,172 @@ fn a_generator_torque_that_rises_with_speed_holds_the_free_rotor() {
         locked.contains("only a free generator turns against its torque's slope"),
         "{locked}"
     );
+}
+
+/// Blade `k`'s tip (twist, flap) in the state `x` of a rotor's stepper at time `t`: blade 1's
+/// rows turned on by `k` thirds of a turn.
+fn blade_tip(sim: &Simulator, x: &DVector<f64>, t: f64, k: usize) -> (f64, f64) {
+    let l = sim.linear();
+    let turning = l.turning.as_ref().expect("a rotor's blade turns");
+    let psi = turning.rotor_speed * t + k as f64 * TAU / 3.0;
+    let [twist, flap] = turning.tip.at(psi);
+    let q = x.rows(0, l.nq);
+    (
+        twist.dot(&q) + l.tip_offset[0],
+        flap.dot(&q) + l.tip_offset[1],
+    )
+}
+
+/// Blade 1 of a rotor on a rigid drivetrain is the clamped blade: kicked alone at zero azimuth,
+/// its tip as it turns (read from the ground frame's states at azimuth Ωt) follows the clamped
+/// blade's response, and blades 2 and 3 stay where the equilibrium holds them, through a second
+/// kick at another azimuth too.
+#[test]
+fn blade_1_of_a_rotor_on_a_rigid_drivetrain_moves_as_the_clamped_blade_and_alone() {
+    let o = [
+        "simulation.duration=3",
+        "simulation.kick_twist=0.5",
+        "simulation.kick_flap=0.5",
+    ];
+    let blade = simulate(&preset("nrel5mw", &o)).unwrap();
+    let rotor_preset = preset(
+        "nrel5mw",
+        &[&o[..], &["turbine.model=rotor", "turbine.drivetrain=rigid"]].concat(),
+    );
+    let rotor = simulate(&rotor_preset).unwrap();
+    assert_eq!(rotor.rotor_blade, Some(1));
+    assert_eq!(rotor.t.len(), blade.t.len());
+    let (flap0, twist0) = (blade.tip_flap[0], blade.tip_twist[0]);
+    let mut worst: f64 = 0.0;
+    for i in 0..blade.t.len() {
+        worst = worst
+            .max((rotor.tip_flap[i] - blade.tip_flap[i]).abs() / 0.5)
+            .max((rotor.tip_twist[i] - blade.tip_twist[i]).abs() / 0.5f64.to_radians());
+    }
+    assert!(
+        worst < 1e-8,
+        "blade 1 off the clamped blade by {worst:e} of the kick"
+    );
+    // The response moved: the comparison is not of two resting blades.
+    let swing = blade
+        .tip_flap
+        .iter()
+        .map(|u| (u - flap0).abs())
+        .fold(0.0, f64::max);
+    assert!(
+        swing > 0.1 && twist0.is_finite(),
+        "tip flap swing {swing} m"
+    );
+
+    let mut sim = simulator(&rotor_preset).unwrap();
+    let interval = 1.0 / rotor_preset.simulation.sample_rate;
+    let rest: Vec<(f64, f64)> = (1..3)
+        .map(|k| blade_tip(&sim, &sim.linear().x_eq, 0.0, k))
+        .collect();
+    for n in 1..=600 {
+        if n == 237 {
+            // A second kick, blade 1 a quarter turn round (12.1 rpm): still its alone.
+            sim.kick(0.2f64.to_radians(), -0.3);
+        }
+        sim.advance(1).unwrap();
+        let (x, t) = (sim.state(), n as f64 * interval);
+        for (k, (twist, flap)) in (1..3).zip(&rest) {
+            let (a, u) = blade_tip(&sim, &x, t, k);
+            assert!(
+                (a - twist).abs() < 1e-10 && (u - flap).abs() < 1e-9,
+                "blade {} moved at t = {t}: twist {a} (rest {twist}), flap {u} (rest {flap})",
+                k + 1
+            );
+        }
+    }
+}
+
+/// On the whole turbine the blades share the hub: a kick of blade 1 sets its tip by exactly the
+/// kick and leaves blades 2 and 3 still at that instant, at whatever azimuth it comes; then the
+/// hub carries the motion to them.
+#[test]
+fn a_kick_on_the_turbine_moves_blade_1_alone_and_the_hub_passes_it_on() {
+    let p = preset(
+        "nrel5mw",
+        &[
+            "turbine.model=turbine",
+            "simulation.kick_twist=0",
+            "simulation.kick_flap=0",
+        ],
+    );
+    let mut sim = simulator(&p).unwrap();
+    let interval = 1.0 / p.simulation.sample_rate;
+    sim.advance(37).unwrap();
+    let t = 37.0 * interval;
+    let before: Vec<(f64, f64)> = (0..3)
+        .map(|k| blade_tip(&sim, &sim.state(), t, k))
+        .collect();
+    sim.kick(0.3f64.to_radians(), 0.4);
+    let after: Vec<(f64, f64)> = (0..3)
+        .map(|k| blade_tip(&sim, &sim.state(), t, k))
+        .collect();
+    assert!((after[0].0 - before[0].0 - 0.3f64.to_radians()).abs() < 1e-12);
+    assert!((after[0].1 - before[0].1 - 0.4).abs() < 1e-12);
+    for k in 1..3 {
+        assert!(
+            (after[k].0 - before[k].0).abs() < 1e-12 && (after[k].1 - before[k].1).abs() < 1e-12,
+            "blade {} moved with the kick: {:?} → {:?}",
+            k + 1,
+            before[k],
+            after[k]
+        );
+    }
+    let samples = sim.advance(200).unwrap();
+    assert_eq!(samples[0].tip_flap, after[0].1);
+    let x = sim.state();
+    let t_end = (37 + 200) as f64 * interval;
+    let moved = (1..3)
+        .map(|k| (blade_tip(&sim, &x, t_end, k).1 - before[k].1).abs())
+        .fold(0.0, f64::max);
+    assert!(moved > 1e-3, "blades 2 and 3 moved {moved} m in a second");
+}
+
+/// `simulate` on a rotor or turbine through the binary: blade 1's tip, named so; a stall model
+/// stepped as its linearisation says so, in the text and the JSON; the clamped blade's JSON keeps
+/// its keys.
+#[test]
+fn simulate_follows_blade_1_of_a_turbine_and_says_so() {
+    let run = |extra: &[&str]| -> String {
+        let mut args = vec![
+            "simulate",
+            "--preset",
+            "nrel5mw",
+            "--set",
+            "simulation.duration=0.5",
+        ];
+        for e in extra {
+            args.extend(["--set", e]);
+        }
+        String::from_utf8(flutterscope_ok(&args).stdout).unwrap()
+    };
+    let text = run(&["turbine.model=turbine", "aero.model=onera"]);
+    assert!(
+        text.contains("blade 1's tip on the turbine, onera aerodynamics (stall linearised"),
+        "{text}"
+    );
+    assert!(text.contains("status: ok"), "{text}");
+    let json = |extra: &[&str]| -> serde_json::Value {
+        let mut e = extra.to_vec();
+        e.push("simulation.sample_rate=100");
+        let mut args = vec!["simulate", "--preset", "nrel5mw", "--json"];
+        for x in &e {
+            args.extend(["--set", x]);
+        }
+        serde_json::from_slice(&flutterscope_ok(&args).stdout).unwrap()
+    };
+    let v = json(&[
+        "turbine.model=rotor",
+        "aero.model=theodorsen",
+        "simulation.duration=0.5",
+    ]);
+    assert_eq!(v["rotor_blade"], 1);
+    assert!(v.get("stall_linearised").is_none());
+    assert_eq!(v["t"].as_array().unwrap().len(), 51);
+    let v = json(&["aero.model=onera", "simulation.duration=0.5"]);
+    assert!(v.get("rotor_blade").is_none() && v.get("stall_linearised").is_none());
 }

@@ -3,6 +3,7 @@
 
 use super::{marker, pane, sig, Theme};
 use crate::explorer::state::AppState;
+use crate::preset::TurbineModel;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::Style;
 use ratatui::text::{Line, Span};
@@ -108,7 +109,15 @@ fn chart<'a>(s: Series<'a>, t: [f64; 2], tall: bool, state: &AppState, theme: &T
 
 pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
     let r = &state.response;
-    let mut title = vec![Span::raw(" Tip response ")];
+    let p = &state.preset;
+    let mut title = vec![Span::raw(if p.turbine.model == TurbineModel::Blade {
+        " Tip response "
+    } else {
+        " Blade 1 tip response "
+    })];
+    if p.stall_linearised_in_time() {
+        title.push(Span::styled("(stall linearised) ", theme.dim()));
+    }
     if r.diverging {
         title.push(Span::styled(" DIVERGING ", theme.flutter()));
         title.push(Span::raw(" "));

@@ -21,7 +21,51 @@ pub struct LinearSystem {
     pub tip_flap: DVector<f64>,
     /// The left-out modes' static tip twist and flap (docs/model.md §12.6), added to every state's.
     pub tip_offset: [f64; 2],
+    /// A rotor's ground coordinates: blade 1 turns through them, and its tip rows and kick
+    /// shapes with it (`tip_twist`, `tip_flap` are then blade 1's at zero azimuth).
+    pub turning: Option<Arc<TurningBlade>>,
     pub structure: Arc<dyn Structure>,
+}
+
+/// Rows that turn with the rotor: `r(ψ) = r₀ + cos ψ r_c + sin ψ r_s`, what a rotor's ground
+/// coordinates give of one blade's motion at azimuth ψ (docs/model.md §13.8).
+#[derive(Clone)]
+pub struct Azimuthal<const N: usize> {
+    constant: [DVector<f64>; N],
+    cos: [DVector<f64>; N],
+    sin: [DVector<f64>; N],
+}
+
+impl<const N: usize> Azimuthal<N> {
+    /// From rows affine in `cos ψ` and `sin ψ`, sampled at 0, 90° and 180°.
+    pub fn sampled(rows_at: impl Fn(f64) -> [DVector<f64>; N]) -> Azimuthal<N> {
+        use std::f64::consts::{FRAC_PI_2, PI};
+        let (zero, quarter, half) = (rows_at(0.0), rows_at(FRAC_PI_2), rows_at(PI));
+        let constant: [DVector<f64>; N] = std::array::from_fn(|i| (&zero[i] + &half[i]) * 0.5);
+        Azimuthal {
+            cos: std::array::from_fn(|i| (&zero[i] - &half[i]) * 0.5),
+            sin: std::array::from_fn(|i| &quarter[i] - &constant[i]),
+            constant,
+        }
+    }
+
+    /// The rows at azimuth `psi` (rad).
+    pub fn at(&self, psi: f64) -> [DVector<f64>; N] {
+        let (c, s) = (psi.cos(), psi.sin());
+        std::array::from_fn(|i| &self.constant[i] + &self.cos[i] * c + &self.sin[i] * s)
+    }
+}
+
+/// Blade 1 of a rotor seen from its ground coordinates, at azimuth `Ω t`.
+#[derive(Clone)]
+pub struct TurningBlade {
+    /// Ω (rad/s).
+    pub rotor_speed: f64,
+    /// Tip twist and tip flap rows.
+    pub tip: Azimuthal<2>,
+    /// The first torsion and first flap shapes of blade 1 alone, over `[q, q̇]`: kicked
+    /// without moving the other blades or any blade's rate.
+    pub kick: Azimuthal<2>,
 }
 
 impl System {
@@ -126,6 +170,7 @@ impl System {
                 let [phi, u, _] = self.tip_offset();
                 [phi, u]
             },
+            turning: None,
             structure: Arc::clone(&self.structure),
         }
     }
@@ -136,10 +181,32 @@ impl LinearSystem {
     pub fn dim(&self) -> usize {
         self.a.nrows()
     }
-    /// Tip twist and flap of a state.
-    pub fn tip(&self, x: &DVector<f64>) -> (f64, f64) {
+    /// Tip twist and flap of a state at time `t` (s): blade 1's, at azimuth `Ω t` on a rotor.
+    pub fn tip_at(&self, x: &DVector<f64>, t: f64) -> (f64, f64) {
         let q = x.rows(0, self.nq);
         let [phi, u] = self.tip_offset;
-        (self.tip_twist.dot(&q) + phi, self.tip_flap.dot(&q) + u)
+        let [twist, flap] = self.tip_rows_at(t);
+        (twist.dot(&q) + phi, flap.dot(&q) + u)
+    }
+
+    /// Tip twist and flap rows over the coordinates at time `t` (s).
+    pub fn tip_rows_at(&self, t: f64) -> [DVector<f64>; 2] {
+        match &self.turning {
+            Some(blade) => blade.tip.at(blade.rotor_speed * t),
+            None => [self.tip_twist.clone(), self.tip_flap.clone()],
+        }
+    }
+
+    /// The shapes a tip kick at time `t` (s) excites over `[q, q̇]` (blade 1's alone on a
+    /// rotor; a blade's own moves no rate).
+    pub fn kick_shapes_at(&self, t: f64) -> [DVector<f64>; 2] {
+        match &self.turning {
+            Some(blade) => blade.kick.at(blade.rotor_speed * t),
+            None => self.structure.kick_shapes().map(|q| {
+                let mut v = DVector::zeros(2 * self.nq);
+                v.rows_mut(0, self.nq).copy_from(&q);
+                v
+            }),
+        }
     }
 }

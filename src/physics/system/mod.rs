@@ -29,7 +29,7 @@ mod left_out;
 mod linear;
 mod splitting;
 
-pub use linear::LinearSystem;
+pub use linear::{Azimuthal, LinearSystem, TurningBlade};
 pub use splitting::{RemainderScratch, Splitting};
 
 use crate::error::{Error, Result};

@@ -20,6 +20,7 @@ use crate::physics::section::SectionProps;
 use crate::physics::structure::{
     kinetic_energy, Components, Family, MotionRows, NaturalMode, Shares, Structure,
 };
+use crate::physics::system::{Azimuthal, TurningBlade};
 use nalgebra::{Complex, DMatrix, DVector};
 use std::f64::consts::TAU;
 use std::sync::Arc;
@@ -331,10 +332,59 @@ impl GroundRotor {
         crate::numeric::shares(e)
     }
 
-    /// Blade 0's tip rows at zero azimuth over the ground coordinates (twist, flap).
-    pub fn tip_rows(&self) -> [DVector<f64>; 2] {
-        let r = self.motion_rows(self.length());
-        [r.twist, r.flap]
+    /// Blade 0 as the ground coordinates see it at `azimuth` (rad), turning with the rotor: its
+    /// tip rows (twist, flap) and its kick shapes ([`Structure::kick_shapes`], blade 0 kicked
+    /// alone), each affine in `cos ψ`, `sin ψ` (docs/model.md §13.8).
+    pub fn blade_view(&self) -> TurningBlade {
+        TurningBlade {
+            rotor_speed: self.omega,
+            tip: Azimuthal::sampled(|psi| self.tip_rows_at(psi)),
+            kick: Azimuthal::sampled(|psi| self.kick_shapes_at(psi)),
+        }
+    }
+
+    /// Blade 0's tip rows over the ground coordinates, the blade at `azimuth`: its own modes'
+    /// `a_0 + a_c cos ψ + a_s sin ψ`, the tower's apex seen along its flap axis there.
+    fn tip_rows_at(&self, azimuth: f64) -> [DVector<f64>; 2] {
+        let k = self.per_blade;
+        let b = self.blade.motion_rows(self.length());
+        let mut rows = [b.twist, b.flap].map(|own| {
+            let mut r = DVector::zeros(self.coordinates());
+            for (at, weight) in [(0, 1.0), (k, azimuth.cos()), (2 * k, azimuth.sin())] {
+                r.rows_mut(at, k).copy_from(&(&own * weight));
+            }
+            r
+        });
+        if let Some((at, tower)) = &self.tower {
+            let radius = self.hub_radius() + self.length();
+            let [flap, _] = strip_rows(&tower.apex, azimuth, radius);
+            rows[1].rows_mut(*at, flap.len()).copy_from(&flap);
+        }
+        rows
+    }
+
+    /// Blade 0 kicked alone at `azimuth`, its rates and the other blades left as they are:
+    /// a third of the blade's shape `s` collective, two thirds along the cosine and sine of
+    /// its azimuth, and the ground rates that cancel what turning those adds to the blades'
+    /// own (`q̇_k` holds `Ω (a_s cos ψ_k − a_c sin ψ_k)`). Over `[q, q̇]`.
+    fn kick_shapes_at(&self, azimuth: f64) -> [DVector<f64>; 2] {
+        let (k, n) = (self.per_blade, self.coordinates());
+        let (c, s) = (azimuth.cos(), azimuth.sin());
+        let w = self.omega;
+        self.blade.kick_shapes().map(|shape| {
+            let mut v = DVector::zeros(2 * n);
+            let third = 2.0 / 3.0;
+            for (at, weight) in [
+                (0, 1.0 / 3.0),
+                (k, third * c),
+                (2 * k, third * s),
+                (n + k, -w * third * s),
+                (n + 2 * k, w * third * c),
+            ] {
+                v.rows_mut(at, k).copy_from(&(&shape * weight));
+            }
+            v
+        })
     }
 }
 
@@ -403,16 +453,11 @@ impl Structure for GroundRotor {
         }
         Shares::from_energies(e[0], e[1], e[2])
     }
-    /// Blade 0 kicked alone: a third collective, two thirds cosine.
+    /// Blade 0 kicked alone at zero azimuth: a third collective, two thirds cosine (the
+    /// coordinates; [`GroundRotor::blade_view`] has the rates that go with them).
     fn kick_shapes(&self) -> [DVector<f64>; 2] {
-        let k = self.per_blade;
         let n = self.coordinates();
-        self.blade.kick_shapes().map(|s| {
-            let mut v = DVector::zeros(n);
-            v.rows_mut(0, k).copy_from(&(&s / 3.0));
-            v.rows_mut(k, k).copy_from(&(&s * (2.0 / 3.0)));
-            v
-        })
+        self.kick_shapes_at(0.0).map(|v| v.rows(0, n).into_owned())
     }
     fn uniform_section(&self) -> Option<&SectionProps> {
         None

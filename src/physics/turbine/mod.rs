@@ -37,7 +37,8 @@ pub fn rotor_system(
     let a = at.layout.transform(&at.system.a, 0.0, inputs.rotor_speed)?;
     let x_eq = at.layout.to_ground(0.0, inputs.rotor_speed) * &at.system.x_eq;
     let ground = GroundRotor::new(&at.rotor, inputs.rotor_speed)?;
-    let [tip_twist, tip_flap] = ground.tip_rows();
+    let view = ground.blade_view();
+    let [tip_twist, tip_flap] = view.tip.at(0.0);
     Ok(LinearSystem {
         a,
         x_eq,
@@ -46,6 +47,7 @@ pub fn rotor_system(
         tip_twist,
         tip_flap,
         tip_offset: at.system.tip_offset,
+        turning: Some(Arc::new(view)),
         structure: Arc::new(ground),
     })
 }

@@ -32,6 +32,11 @@ impl AeroModel {
         }
     }
 
+    /// True when the model's stall is nonlinear in time (ONERA's, HGM's separation).
+    pub fn stalls(self) -> bool {
+        matches!(self, AeroModel::Onera | AeroModel::Hgm)
+    }
+
     /// True when the model needs each station's own polar (a tabulated blade's aerodynamic
     /// description): the uniform blade has none.
     pub fn needs_polars(self) -> bool {
