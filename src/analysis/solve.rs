@@ -72,15 +72,9 @@ impl Solution {
     pub fn simulator(self, p: &ValidPreset) -> Result<Simulator> {
         let sim = &p.simulation;
         let length = self.system.structure().length();
-        if p.turbine.model != TurbineModel::Blade {
-            let mut s = Simulator::from_linear(self.linear?, sim.sample_rate, length)?;
-            if sim.start == Start::Rest {
-                s.start_from_rest();
-            }
-            s.kick(sim.kick_twist.to_radians(), sim.kick_flap);
-            return Ok(s);
-        }
-        let affine = self.system.model().nonlinear_support().is_affine();
+        // A rotor's stall is stepped as its linearisation: its stepper is the affine models'.
+        let affine = p.turbine.model != TurbineModel::Blade
+            || self.system.model().nonlinear_support().is_affine();
         let mut s = match (self.linear, affine, sim.start) {
             (Ok(linear), true, _) => Simulator::from_linear(linear, sim.sample_rate, length)?,
             (Ok(tangent), false, _) => {

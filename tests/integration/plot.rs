@@ -444,6 +444,20 @@ mod from_results {
     use flutterscope::plot::from_results;
     use flutterscope::plot::{Dash, GuideKind, PALETTE};
 
+    /// A solved sweep row of one mode at one grid value.
+    fn ok_row(v: f64, mode: &str, f: f64, damping_ratio: f64, re: f64) -> SweepRow {
+        SweepRow {
+            values: vec![v],
+            mode: Some(mode.into()),
+            frequency_hz: f,
+            damping_ratio,
+            re,
+            second_re: f64::NAN,
+            status: RowStatus::Ok,
+            error: None,
+        }
+    }
+
     fn mode(label: &str, f: Vec<f64>, z: Vec<f64>) -> TrackedMode {
         let re = z.iter().map(|z| -z).collect();
         TrackedMode {
@@ -615,16 +629,7 @@ mod from_results {
 
     #[test]
     fn sweep_rows_regroup_into_tracked_modes() {
-        let row = |v: f64, mode: &str, f: f64| SweepRow {
-            values: vec![v],
-            mode: Some(mode.into()),
-            frequency_hz: f,
-            damping_ratio: 0.1 * f,
-            re: -f,
-            second_re: f64::NAN,
-            status: RowStatus::Ok,
-            error: None,
-        };
+        let row = |v: f64, mode: &str, f: f64| ok_row(v, mode, f, 0.1 * f, -f);
         let rows = [
             row(0.0, "flap 1", 1.0),
             row(0.0, "torsion 1", 9.0),
@@ -658,16 +663,7 @@ mod from_results {
     /// dashed, collective solid, forward dotted; other modes keep colours of their own.
     #[test]
     fn a_rotors_whirls_share_their_blade_modes_colour_and_differ_in_stroke() {
-        let row = |v: f64, mode: &str, f: f64| SweepRow {
-            values: vec![v],
-            mode: Some(mode.into()),
-            frequency_hz: f,
-            damping_ratio: 0.01,
-            re: -0.1,
-            second_re: f64::NAN,
-            status: RowStatus::Ok,
-            error: None,
-        };
+        let row = |v: f64, mode: &str, f: f64| ok_row(v, mode, f, 0.01, -0.1);
         let mut rows = Vec::new();
         for v in [5.0, 10.0] {
             for (mode, f) in [

@@ -373,13 +373,13 @@ impl GroundRotor {
         let w = self.omega;
         self.blade.kick_shapes().map(|shape| {
             let mut v = DVector::zeros(2 * n);
-            let third = 2.0 / 3.0;
+            let cyclic = 2.0 / 3.0;
             for (at, weight) in [
                 (0, 1.0 / 3.0),
-                (k, third * c),
-                (2 * k, third * s),
-                (n + k, -w * third * s),
-                (n + 2 * k, w * third * c),
+                (k, cyclic * c),
+                (2 * k, cyclic * s),
+                (n + k, -w * cyclic * s),
+                (n + 2 * k, w * cyclic * c),
             ] {
                 v.rows_mut(at, k).copy_from(&(&shape * weight));
             }
