@@ -83,18 +83,29 @@ impl Mode {
         }
     }
 
-    /// The shares of its motion, `flap 38 %, twist 60 %` (families below 0.5 % left out); none
-    /// for an aerodynamic root.
+    /// The shares of its motion, `flap 38 %, twist 60 %` (families below 0.5 % left out), a
+    /// rotor's or turbine's by component (`tower 91 %, blade edge 8 %`); none for an
+    /// aerodynamic root.
     pub fn content(&self) -> Option<String> {
-        let parts: Vec<String> = [
-            ("flap", self.shares.flap),
-            ("edge", self.shares.edge),
-            ("twist", self.shares.twist),
-        ]
-        .iter()
-        .filter(|(_, s)| *s >= 0.005)
-        .map(|(name, s)| format!("{name} {:.0} %", 100.0 * s))
-        .collect();
+        let shares: Vec<(&str, f64)> = match &self.components {
+            Some(c) => vec![
+                ("blade flap", c.blade_flap),
+                ("blade edge", c.blade_edge),
+                ("blade twist", c.blade_twist),
+                ("drivetrain", c.drivetrain),
+                ("tower", c.tower),
+            ],
+            None => vec![
+                ("flap", self.shares.flap),
+                ("edge", self.shares.edge),
+                ("twist", self.shares.twist),
+            ],
+        };
+        let parts: Vec<String> = shares
+            .iter()
+            .filter(|(_, s)| *s >= 0.005)
+            .map(|(name, s)| format!("{name} {:.0} %", 100.0 * s))
+            .collect();
         (!parts.is_empty() && self.family.is_some()).then(|| parts.join(", "))
     }
 

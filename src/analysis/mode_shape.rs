@@ -8,8 +8,13 @@
 //! the real part, each component scaled to its own peak (the three have different units), and
 //! each component's peak amplitude and phase there, relative to that reference, say how large and
 //! how late it is.
+//!
+//! A rotor's or turbine's mode is drawn on each of its parts: every blade at its azimuth and the
+//! tower along its height. All parts are turned by the same factor, that of the mode's main part
+//! (the tower where it holds most of the mode's energy, else blade 1), so the sizes and phases of
+//! the other parts are relative to the same reference: a whirl shows as the blades' phases.
 
-use crate::physics::structure::{Family, MotionRows, Structure};
+use crate::physics::structure::{Family, PartKind, ShapePart, Structure};
 use nalgebra::Complex;
 
 /// A component with less of the mode's kinetic energy than this is absent (round-off of an
@@ -17,44 +22,119 @@ use nalgebra::Complex;
 /// or offsets); the real couplings of the reference blades give shares of 1e-5 and more.
 const NEGLIGIBLE_SHARE: f64 = 1e-12;
 
-/// One mode along the span, ready to draw.
+/// One mode on one part, ready to draw.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ModeShape {
-    /// Span positions (m from the root).
+    /// `blade` (the one blade), `blade 2`, `tower`.
+    pub part: String,
+    pub kind: PartKind,
+    /// Positions along the part (m from its root or base).
     pub span: Vec<f64>,
-    /// Flap, edge and twist along the span (in [`Family::ALL`] order): the real part of the
-    /// normalised shape, each divided by its own peak magnitude (all zero where the component
-    /// is absent, as the edge of the paper's flap–torsion blade).
+    /// Flap, edge and twist along it (in [`Family::ALL`] order; a tower's fore–aft, side–side
+    /// and torsion): the real part of the normalised shape, each divided by its own peak
+    /// magnitude (all zero where the component is absent, as the edge of the paper's
+    /// flap–torsion blade).
     pub components: [Vec<f64>; 3],
-    /// Each component's peak magnitude per unit of the reference component (flap and edge in m,
-    /// twist in rad, per m or rad of the reference).
+    /// Each component's peak magnitude per unit of the reference (m or rad, per m or rad).
     pub peaks: [f64; 3],
     /// Each component's phase at its peak, relative to the reference (deg, in (−180, 180]).
     pub phases: [f64; 3],
-    /// The dominant family: the reference component, +1 at its peak.
+}
+
+/// One mode on every part of its structure.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ModeShapes {
+    pub parts: Vec<ModeShape>,
+    /// The part holding the reference: +1 at its peak there.
+    pub main: usize,
+    /// The reference component: the dominant family of the mode's motion.
     pub reference: Family,
 }
 
-/// The structure's motion rows at its span points, evaluated once for all the modes of a solve.
+/// The structure's parts with their motion rows, evaluated once for all the modes of a solve.
 pub struct SpanRows {
-    span: Vec<f64>,
-    rows: Vec<MotionRows>,
+    parts: Vec<ShapePart>,
 }
 
 impl SpanRows {
     pub fn of(structure: &dyn Structure) -> SpanRows {
-        let span = structure.span_points();
-        let rows = span.iter().map(|&x| structure.motion_rows(x)).collect();
-        SpanRows { span, rows }
+        SpanRows {
+            parts: structure.shape_parts(),
+        }
     }
 }
 
-/// The shape of the structural coordinates `q` (an eigenvector's first `n_q` entries) along
-/// `structure`'s span points, whose motion rows `at` holds.
-pub fn mode_shape(structure: &dyn Structure, at: &SpanRows, q: &[Complex<f64>]) -> ModeShape {
-    let span = at.span.clone();
+/// The shape of the structural coordinates `q` (an eigenvector's first `n_q` entries) on each
+/// of `structure`'s parts, whose motion rows `at` holds.
+pub fn mode_shape(structure: &dyn Structure, at: &SpanRows, q: &[Complex<f64>]) -> ModeShapes {
+    let raw: Vec<[Vec<Complex<f64>>; 3]> = at.parts.iter().map(|p| along(p, q)).collect();
+    let shares = structure.shares(q);
+    let tower_dominates = structure.components(q).is_some_and(|c| {
+        c.tower
+            > c.blade_flap
+                .max(c.blade_edge)
+                .max(c.blade_twist)
+                .max(c.drivetrain)
+    });
+    let main = at
+        .parts
+        .iter()
+        .position(|p| tower_dominates && p.kind == PartKind::Tower)
+        .unwrap_or(0);
+    // The dominant family, or the next where the main part does not move in it (a blade mode's
+    // edge, say, that the tower holds none of).
+    let mut families = Family::ALL;
+    families.sort_by(|a, b| shares.array()[b.index()].total_cmp(&shares.array()[a.index()]));
+    let (reference, anchor) = families
+        .iter()
+        .map(|&f| (f, peak_of(&raw[main][f.index()])))
+        .find(|(_, anchor)| anchor.norm() > 0.0)
+        .unwrap_or((shares.family(), Complex::new(1.0, 0.0)));
+    // Divide by the reference's peak value: it becomes +1, every other value relative to it.
+    let turn = anchor.inv();
+    let parts = at
+        .parts
+        .iter()
+        .zip(&raw)
+        .map(|(part, raw)| {
+            let mut components: [Vec<f64>; 3] = Default::default();
+            let mut peaks = [0.0; 3];
+            let mut phases = [0.0; 3];
+            for k in 0..3 {
+                let values: Vec<Complex<f64>> = raw[k].iter().map(|v| v * turn).collect();
+                let peak = peak_of(&values);
+                // Round-off where the model has no such motion: nothing to draw, not noise
+                // blown up.
+                if shares.array()[k] < NEGLIGIBLE_SHARE || peak.norm() == 0.0 {
+                    components[k] = vec![0.0; values.len()];
+                    continue;
+                }
+                peaks[k] = peak.norm();
+                phases[k] = peak.arg().to_degrees();
+                // `+ 0.0` turns −0 (the clamped root) into 0.
+                components[k] = values.iter().map(|v| v.re / peaks[k] + 0.0).collect();
+            }
+            ModeShape {
+                part: part.name.clone(),
+                kind: part.kind,
+                span: part.points.iter().map(|(x, _)| *x).collect(),
+                components,
+                peaks,
+                phases,
+            }
+        })
+        .collect();
+    ModeShapes {
+        parts,
+        main,
+        reference,
+    }
+}
+
+/// Flap, edge and twist of `q` at each of the part's points.
+fn along(part: &ShapePart, q: &[Complex<f64>]) -> [Vec<Complex<f64>>; 3] {
     let mut raw: [Vec<Complex<f64>>; 3] = Default::default();
-    for rows in &at.rows {
+    for (_, rows) in &part.points {
         for (values, row) in raw.iter_mut().zip([&rows.flap, &rows.edge, &rows.twist]) {
             values.push(
                 row.iter()
@@ -64,51 +144,14 @@ pub fn mode_shape(structure: &dyn Structure, at: &SpanRows, q: &[Complex<f64>]) 
             );
         }
     }
-    let shares = structure.shares(q);
-    let reference = shares.family();
-    let peak_of = |values: &[Complex<f64>]| {
-        values
-            .iter()
-            .copied()
-            .max_by(|a, b| a.norm().total_cmp(&b.norm()))
-            .unwrap_or_default()
-    };
-    let anchor = peak_of(&raw[reference.index()]);
-    // Divide by the reference's peak value: it becomes +1, every other value relative to it.
-    let turn = if anchor.norm() > 0.0 {
-        anchor.inv()
-    } else {
-        Complex::new(1.0, 0.0)
-    };
-    let mut components: [Vec<f64>; 3] = Default::default();
-    let mut peaks = [0.0; 3];
-    let mut phases = [0.0; 3];
-    for k in 0..3 {
-        if shares.array()[k] < NEGLIGIBLE_SHARE {
-            // Round-off where the model has no such motion: nothing to draw, not noise blown up.
-            components[k] = vec![0.0; span.len()];
-            continue;
-        }
-        let values: Vec<Complex<f64>> = raw[k].iter().map(|v| v * turn).collect();
-        let peak = peak_of(&values);
-        peaks[k] = peak.norm();
-        phases[k] = if peaks[k] > 0.0 {
-            peak.arg().to_degrees()
-        } else {
-            0.0
-        };
-        components[k] = if peaks[k] > 0.0 {
-            // `+ 0.0` turns −0 (the clamped root) into 0.
-            values.iter().map(|v| v.re / peaks[k] + 0.0).collect()
-        } else {
-            vec![0.0; values.len()]
-        };
-    }
-    ModeShape {
-        span,
-        components,
-        peaks,
-        phases,
-        reference,
-    }
+    raw
+}
+
+/// The value of largest magnitude (zero for none).
+fn peak_of(values: &[Complex<f64>]) -> Complex<f64> {
+    values
+        .iter()
+        .copied()
+        .max_by(|a, b| a.norm().total_cmp(&b.norm()))
+        .unwrap_or_default()
 }

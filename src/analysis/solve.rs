@@ -4,7 +4,7 @@
 //! never assembles or linearises anything twice.
 
 use crate::analysis::eigen::{analyse_system, Stability};
-use crate::analysis::mode_shape::{mode_shape, ModeShape, SpanRows};
+use crate::analysis::mode_shape::{mode_shape, ModeShapes, SpanRows};
 use crate::analysis::simulate::Simulator;
 use crate::error::Result;
 use crate::physics::system::{LinearSystem, System};
@@ -46,9 +46,9 @@ impl Solution {
         analyse_system(self.linear()?)
     }
 
-    /// The shape along the span of each structural root of `stability` (in its order), from
-    /// this build's structure (docs/model.md §6.5).
-    pub fn mode_shapes(&self, stability: &Stability) -> Vec<ModeShape> {
+    /// The shape of each structural root of `stability` (in its order) on each part of this
+    /// build's structure: the blade, or a rotor's blades and tower (docs/model.md §6.5).
+    pub fn mode_shapes(&self, stability: &Stability) -> Vec<ModeShapes> {
         // The linearisation's coordinates: a rotor's are its ground frame's, not the blade's.
         let structure = match &self.linear {
             Ok(l) => l.structure.as_ref(),

@@ -6,7 +6,7 @@ use crate::analysis::campbell::Campbell;
 use crate::analysis::cancel::Cancel;
 use crate::analysis::eigen::Stability;
 use crate::analysis::flutter::{Search, SearchRange};
-use crate::analysis::mode_shape::ModeShape;
+use crate::analysis::mode_shape::ModeShapes;
 use crate::analysis::simulate::{RunStatus, Simulator, TipSample};
 use crate::analysis::solve::SectionProps;
 use crate::error::Result;
@@ -18,9 +18,9 @@ use crate::preset::ValidPreset;
 pub struct Solved {
     pub section: Option<SectionProps>,
     pub stability: Stability,
-    /// `shapes[i]` is the span shape of `stability.eigenvalues[i]` (empty when the engine
-    /// computes none).
-    pub shapes: Vec<ModeShape>,
+    /// `shapes[i]` is the shape of `stability.eigenvalues[i]` on each part (empty when the
+    /// engine computes none).
+    pub shapes: Vec<ModeShapes>,
     /// The rotor speed (rpm) and pitch (deg) the solve ran at when the preset's schedule set
     /// either (`None` without a schedule): the parameters pane shows them as following it.
     pub setting: Option<(f64, f64)>,

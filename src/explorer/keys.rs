@@ -31,6 +31,8 @@ pub enum Action {
     /// The previous / next mode in the mode-shape pane.
     PrevMode,
     NextMode,
+    /// The next part of a rotor's or turbine's mode in the mode-shape pane.
+    CyclePart,
     CycleMarker,
     ToggleHelp,
     /// Close the help overlay, else leave the Campbell view.
@@ -224,6 +226,12 @@ pub static BINDINGS: &[Binding] = &[
         shown: ".  >",
         action: Action::NextMode,
         help: "mode shape of the next mode (by frequency)",
+    },
+    Binding {
+        keys: &[ch('p')],
+        shown: "p",
+        action: Action::CyclePart,
+        help: "mode shape on the next part of a rotor or turbine: blade 1, 2, 3, tower",
     },
     Binding {
         keys: &[ch('m')],

@@ -1303,6 +1303,58 @@ fn snapshot_the_shape_pane_of_every_builtin_preset() {
     }
 }
 
+/// On a turbine the pane draws one part of a mode at a time: a tower mode on the tower (its
+/// fore–aft, side–side and torsion along the height), `p` stepping through blade 1, 2 and 3
+/// (each relative to the tower's motion) and back. On one blade `p` says why it has no parts.
+#[test]
+fn the_shape_pane_steps_through_a_turbines_blades_and_tower() {
+    let p = Preset::load(
+        "nrel5mw",
+        &["turbine.model=turbine".into(), "aero.model=none".into()],
+    )
+    .unwrap();
+    let mut s = settled_state("nrel5mw", p, &Physics, ViewKind::Shape, MarkerKind::Braille);
+    s.shape_pick = Some("tower FA 1".into());
+    let text = render_text(&s, 120, 40);
+    for expected in [
+        "Mode shape · tower FA 1 · tower",
+        "A fore–aft 1.0 m",
+        "base 0 m · height (m) · top 87.6 m",
+        "p: next part",
+    ] {
+        assert!(text.contains(expected), "{expected}:\n{text}");
+    }
+    insta::assert_snapshot!("shape_nrel5mw_turbine_tower_120x40", text);
+    for part in ["blade 1", "blade 2", "blade 3", "tower"] {
+        headless::press(&mut s, &Physics, &[Action::CyclePart]);
+        let text = render_text(&s, 120, 40);
+        assert!(
+            text.contains(&format!("Mode shape · tower FA 1 · {part}")),
+            "{part}:\n{text}"
+        );
+        assert_eq!(
+            text.contains("per m of tower's fore–aft"),
+            part != "tower",
+            "{part}:\n{text}"
+        );
+    }
+    let mut one = settled_state(
+        "nrel5mw",
+        Preset::load("nrel5mw", &[]).unwrap(),
+        &Physics,
+        ViewKind::Shape,
+        MarkerKind::Braille,
+    );
+    headless::press(&mut one, &Physics, &[Action::CyclePart]);
+    assert!(
+        one.notice
+            .as_deref()
+            .is_some_and(|n| n.contains("turbine.model")),
+        "{:?}",
+        one.notice
+    );
+}
+
 /// Without aerodynamics a tabulated blade's roots are its damped natural modes, so the shape the
 /// solve gives the pane must be the one `modes --shapes` prints (scaled the same way: the
 /// dominant component +1 at its peak), through an independent path (the command's JSON).
@@ -1324,7 +1376,9 @@ fn the_solved_shape_of_a_structural_root_is_the_natural_mode_shape() {
             .iter()
             .position(|m| m.label == label)
             .unwrap();
-        let shape = &shapes[i];
+        // One blade: one part, the blade.
+        assert_eq!(shapes[i].parts.len(), 1, "{label}");
+        let shape = &shapes[i].parts[0];
         let printed = json["modes"]
             .as_array()
             .unwrap()

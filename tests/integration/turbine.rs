@@ -5,9 +5,11 @@
 use super::flutterscope_ok;
 use flutterscope::analysis::eigen::{analyse, linear_system};
 use flutterscope::analysis::mode::Mode;
+use flutterscope::analysis::mode_shape::ModeShapes;
 use flutterscope::analysis::response::{simulate, simulator};
 use flutterscope::analysis::simulate::Simulator;
 use flutterscope::numeric::decompose;
+use flutterscope::physics::structure::{Family, PartKind};
 use flutterscope::preset::{Preset, ValidPreset};
 use nalgebra::{Complex, DVector};
 use std::f64::consts::TAU;
@@ -559,4 +561,106 @@ fn simulate_follows_blade_1_of_a_turbine_and_says_so() {
     assert_eq!(v["t"].as_array().unwrap().len(), 51);
     let v = json(&["aero.model=onera", "simulation.duration=0.5"]);
     assert!(v.get("rotor_blade").is_none() && v.get("stall_linearised").is_none());
+}
+
+/// The shapes the explorer draws of `p`'s roots, with their roots.
+fn shapes_of(p: &ValidPreset) -> Vec<(Mode, ModeShapes)> {
+    let solution = flutterscope::analysis::solve::solve(p).unwrap();
+    let stability = solution.stability().unwrap();
+    let shapes = solution.mode_shapes(&stability);
+    stability.eigenvalues.into_iter().zip(shapes).collect()
+}
+
+/// A rotor's mode is drawn on each blade at its azimuth, all relative to blade 1. In vacuo on
+/// a rigid support the isotropic rotor's whirls are circular, so blade 2 (a third of a turn
+/// ahead) moves as far as blade 1, 120° ahead in a backward whirl and 120° behind in a forward
+/// one (blade 3 the other way); a collective mode moves the three alike.
+#[test]
+fn a_rotors_mode_shapes_show_its_whirl_in_the_blades_phases() {
+    let p = preset("nrel5mw", &["turbine.model=rotor", "aero.model=none"]);
+    let shapes = shapes_of(&p);
+    for (label, lead) in [
+        ("BW edge 1", 120.0),
+        ("FW edge 1", -120.0),
+        ("BW flap 2", 120.0),
+        ("FW flap 2", -120.0),
+        ("collective flap 1", 0.0),
+        ("collective edge 1", 0.0),
+    ] {
+        let (_, s) = shapes.iter().find(|(m, _)| m.label == label).unwrap();
+        let names: Vec<&str> = s.parts.iter().map(|p| p.part.as_str()).collect();
+        assert_eq!(names, ["blade 1", "blade 2", "blade 3"], "{label}");
+        assert_eq!(s.main, 0, "{label}");
+        let k = s.reference.index();
+        let own = &s.parts[0];
+        assert!(
+            (own.peaks[k] - 1.0).abs() < 1e-12 && own.phases[k].abs() < 1e-9,
+            "{label}: blade 1 {} ∠{}°",
+            own.peaks[k],
+            own.phases[k]
+        );
+        for (blade, expected) in [(1, lead), (2, -lead)] {
+            let part = &s.parts[blade];
+            assert!(
+                (part.peaks[k] - 1.0).abs() < 1e-8 && (part.phases[k] - expected).abs() < 1e-6,
+                "{label} blade {}: {} ∠{}° against 1 ∠{expected}°",
+                blade + 1,
+                part.peaks[k],
+                part.phases[k]
+            );
+        }
+    }
+}
+
+/// A turbine's tower mode is drawn on the tower (its main part): the bending or torsion it is
+/// named after, zero at the base and rising to +1 at the top, its content given by component; a
+/// blade mode stays on blade 1.
+/// Both towers: ElastoDyn's assumed modes (no torsion) and the HAWC2 beam.
+#[test]
+fn a_turbines_tower_modes_are_drawn_on_its_tower() {
+    for (name, towers) in [
+        (
+            "nrel5mw",
+            vec![("tower FA 1", Family::Flap), ("tower SS 1", Family::Edge)],
+        ),
+        (
+            "iea15mw-htc",
+            vec![
+                ("tower FA 1", Family::Flap),
+                ("tower SS 1", Family::Edge),
+                ("tower torsion 1", Family::Torsion),
+            ],
+        ),
+    ] {
+        let p = preset(name, &["turbine.model=turbine", "aero.model=none"]);
+        let shapes = shapes_of(&p);
+        for (label, family) in towers {
+            let (m, s) = shapes.iter().find(|(m, _)| m.label == label).unwrap();
+            // Its content by component, as the status line and `flutter` word it.
+            assert!(
+                m.described().starts_with(&format!("{label} (")) && m.described().contains("tower"),
+                "{}",
+                m.described()
+            );
+            let tower = &s.parts[s.main];
+            assert_eq!(
+                (tower.part.as_str(), tower.kind, s.reference),
+                ("tower", PartKind::Tower, family),
+                "{name} {label}"
+            );
+            let along = &tower.components[family.index()];
+            assert!(along[0].abs() < 1e-12, "{name} {label}: base {}", along[0]);
+            assert!(
+                (along.last().unwrap() - 1.0).abs() < 1e-12
+                    && along.windows(2).all(|w| w[1] >= w[0] - 1e-12),
+                "{name} {label}: {along:?}"
+            );
+        }
+        let (_, flap) = shapes
+            .iter()
+            .find(|(m, _)| m.label == "collective flap 1")
+            .unwrap();
+        assert_eq!(flap.parts[flap.main].part, "blade 1", "{name}");
+        assert_eq!(flap.parts.len(), 4, "{name}");
+    }
 }

@@ -10,6 +10,7 @@ pub mod update;
 use crate::analysis::campbell::{schedule_wind_range, Campbell};
 use crate::analysis::flutter::{Search, SearchRange};
 use crate::analysis::mode::Mode;
+use crate::analysis::mode_shape::ModeShapes;
 use crate::analysis::simulate::{RunStatus, TipSample};
 use crate::explorer::display::{ColorMode, MarkerKind};
 use crate::explorer::engine::Solved;
@@ -143,6 +144,9 @@ pub struct AppState {
     /// The mode the mode-shape pane shows, by label; `None`: the least-damped one (the flutter
     /// mode once unstable). Also `None` when the picked label is gone after a solve.
     pub shape_pick: Option<String>,
+    /// The part of a rotor's or turbine's mode the pane draws, by name (`blade 2`, `tower`);
+    /// `None`, or a name the mode has not: its main part.
+    pub shape_part: Option<String>,
     pub help: bool,
     pub paused: bool,
     pub opts: Options,
@@ -280,6 +284,7 @@ impl AppState {
             campbell_wind_points: CAMPBELL_WIND_POINTS,
             view: ViewMode::Main,
             shape_pick: None,
+            shape_part: None,
             help: false,
             paused: false,
             opts,
@@ -424,6 +429,14 @@ impl AppState {
             .as_ref()
             .and_then(|label| modes.iter().position(|m| &m.label == label));
         picked.or_else(|| (0..modes.len()).max_by(|&a, &b| modes[a].re.total_cmp(&modes[b].re)))
+    }
+
+    /// The part of `shapes` the pane draws: the picked one, else the mode's main part.
+    pub fn shape_part_index(&self, shapes: &ModeShapes) -> usize {
+        self.shape_part
+            .as_ref()
+            .and_then(|name| shapes.parts.iter().position(|p| &p.part == name))
+            .unwrap_or(shapes.main)
     }
 }
 

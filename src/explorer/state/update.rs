@@ -93,6 +93,7 @@ impl AppState {
             self.campbell_axis = CampbellAxis::RotorSpeed;
         }
         self.shape_pick = None;
+        self.shape_part = None;
         self.trails.clear();
         self.prev_modes.clear();
         self.fresh = true;
@@ -406,6 +407,10 @@ impl AppState {
                 self.step_shape(action == Action::NextMode);
                 Vec::new()
             }
+            Action::CyclePart => {
+                self.cycle_shape_part();
+                Vec::new()
+            }
             Action::CycleMarker => {
                 self.opts.marker = self.opts.marker.next();
                 Vec::new()
@@ -452,6 +457,28 @@ impl AppState {
         if self.view != ViewMode::Shape {
             self.view = ViewMode::Shape;
         }
+    }
+
+    /// Draw the next part of the shown mode (blade 1, 2, 3, tower) in the mode-shape pane.
+    fn cycle_shape_part(&mut self) {
+        let shapes = self
+            .shape_index()
+            .and_then(|i| self.solved.as_ref()?.shapes.get(i));
+        let Some(shapes) = shapes else {
+            self.notice = Some("no mode shapes solved yet".into());
+            return;
+        };
+        if shapes.parts.len() < 2 {
+            self.notice = Some(
+                "one blade has one part: the rotor and turbine models (turbine.model) draw each \
+                 blade and the tower"
+                    .into(),
+            );
+            return;
+        }
+        let next = (self.shape_part_index(shapes) + 1) % shapes.parts.len();
+        self.shape_part = Some(shapes.parts[next].part.clone());
+        self.view = ViewMode::Shape;
     }
 
     fn on_solved(&mut self, gen: u64, result: Result<Solved, String>) -> Vec<Effect> {

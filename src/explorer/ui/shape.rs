@@ -1,13 +1,15 @@
 //! The mode-shape pane: flap, edge and twist of one mode along the span on a canvas (the plot
 //! marker the user chose), each normalised to its own peak, with the mode's name, frequency,
-//! damping ratio and each component's size and phase relative to the dominant one. The shapes come
-//! with the solve (`Solved::shapes`, docs/model.md §6.5); this pane only draws them.
+//! damping ratio and each component's size and phase relative to the dominant one. A rotor's or
+//! turbine's mode is drawn on one part at a time (a blade at its azimuth, or the tower's
+//! fore–aft, side–side and torsion along its height). The shapes come with the solve
+//! (`Solved::shapes`, docs/model.md §6.5); this pane only draws them.
 
 use super::{marker, pane, sig, Theme};
 use crate::analysis::mode::Mode;
-use crate::analysis::mode_shape::ModeShape;
+use crate::analysis::mode_shape::{ModeShape, ModeShapes};
 use crate::explorer::state::{frequency_order, AppState};
-use crate::physics::structure::Family;
+use crate::physics::structure::{Family, PartKind};
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::{Color, Style};
 use ratatui::text::{Line as TextLine, Span};
@@ -15,11 +17,17 @@ use ratatui::widgets::canvas::{Canvas, Context, Line};
 use ratatui::widgets::{Paragraph, Wrap};
 use ratatui::Frame;
 
-/// The letter each component is marked with on the canvas and in the legend (it tells the
-/// curves apart without colour).
-const LETTERS: [&str; 3] = ["F", "E", "T"];
 /// The unit of each component's amplitude.
 const UNITS: [&str; 3] = ["m", "m", "rad"];
+
+/// Each component's name on a part, and the letter it is marked with on the canvas and in the
+/// legend (it tells the curves apart without colour).
+fn component_names(kind: PartKind) -> [(&'static str, &'static str); 3] {
+    match kind {
+        PartKind::Blade => [("F", "flap"), ("E", "edge"), ("T", "twist")],
+        PartKind::Tower => [("A", "fore–aft"), ("S", "side–side"), ("T", "torsion")],
+    }
+}
 
 pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
     let shown = state.shape_index().and_then(|i| {
@@ -31,7 +39,7 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
             frequency_order(&solved.stability.eigenvalues),
         ))
     });
-    let Some((index, mode, shape, order)) = shown else {
+    let Some((index, mode, shapes, order)) = shown else {
         let block = pane(" Mode shape ", theme);
         let why = match (&state.solved, &state.solve_error) {
             (_, Some(_)) => "no solve: see the status line",
@@ -44,25 +52,28 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
         );
         return;
     };
+    let part = state.shape_part_index(shapes);
+    let shape = &shapes.parts[part];
     let title_style = if mode.re >= 0.0 {
         theme.flutter()
     } else {
         theme.title()
     };
-    let block = pane(
-        TextLine::from(vec![
-            Span::raw(" Mode shape · "),
-            Span::styled(mode.label.clone(), title_style),
-            Span::raw(" "),
-        ]),
-        theme,
-    );
+    let mut title = vec![
+        Span::raw(" Mode shape · "),
+        Span::styled(mode.label.clone(), title_style),
+    ];
+    if shapes.parts.len() > 1 {
+        title.push(Span::raw(format!(" · {}", shape.part)));
+    }
+    title.push(Span::raw(" "));
+    let block = pane(TextLine::from(title), theme);
     let inner = block.inner(area);
     frame.render_widget(block, area);
     let position = order.iter().position(|&i| i == index).unwrap_or(0) + 1;
     let text = vec![
         about(state, mode, position, order.len(), theme),
-        legend(shape, theme),
+        legend(shapes, part, theme),
     ];
     // The text wraps on narrow panes: give it the rows it needs.
     let width = inner.width.max(1) as usize;
@@ -81,7 +92,13 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
     let cell = shape.span.last().copied().unwrap_or(0.0) / f64::from(canvas_area.width.max(1));
     frame.render_widget(canvas(state, shape, cell, theme), canvas_area);
     let length = shape.span.last().copied().unwrap_or(0.0);
-    let axis = format!("root 0 m · span (m) · tip {} m", sig(length, 3));
+    let mut axis = match shape.kind {
+        PartKind::Blade => format!("root 0 m · span (m) · tip {} m", sig(length, 3)),
+        PartKind::Tower => format!("base 0 m · height (m) · top {} m", sig(length, 3)),
+    };
+    if shapes.parts.len() > 1 {
+        axis.push_str("   p: next part");
+    }
     frame.render_widget(
         Paragraph::new(TextLine::styled(axis, theme.dim())),
         axis_area,
@@ -113,9 +130,12 @@ fn about<'a>(
     TextLine::from(spans)
 }
 
-/// `F flap 1 m · E edge 0.21 m ∠3° · T twist 9.4e-3 rad ∠−12°`: each component's peak per unit
-/// of the dominant one and its phase there (absent components are left out).
-fn legend<'a>(shape: &ModeShape, theme: &Theme) -> TextLine<'a> {
+/// `F flap 1 m · E edge 0.21 m ∠3° · T twist 9.4e-3 rad ∠−12°`: each component's peak on the
+/// drawn part per unit of the reference and its phase there (absent components are left out),
+/// and on another part than the reference's, what they are relative to.
+fn legend<'a>(shapes: &ModeShapes, part: usize, theme: &Theme) -> TextLine<'a> {
+    let shape = &shapes.parts[part];
+    let names = component_names(shape.kind);
     let mut spans = Vec::new();
     for f in Family::ALL {
         let k = f.index();
@@ -126,23 +146,31 @@ fn legend<'a>(shape: &ModeShape, theme: &Theme) -> TextLine<'a> {
             spans.push(Span::styled(" · ", theme.dim()));
         }
         let phase = shape.phases[k].round();
-        let phase = if f == shape.reference || phase == 0.0 {
+        let phase = if (part == shapes.main && f == shapes.reference) || phase == 0.0 {
             String::new()
         } else {
             format!(" ∠{phase}°")
         };
-        let name = match f {
-            Family::Torsion => "twist",
-            other => other.name(),
-        };
+        let (letter, name) = names[k];
         spans.push(Span::styled(
             format!(
-                "{} {name} {} {}{phase}",
-                LETTERS[k],
+                "{letter} {name} {} {}{phase}",
                 sig(shape.peaks[k], 2),
                 UNITS[k]
             ),
             series_style(theme, k),
+        ));
+    }
+    if part != shapes.main {
+        let main = &shapes.parts[shapes.main];
+        let reference = component_names(main.kind)[shapes.reference.index()].1;
+        spans.push(Span::styled(
+            format!(
+                "  per {} of {}'s {reference}",
+                UNITS[shapes.reference.index()],
+                main.part
+            ),
+            theme.dim(),
         ));
     }
     TextLine::from(spans)
@@ -203,12 +231,13 @@ fn canvas<'a>(
                 }
             }
             ctx.layer();
+            let names = component_names(shape.kind);
             for k in 0..3 {
                 if let (true, Some(&tip)) = (shape.peaks[k] > 0.0, shape.components[k].last()) {
                     ctx.print(
                         length - cell * (2 - k) as f64,
                         tip,
-                        TextLine::styled(LETTERS[k], Style::new().fg(colors[k])),
+                        TextLine::styled(names[k].0, Style::new().fg(colors[k])),
                     );
                 }
             }

@@ -234,6 +234,24 @@ impl MotionRows {
     }
 }
 
+/// What a part of a structure is, for drawing a mode on it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PartKind {
+    Blade,
+    /// A tower: its rows' `flap`, `edge` and `twist` are fore–aft, side–side and torsion.
+    Tower,
+}
+
+/// One part of a structure a mode shape is drawn on (docs/model.md §6.5).
+#[derive(Debug, Clone)]
+pub struct ShapePart {
+    /// `blade`, `blade 2`, `tower`.
+    pub name: String,
+    pub kind: PartKind,
+    /// Positions along it (m from its root or base) with the motion rows there.
+    pub points: Vec<(f64, MotionRows)>,
+}
+
 /// A blade structure in some coordinates `q` (docs/model.md §6): what the aeroelastic system
 /// needs, and nothing about how the coordinates were made.
 pub trait Structure: Send + Sync {
@@ -267,6 +285,19 @@ pub trait Structure: Send + Sync {
     fn uniform_section(&self) -> Option<&SectionProps>;
     /// Span positions (m from the root) at which to show its mode shapes.
     fn span_points(&self) -> Vec<f64>;
+    /// The parts its mode shapes are drawn on: the blade alone at its span points (a rotor's
+    /// blades at their azimuths and its tower, [`crate::physics::turbine::GroundRotor`]).
+    fn shape_parts(&self) -> Vec<ShapePart> {
+        vec![ShapePart {
+            name: "blade".to_string(),
+            kind: PartKind::Blade,
+            points: self
+                .span_points()
+                .into_iter()
+                .map(|x| (x, self.motion_rows(x)))
+                .collect(),
+        }]
+    }
     /// The constant load on the coordinates at the rotor speed, with no motion and no air: the
     /// centrifugal pull on a curved blade's axis (docs/model.md §11.9); zero for a straight one.
     fn static_load(&self) -> DVector<f64> {

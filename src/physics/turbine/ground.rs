@@ -18,7 +18,8 @@ use crate::numeric::mbc::{t1, MultiBlade, Rotating};
 use crate::numeric::{decompose, hungarian};
 use crate::physics::section::SectionProps;
 use crate::physics::structure::{
-    kinetic_energy, Components, Family, MotionRows, NaturalMode, Shares, Structure,
+    kinetic_energy, Components, Family, MotionRows, NaturalMode, PartKind, ShapePart, Shares,
+    Structure,
 };
 use crate::physics::system::{Azimuthal, TurningBlade};
 use nalgebra::{Complex, DMatrix, DVector};
@@ -53,6 +54,9 @@ impl Whirl {
         Whirl::ALL.into_iter().find(|w| w.prefix() == first)
     }
 }
+
+/// The blades of a rotor the ground-frame names are made for.
+const BLADES: usize = 3;
 
 /// How close to 1P, against its decay rate, a root is taken for a non-oscillating blade
 /// root's image (its damping ratio in the blades' frame above 0.995).
@@ -106,7 +110,7 @@ impl GroundRotor {
     /// The ground-frame view of `rotor` at rotor speed `omega` (rad/s), its slots' frequencies
     /// in vacuo from the transformed undamped rotor.
     pub fn new(rotor: &Rotor, omega: f64) -> Result<GroundRotor> {
-        if rotor.blades() != 3 {
+        if rotor.blades() != BLADES {
             return Err(Error::numerical(format!(
                 "a rotor of {} blades: the ground-frame names are those of a three-bladed rotor",
                 rotor.blades()
@@ -343,22 +347,33 @@ impl GroundRotor {
         }
     }
 
-    /// Blade 0's tip rows over the ground coordinates, the blade at `azimuth`: its own modes'
-    /// `a_0 + a_c cos ψ + a_s sin ψ`, the tower's apex seen along its flap axis there.
+    /// Blade 0's tip rows over the ground coordinates, the blade at `azimuth`
+    /// ([`GroundRotor::motion_rows_at`]).
     fn tip_rows_at(&self, azimuth: f64) -> [DVector<f64>; 2] {
+        let rows = self.motion_rows_at(self.length(), azimuth);
+        [rows.twist, rows.flap]
+    }
+
+    /// Blade 0's rows at span `x` over the ground coordinates, the blade at `azimuth`: its own
+    /// modes' `a_0 + a_c cos ψ + a_s sin ψ`, the rotor's rotation as edge motion, the tower's
+    /// apex seen along its flap and edge axes there.
+    fn motion_rows_at(&self, x: f64, azimuth: f64) -> MotionRows {
         let k = self.per_blade;
-        let b = self.blade.motion_rows(self.length());
-        let mut rows = [b.twist, b.flap].map(|own| {
-            let mut r = DVector::zeros(self.coordinates());
-            for (at, weight) in [(0, 1.0), (k, azimuth.cos()), (2 * k, azimuth.sin())] {
-                r.rows_mut(at, k).copy_from(&(&own * weight));
-            }
-            r
-        });
+        let b = self.blade.motion_rows(x);
+        let mut rows = MotionRows::zeros(self.coordinates());
+        for (at, weight) in [(0, 1.0), (k, azimuth.cos()), (2 * k, azimuth.sin())] {
+            rows.twist.rows_mut(at, k).copy_from(&(&b.twist * weight));
+            rows.flap.rows_mut(at, k).copy_from(&(&b.flap * weight));
+            rows.edge.rows_mut(at, k).copy_from(&(&b.edge * weight));
+        }
+        let radius = self.hub_radius() + x;
+        if self.generator.is_some() {
+            rows.edge[3 * k] = radius;
+        }
         if let Some((at, tower)) = &self.tower {
-            let radius = self.hub_radius() + self.length();
-            let [flap, _] = strip_rows(&tower.apex, azimuth, radius);
-            rows[1].rows_mut(*at, flap.len()).copy_from(&flap);
+            let [flap, edge] = strip_rows(&tower.apex, azimuth, radius);
+            rows.flap.rows_mut(*at, flap.len()).copy_from(&flap);
+            rows.edge.rows_mut(*at, edge.len()).copy_from(&edge);
         }
         rows
     }
@@ -407,28 +422,9 @@ impl Structure for GroundRotor {
     fn damping(&self) -> &DMatrix<f64> {
         &self.damping
     }
-    /// Blade 0 at zero azimuth: its rows on the collective and cosine coordinates, and the
-    /// rotor's rotation as edge motion.
+    /// Blade 0 at zero azimuth ([`GroundRotor::motion_rows_at`]).
     fn motion_rows(&self, x: f64) -> MotionRows {
-        let k = self.per_blade;
-        let n = self.coordinates();
-        let b = self.blade.motion_rows(x);
-        let mut rows = MotionRows::zeros(n);
-        for at in [0, k] {
-            rows.twist.rows_mut(at, k).copy_from(&b.twist);
-            rows.flap.rows_mut(at, k).copy_from(&b.flap);
-            rows.edge.rows_mut(at, k).copy_from(&b.edge);
-        }
-        let radius = self.hub_radius() + x;
-        if self.generator.is_some() {
-            rows.edge[3 * k] = radius;
-        }
-        if let Some((at, tower)) = &self.tower {
-            let [flap, edge] = strip_rows(&tower.apex, 0.0, radius);
-            rows.flap.rows_mut(*at, flap.len()).copy_from(&flap);
-            rows.edge.rows_mut(*at, edge.len()).copy_from(&edge);
-        }
-        rows
+        self.motion_rows_at(x, 0.0)
     }
     fn natural_modes(&self) -> Result<Vec<NaturalMode>> {
         Ok(self.natural.clone())
@@ -464,6 +460,48 @@ impl Structure for GroundRotor {
     }
     fn span_points(&self) -> Vec<f64> {
         self.blade.span_points()
+    }
+    /// Each blade at its azimuth (blade 1 at zero, the next a third of a turn ahead, as the
+    /// multi-blade transform numbers them), then the tower along its height.
+    fn shape_parts(&self) -> Vec<ShapePart> {
+        let span = self.span_points();
+        let mut parts: Vec<ShapePart> = (0..BLADES)
+            .map(|b| {
+                let azimuth = TAU * b as f64 / BLADES as f64;
+                ShapePart {
+                    name: format!("blade {}", b + 1),
+                    kind: PartKind::Blade,
+                    points: span
+                        .iter()
+                        .map(|&x| (x, self.motion_rows_at(x, azimuth)))
+                        .collect(),
+                }
+            })
+            .collect();
+        if let Some((at, tower)) = &self.tower {
+            let n = self.coordinates();
+            let points = tower
+                .profile
+                .iter()
+                .map(|(z, own)| {
+                    let mut rows = MotionRows::zeros(n);
+                    for (all, part) in [
+                        (&mut rows.flap, &own.flap),
+                        (&mut rows.edge, &own.edge),
+                        (&mut rows.twist, &own.twist),
+                    ] {
+                        all.rows_mut(*at, part.len()).copy_from(part);
+                    }
+                    (*z, rows)
+                })
+                .collect();
+            parts.push(ShapePart {
+                name: "tower".to_string(),
+                kind: PartKind::Tower,
+                points,
+            });
+        }
+        parts
     }
     fn slot_content(&self, q: &[Complex<f64>], lambda: Complex<f64>) -> Option<Vec<f64>> {
         Some(self.root_content(q, lambda))

@@ -13,7 +13,7 @@
 
 use crate::error::{Error, Result};
 use crate::physics::basis::gauss_rule;
-use crate::physics::structure::{kinetic_energy, Family};
+use crate::physics::structure::{kinetic_energy, Family, MotionRows};
 use nalgebra::{Complex, DMatrix, DVector, Matrix3, Vector3};
 
 /// One station of the tower's distributed properties, the file's factors applied.
@@ -164,7 +164,14 @@ pub struct Tower {
     /// `∫ φ'ᵢ φ'ⱼ dz`: the stiffness a newton of weight on the tower top takes away (its
     /// moment as the tower leans, ElastoDyn's gravity term); the rotor adds its blades'.
     pub sag: DMatrix<f64>,
+    /// Its own motion along the height, for drawing its part of a mode: at each height (m from
+    /// its base) the rows of fore–aft displacement (`flap`, m), side–side displacement (`edge`,
+    /// m) and torsion (`twist`, rad) per coordinate.
+    pub profile: Vec<(f64, MotionRows)>,
 }
+
+/// Heights at which an assumed-mode tower's profile is sampled (its shapes are polynomials).
+const PROFILE_POINTS: usize = 41;
 
 /// Standard gravity (m/s²), as OpenFAST's input files give it: ElastoDyn's tower softens
 /// under the weight above each section.
@@ -235,6 +242,20 @@ impl Tower {
             d
         };
         let (sag, own_weight) = leaning(&density, &[], n, &slopes);
+        let profile = (0..PROFILE_POINTS)
+            .map(|i| {
+                let h = i as f64 / (PROFILE_POINTS - 1) as f64;
+                let mut rows = MotionRows::zeros(n);
+                for (j, mode) in modes.iter().enumerate() {
+                    let along = value(&inputs.shapes[j], h);
+                    match mode.plane() {
+                        Plane::ForeAft => rows.flap[j] = along,
+                        _ => rows.edge[j] = along,
+                    }
+                }
+                (h * l, rows)
+            })
+            .collect();
         let mut top_motion = DMatrix::zeros(APEX_MOTIONS, n);
         for (j, mode) in modes.iter().enumerate() {
             let c = &inputs.shapes[j];
@@ -255,13 +276,14 @@ impl Tower {
             own_weight,
             sag,
             &top_motion,
+            profile,
             top,
         ))
     }
 
-    /// The tower of `modes` with its own `mass`, `stiffness`, `damping`, gravity terms and its
-    /// top's motion `top_motion` ([`Apex`] rows), carrying `top`'s masses: their inertia added,
-    /// their weight on the lean, the apex placed.
+    /// The tower of `modes` with its own `mass`, `stiffness`, `damping`, gravity terms, its
+    /// top's motion `top_motion` ([`Apex`] rows) and its `profile` along the height, carrying
+    /// `top`'s masses: their inertia added, their weight on the lean, the apex placed.
     #[allow(clippy::too_many_arguments)]
     pub fn on_top(
         modes: Vec<TowerMode>,
@@ -271,6 +293,7 @@ impl Tower {
         own_weight: DMatrix<f64>,
         sag: DMatrix<f64>,
         top_motion: &DMatrix<f64>,
+        profile: Vec<(f64, MotionRows)>,
         top: &TowerTop,
     ) -> Tower {
         let top_mass = top.yaw_bearing_mass + top.nacelle_mass + top.hub_mass;
@@ -284,6 +307,7 @@ impl Tower {
             damping,
             apex,
             sag,
+            profile,
         }
     }
 

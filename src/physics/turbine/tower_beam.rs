@@ -15,7 +15,7 @@ use crate::error::{Error, Result};
 use crate::physics::blade::fem::{assemble, Mesh};
 use crate::physics::blade::modal::StiffnessFactors;
 use crate::physics::blade::BladeTable;
-use crate::physics::structure::Family;
+use crate::physics::structure::{Family, MotionRows};
 use nalgebra::{DMatrix, DVector};
 
 /// The beam tower's plain inputs.
@@ -108,6 +108,21 @@ impl Tower {
             d
         };
         let (sag, own_weight) = leaning(&density, &mesh.nodes, columns, &slopes);
+        let profile = mesh
+            .nodes
+            .iter()
+            .map(|&z| {
+                let mut rows = MotionRows::zeros(columns);
+                let map = fe.reference_axis_at(z)?;
+                for j in 0..columns {
+                    let m = map.motion(&phi.column(j).into_owned());
+                    rows.flap[j] = m.flap;
+                    rows.edge[j] = m.edge;
+                    rows.twist[j] = m.twist;
+                }
+                Ok((z, rows))
+            })
+            .collect::<Result<Vec<_>>>()?;
         Ok(Tower::on_top(
             modes,
             own_mass,
@@ -116,6 +131,7 @@ impl Tower {
             own_weight,
             sag,
             &(top_motion * &phi),
+            profile,
             top,
         ))
     }
