@@ -15,7 +15,7 @@
 //! the other parts are relative to the same reference: a whirl shows as the blades' phases.
 
 use crate::physics::structure::{Family, PartKind, ShapePart, Structure};
-use nalgebra::Complex;
+use nalgebra::{Complex, DVector};
 
 /// A component with less of the mode's kinetic energy than this is absent (round-off of an
 /// exactly uncoupled motion, e.g. the twist of an NREL 5MW flap mode, whose file has no coupling
@@ -117,7 +117,7 @@ pub fn mode_shape(structure: &dyn Structure, at: &SpanRows, q: &[Complex<f64>]) 
             ModeShape {
                 part: part.name.clone(),
                 kind: part.kind,
-                span: part.points.iter().map(|(x, _)| *x).collect(),
+                span: part.points.clone(),
                 components,
                 peaks,
                 phases,
@@ -133,18 +133,16 @@ pub fn mode_shape(structure: &dyn Structure, at: &SpanRows, q: &[Complex<f64>]) 
 
 /// Flap, edge and twist of `q` at each of the part's points.
 fn along(part: &ShapePart, q: &[Complex<f64>]) -> [Vec<Complex<f64>>; 3] {
-    let mut raw: [Vec<Complex<f64>>; 3] = Default::default();
-    for (_, rows) in &part.points {
-        for (values, row) in raw.iter_mut().zip([&rows.flap, &rows.edge, &rows.twist]) {
-            values.push(
-                row.iter()
-                    .zip(q)
-                    .map(|(r, qi)| qi * *r)
-                    .sum::<Complex<f64>>(),
-            );
-        }
-    }
-    raw
+    // The part's own coordinates, real and imaginary parts apart (the rows are real).
+    let re = &part.map * DVector::from_iterator(q.len(), q.iter().map(|c| c.re));
+    let im = &part.map * DVector::from_iterator(q.len(), q.iter().map(|c| c.im));
+    part.rows.each_ref().map(|rows| {
+        let (re, im) = (rows * &re, rows * &im);
+        re.iter()
+            .zip(im.iter())
+            .map(|(&r, &i)| Complex::new(r, i))
+            .collect()
+    })
 }
 
 /// The value of largest magnitude (zero for none).

@@ -148,8 +148,11 @@ impl MultiBlade {
                 self.dim
             )));
         }
+        // T and T⁻¹ hold a block per rotating quantity and the identity elsewhere: a few
+        // entries per row and column, so each product costs O(n) per entry of A, not O(n²).
         let t = self.to_rotating(psi, omega);
-        Ok(self.to_ground(psi, omega) * (a * t - self.rate(psi, omega)))
+        let rotated = times_sparse(a, &t) - self.rate(psi, omega);
+        Ok(sparse_times(&self.to_ground(psi, omega), &rotated))
     }
 
     /// The ground-frame state matrix averaged over `azimuths` equally spaced azimuths of one
@@ -187,6 +190,35 @@ impl MultiBlade {
 }
 
 /// Writes `block` into `t` at rows `rows`, columns `cols`.
+/// `a t` for a `t` with few nonzero entries in each column.
+fn times_sparse(a: &DMatrix<f64>, t: &DMatrix<f64>) -> DMatrix<f64> {
+    let mut out = DMatrix::zeros(a.nrows(), t.ncols());
+    for c in 0..t.ncols() {
+        let mut column = out.column_mut(c);
+        for (r, &v) in t.column(c).iter().enumerate() {
+            if v != 0.0 {
+                column.axpy(v, &a.column(r), 1.0);
+            }
+        }
+    }
+    out
+}
+
+/// `t a` for a `t` with few nonzero entries in each row.
+fn sparse_times(t: &DMatrix<f64>, a: &DMatrix<f64>) -> DMatrix<f64> {
+    let rows: Vec<Vec<(usize, f64)>> = (0..t.nrows())
+        .map(|r| {
+            (0..t.ncols())
+                .filter(|&c| t[(r, c)] != 0.0)
+                .map(|c| (c, t[(r, c)]))
+                .collect()
+        })
+        .collect();
+    DMatrix::from_fn(t.nrows(), a.ncols(), |r, k| {
+        rows[r].iter().map(|&(c, v)| v * a[(c, k)]).sum()
+    })
+}
+
 fn place(t: &mut DMatrix<f64>, rows: &[usize], cols: &[usize], block: &DMatrix<f64>) {
     for (i, &r) in rows.iter().enumerate() {
         for (j, &c) in cols.iter().enumerate() {

@@ -242,14 +242,42 @@ pub enum PartKind {
     Tower,
 }
 
-/// One part of a structure a mode shape is drawn on (docs/model.md §6.5).
+/// One part of a structure a mode shape is drawn on (docs/model.md §6.5), in coordinates of
+/// its own: `own = map · q` (a blade of a rotor: its modes at its azimuth, the hub's turning,
+/// the tower top), few against the structure's.
 #[derive(Debug, Clone)]
 pub struct ShapePart {
     /// `blade`, `blade 2`, `tower`.
     pub name: String,
     pub kind: PartKind,
-    /// Positions along it (m from its root or base) with the motion rows there.
-    pub points: Vec<(f64, MotionRows)>,
+    /// Positions along it (m from its root or base).
+    pub points: Vec<f64>,
+    /// Its own coordinates per coordinate of the structure.
+    pub map: DMatrix<f64>,
+    /// Flap, edge and twist (a tower's fore–aft, side–side, torsion) at each point per own
+    /// coordinate.
+    pub rows: [DMatrix<f64>; 3],
+}
+
+impl ShapePart {
+    /// A part on the structure's coordinates themselves, its rows at each point given.
+    pub fn direct(name: &str, kind: PartKind, points: Vec<(f64, MotionRows)>) -> ShapePart {
+        let n = points.first().map_or(0, |(_, r)| r.flap.len());
+        let stacked = |pick: fn(&MotionRows) -> &DVector<f64>| {
+            DMatrix::from_fn(points.len(), n, |i, j| pick(&points[i].1)[j])
+        };
+        ShapePart {
+            name: name.to_string(),
+            kind,
+            rows: [
+                stacked(|r| &r.flap),
+                stacked(|r| &r.edge),
+                stacked(|r| &r.twist),
+            ],
+            map: DMatrix::identity(n, n),
+            points: points.into_iter().map(|(x, _)| x).collect(),
+        }
+    }
 }
 
 /// A blade structure in some coordinates `q` (docs/model.md §6): what the aeroelastic system
@@ -288,15 +316,12 @@ pub trait Structure: Send + Sync {
     /// The parts its mode shapes are drawn on: the blade alone at its span points (a rotor's
     /// blades at their azimuths and its tower, [`crate::physics::turbine::GroundRotor`]).
     fn shape_parts(&self) -> Vec<ShapePart> {
-        vec![ShapePart {
-            name: "blade".to_string(),
-            kind: PartKind::Blade,
-            points: self
-                .span_points()
-                .into_iter()
-                .map(|x| (x, self.motion_rows(x)))
-                .collect(),
-        }]
+        let points = self.span_points();
+        let rows = points
+            .into_iter()
+            .map(|x| (x, self.motion_rows(x)))
+            .collect();
+        vec![ShapePart::direct("blade", PartKind::Blade, rows)]
     }
     /// The constant load on the coordinates at the rotor speed, with no motion and no air: the
     /// centrifugal pull on a curved blade's axis (docs/model.md §11.9); zero for a straight one.

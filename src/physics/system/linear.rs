@@ -93,6 +93,12 @@ impl System {
     /// positions, so the retained loads gain `∂Q/∂p δp` and the lag states `∂G/∂p δp`. At zero
     /// frequency the condensed system is the whole basis's; the left-out modes' own rates,
     /// inertia and apparent mass are left out. Nothing where the structure leaves no mode out.
+    ///
+    /// Each station moves few of the coordinates and few of the left-out modes (a rotor's
+    /// station its own blade's), so its terms are formed on those alone: the rank-3 products
+    /// `L D Rᵀ` of its left-out rows `L`, load derivatives `D` and kinematic rows `R`, gathered
+    /// on their nonzero entries. The left-out modes that no station couples (another blade's)
+    /// answer apart: `Λ − ∂Q_R/∂p` is solved block by block.
     fn condense_left_out(&self, x: &DVector<f64>, a: &mut DMatrix<f64>) -> Result<()> {
         let Some(left_out) = self.left_out.as_deref() else {
             return Ok(());
@@ -104,48 +110,56 @@ impl System {
         let mut qr_p = DMatrix::from_diagonal(left_out.stiffness());
         let mut qk_p = DMatrix::zeros(nq, m);
         let mut g_p = DMatrix::zeros(na, m);
+        let mut blocks = Blocks::new(m);
         let (q, v, z) = self.split(x);
         let mut scratch = StripScratch::new(ns);
         for (si, s) in self.stations.iter().enumerate() {
             let eval = self.evaluate_station(si, (q, v, z), 1.0, true, &mut scratch);
-            let (rows, left) = (self.kinematic_rows(si), left_out.rows_at(si));
+            let left = Gathered::of(left_out.rows_at(si));
+            let rows = Gathered::of(self.kinematic_rows(si));
+            blocks.join(&left.entries);
             let w = s.weight;
-            for l in 0..LOADS {
-                for j in 0..RATES {
-                    let dpos = w * eval.dloads_dk[l][j];
-                    let drate = w * eval.dloads_dk[l][j + RATES];
-                    if dpos != 0.0 {
-                        qr.view_mut((0, 0), (m, nq))
-                            .ger(dpos, &left[l], &rows[j], 1.0);
-                        qr_p.ger(-dpos, &left[l], &left[j], 1.0);
-                        qk_p.ger(dpos, &rows[l], &left[j], 1.0);
-                    }
-                    if drate != 0.0 {
-                        qr.view_mut((0, nq), (m, nq))
-                            .ger(drate, &left[l], &rows[j], 1.0);
-                    }
-                }
-                for i in 0..ns {
-                    let mut col = qr.column_mut(2 * nq + si * ns + i);
-                    col.axpy(w * eval.dloads_dz[l][i], &left[l], 1.0);
+            let d = |offset: usize| -> [[f64; RATES]; LOADS] {
+                std::array::from_fn(|l| std::array::from_fn(|j| w * eval.dloads_dk[l][j + offset]))
+            };
+            let (position, rate) = (d(0), d(RATES));
+            // L D (each left-out mode's load per unit of each rate), R D likewise.
+            let (left_position, left_rate) = (left.times(&position), left.times(&rate));
+            let rows_position = rows.times(&position);
+            for (k, &c) in rows.entries.iter().enumerate() {
+                for (i, &r) in left.entries.iter().enumerate() {
+                    qr[(r, c)] += dot3(&left_position[i], &rows.values[k]);
+                    qr[(r, nq + c)] += dot3(&left_rate[i], &rows.values[k]);
+                    qk_p[(c, r)] += dot3(&rows_position[k], &left.values[i]);
                 }
             }
-            for i in 0..ns {
-                let mut row = g_p.row_mut(si * ns + i);
-                for (j, r) in left.iter().enumerate() {
-                    let d = eval.dzdot_dk[i][j];
-                    if d != 0.0 {
-                        row += d * r.transpose();
-                    }
+            for (k, &c) in left.entries.iter().enumerate() {
+                for (i, &r) in left.entries.iter().enumerate() {
+                    qr_p[(r, c)] -= dot3(&left_position[i], &left.values[k]);
+                }
+            }
+            for lag in 0..ns {
+                let dz: [f64; LOADS] = std::array::from_fn(|l| w * eval.dloads_dz[l][lag]);
+                let dzdot: [f64; RATES] = std::array::from_fn(|j| eval.dzdot_dk[lag][j]);
+                for (i, &r) in left.entries.iter().enumerate() {
+                    qr[(r, 2 * nq + si * ns + lag)] += dot3(&left.values[i], &dz);
+                    g_p[(si * ns + lag, r)] += dot3(&left.values[i], &dzdot);
                 }
             }
         }
-        let response = qr_p.lu().solve(&qr).ok_or_else(|| {
-            Error::numerical(
-                "the left-out modes' quasi-static response: their stiffness less the air's is \
-                 singular",
-            )
-        })?;
+        let mut response = DMatrix::zeros(m, inputs);
+        for block in blocks.members() {
+            let sub = qr_p.select_rows(&block).select_columns(&block);
+            let solved = sub.lu().solve(&qr.select_rows(&block)).ok_or_else(|| {
+                Error::numerical(
+                    "the left-out modes' quasi-static response: their stiffness less the air's \
+                     is singular",
+                )
+            })?;
+            for (k, &i) in block.iter().enumerate() {
+                response.row_mut(i).copy_from(&solved.row(k));
+            }
+        }
         let loads = &self.mass_inv * (&qk_p * &response);
         let mut accelerations = a.view_mut((nq, 0), (nq, inputs));
         accelerations += loads;
@@ -208,5 +222,78 @@ impl LinearSystem {
                 v
             }),
         }
+    }
+}
+
+/// Three rows on the entries where any of them is nonzero: each entry's three values.
+struct Gathered {
+    entries: Vec<usize>,
+    values: Vec<[f64; RATES]>,
+}
+
+impl Gathered {
+    fn of(rows: &[DVector<f64>; RATES]) -> Gathered {
+        let entries: Vec<usize> = (0..rows[0].len())
+            .filter(|&i| rows.iter().any(|r| r[i] != 0.0))
+            .collect();
+        let values = entries
+            .iter()
+            .map(|&i| std::array::from_fn(|j| rows[j][i]))
+            .collect();
+        Gathered { entries, values }
+    }
+
+    /// Each entry's values times `d` (the rows as the columns of a matrix, times `d`).
+    fn times(&self, d: &[[f64; RATES]; LOADS]) -> Vec<[f64; RATES]> {
+        self.values
+            .iter()
+            .map(|v| std::array::from_fn(|j| (0..LOADS).map(|l| v[l] * d[l][j]).sum()))
+            .collect()
+    }
+}
+
+fn dot3(a: &[f64; RATES], b: &[f64; RATES]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// A partition of `0..n` into the sets some group joined, transitively (union–find).
+struct Blocks {
+    parent: Vec<usize>,
+}
+
+impl Blocks {
+    fn new(n: usize) -> Blocks {
+        Blocks {
+            parent: (0..n).collect(),
+        }
+    }
+
+    fn root(&mut self, mut i: usize) -> usize {
+        while self.parent[i] != i {
+            self.parent[i] = self.parent[self.parent[i]];
+            i = self.parent[i];
+        }
+        i
+    }
+
+    fn join(&mut self, group: &[usize]) {
+        if let Some((&first, rest)) = group.split_first() {
+            let to = self.root(first);
+            for &i in rest {
+                let from = self.root(i);
+                self.parent[from] = to;
+            }
+        }
+    }
+
+    /// Each block's members, ascending.
+    fn members(mut self) -> Vec<Vec<usize>> {
+        let n = self.parent.len();
+        let mut by_root: Vec<Vec<usize>> = vec![Vec::new(); n];
+        for i in 0..n {
+            let r = self.root(i);
+            by_root[r].push(i);
+        }
+        by_root.into_iter().filter(|b| !b.is_empty()).collect()
     }
 }

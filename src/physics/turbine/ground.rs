@@ -462,43 +462,65 @@ impl Structure for GroundRotor {
         self.blade.span_points()
     }
     /// Each blade at its azimuth (blade 1 at zero, the next a third of a turn ahead, as the
-    /// multi-blade transform numbers them), then the tower along its height.
+    /// multi-blade transform numbers them), then the tower along its height. A blade's own
+    /// coordinates: its modes `a_0 + a_c cos ψ + a_s sin ψ`, the drivetrain's and the tower's
+    /// as they are ([`GroundRotor::motion_rows_at`] with the cyclic weights taken out).
     fn shape_parts(&self) -> Vec<ShapePart> {
-        let span = self.span_points();
+        let (k, n) = (self.per_blade, self.coordinates());
+        // Everything but the cyclic coordinates: the collective stands for the blade's own.
+        let own: Vec<usize> = (0..k).chain(3 * k..n).collect();
+        let pick = |v: &DVector<f64>| DVector::from_fn(own.len(), |i, _| v[own[i]]);
+        // Blade 1's rows at zero azimuth on them; the others differ in the tower top's.
+        let at_zero: Vec<(f64, MotionRows)> = self
+            .span_points()
+            .into_iter()
+            .map(|x| {
+                let rows = self.motion_rows_at(x, 0.0);
+                let own_rows = MotionRows {
+                    twist: pick(&rows.twist),
+                    flap: pick(&rows.flap),
+                    edge: pick(&rows.edge),
+                };
+                (x, own_rows)
+            })
+            .collect();
         let mut parts: Vec<ShapePart> = (0..BLADES)
             .map(|b| {
                 let azimuth = TAU * b as f64 / BLADES as f64;
+                let mut map = DMatrix::zeros(own.len(), n);
+                for (i, &c) in own.iter().enumerate() {
+                    map[(i, c)] = 1.0;
+                }
+                for j in 0..k {
+                    map[(j, k + j)] = azimuth.cos();
+                    map[(j, 2 * k + j)] = azimuth.sin();
+                }
+                let mut points = at_zero.clone();
+                if let Some((at, tower)) = &self.tower {
+                    let from = own.len() - tower.coordinates();
+                    debug_assert_eq!(own[from], *at);
+                    for (x, rows) in points.iter_mut() {
+                        let radius = self.hub_radius() + *x;
+                        let [flap, edge] = strip_rows(&tower.apex, azimuth, radius);
+                        rows.flap.rows_mut(from, flap.len()).copy_from(&flap);
+                        rows.edge.rows_mut(from, edge.len()).copy_from(&edge);
+                    }
+                }
                 ShapePart {
-                    name: format!("blade {}", b + 1),
-                    kind: PartKind::Blade,
-                    points: span
-                        .iter()
-                        .map(|&x| (x, self.motion_rows_at(x, azimuth)))
-                        .collect(),
+                    map,
+                    ..ShapePart::direct(&format!("blade {}", b + 1), PartKind::Blade, points)
                 }
             })
             .collect();
         if let Some((at, tower)) = &self.tower {
-            let n = self.coordinates();
-            let points = tower
-                .profile
-                .iter()
-                .map(|(z, own)| {
-                    let mut rows = MotionRows::zeros(n);
-                    for (all, part) in [
-                        (&mut rows.flap, &own.flap),
-                        (&mut rows.edge, &own.edge),
-                        (&mut rows.twist, &own.twist),
-                    ] {
-                        all.rows_mut(*at, part.len()).copy_from(part);
-                    }
-                    (*z, rows)
-                })
-                .collect();
+            let t = tower.coordinates();
+            let mut map = DMatrix::zeros(t, n);
+            for i in 0..t {
+                map[(i, at + i)] = 1.0;
+            }
             parts.push(ShapePart {
-                name: "tower".to_string(),
-                kind: PartKind::Tower,
-                points,
+                map,
+                ..ShapePart::direct("tower", PartKind::Tower, tower.profile.clone())
             });
         }
         parts
