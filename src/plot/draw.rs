@@ -246,7 +246,8 @@ struct LabelPlacement {
     offset: (i32, i32),
 }
 
-/// Draw a guide's dashed line; return where its label goes (drawn later, over the data).
+/// Draw a guide's line, thin, solid and grey (dashes and dots tell a rotor's whirls apart);
+/// return where its label goes (drawn later, over the data).
 fn draw_guide_line<DB: DrawingBackend>(
     chart: &mut Chart<'_, DB>,
     guide: &Guide,
@@ -265,7 +266,7 @@ where
     };
     let c = color(guide.color.unwrap_or(GUIDE_GREY));
     chart
-        .draw_series(DashedLineSeries::new([a, b], 10, 6, c.stroke_width(2)))
+        .draw_series(LineSeries::new([a, b], c.stroke_width(1)))
         .map_err(draw_error)?;
     if guide.label.is_empty() {
         return Ok(None);
