@@ -215,6 +215,12 @@ fn assign(
         if rigid(k) && content[i][k] < 0.5 {
             return MISFIT;
         }
+        // A rotor's root takes no slot it holds next to nothing of: left over, it would be
+        // named after whatever slot the others left (the IEA 15MW's yaw-and-flap root at
+        // 2.2 Hz, no twist, called `collective torsion 1` at 11 m/s).
+        if by_slots && content[i][k] < SLOT_FLOOR {
+            return MISFIT;
+        }
         penalty(&roots[i], &natural[k], by_slots) - weight(i) * content[i][k]
     };
     let oscillating: Vec<usize> = (0..roots.len()).filter(|&i| roots[i].im > 0.0).collect();
@@ -274,6 +280,10 @@ fn penalty(root: &Mode, n: &NaturalMode, graded: bool) -> f64 {
     let named = s[n.family.index()].max(s[n.shares.family().index()]);
     FAMILY_PENALTY * (own - named).max(0.0)
 }
+
+/// The least content a rotor's root must hold in a slot to be named after it (its share of the
+/// root's kinetic energy there, [`Structure::slot_content`]).
+const SLOT_FLOOR: f64 = 0.05;
 
 /// Cost of a name a root cannot take (an overdamped pair for a rigid mode's one real root):
 /// far above any other, so it is taken only when nothing else is left.

@@ -664,3 +664,39 @@ fn a_turbines_tower_modes_are_drawn_on_its_tower() {
         assert_eq!(flap.parts.len(), 4, "{name}");
     }
 }
+
+/// A rotor's root is named only after a slot it holds some of: on the IEA 15MW's HAWC2 turbine
+/// at rated the yaw of the tower top, swinging the blades' flap, has no twist, and once took
+/// `collective torsion 1` (left over when a heavily damped flap whirl fell to the aerodynamic
+/// roots) while the blades' real collective torsion was called `collective flap 3`.
+#[test]
+fn every_blade_torsion_name_on_the_htc_turbine_is_on_a_twisting_root() {
+    for wind in ["10", "11"] {
+        let p = preset(
+            "iea15mw-htc",
+            &[
+                "turbine.model=turbine",
+                &format!("operating.wind_speed={wind}"),
+            ],
+        );
+        let modes = analyse(&p).unwrap().eigenvalues;
+        let torsion: Vec<&Mode> = modes
+            .iter()
+            .filter(|m| m.label.contains("torsion") && !m.label.starts_with("tower"))
+            .collect();
+        assert!(
+            torsion.len() >= 6,
+            "{wind} m/s: {} torsion roots",
+            torsion.len()
+        );
+        for m in torsion {
+            let twist = m.components.unwrap().blade_twist;
+            assert!(
+                twist > 0.1,
+                "{wind} m/s: {} at {:.3} Hz has blade twist {twist:.3}",
+                m.label,
+                m.frequency_hz
+            );
+        }
+    }
+}
