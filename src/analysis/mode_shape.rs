@@ -14,6 +14,7 @@
 //! (the tower where it holds most of the mode's energy, else blade 1), so the sizes and phases of
 //! the other parts are relative to the same reference: a whirl shows as the blades' phases.
 
+use crate::analysis::mode::Mode;
 use crate::physics::structure::{Family, PartKind, ShapePart, Structure};
 use nalgebra::{Complex, DVector};
 
@@ -64,11 +65,15 @@ impl SpanRows {
     }
 }
 
-/// The shape of the structural coordinates `q` (an eigenvector's first `n_q` entries) on each
-/// of `structure`'s parts, whose motion rows `at` holds.
-pub fn mode_shape(structure: &dyn Structure, at: &SpanRows, q: &[Complex<f64>]) -> ModeShapes {
+/// The shape of a structural root (its eigenvector's first `n_q` entries, `mode.shape`) on each
+/// of `structure`'s parts, whose motion rows `at` holds. A root named after the tower, or whose
+/// largest energy component is the tower's, has the tower for its main part, and the plane it is
+/// named after for reference.
+pub fn mode_shape(structure: &dyn Structure, at: &SpanRows, mode: &Mode) -> ModeShapes {
+    let q = &mode.shape;
     let raw: Vec<[Vec<Complex<f64>>; 3]> = at.parts.iter().map(|p| along(p, q)).collect();
     let shares = structure.shares(q);
+    let named_after_tower = mode.label.starts_with("tower ");
     let tower_dominates = structure.components(q).is_some_and(|c| {
         c.tower
             > c.blade_flap
@@ -79,12 +84,19 @@ pub fn mode_shape(structure: &dyn Structure, at: &SpanRows, q: &[Complex<f64>]) 
     let main = at
         .parts
         .iter()
-        .position(|p| tower_dominates && p.kind == PartKind::Tower)
+        .position(|p| (named_after_tower || tower_dominates) && p.kind == PartKind::Tower)
         .unwrap_or(0);
-    // The dominant family, or the next where the main part does not move in it (a blade mode's
-    // edge, say, that the tower holds none of).
+    // The dominant family (on the tower, the plane the root is named after), or the next where
+    // the main part does not move in it (a blade mode's edge, say, that the tower holds none of).
     let mut families = Family::ALL;
     families.sort_by(|a, b| shares.array()[b.index()].total_cmp(&shares.array()[a.index()]));
+    let on_tower = at
+        .parts
+        .get(main)
+        .is_some_and(|p| p.kind == PartKind::Tower);
+    if let (true, true, Some(named)) = (on_tower, named_after_tower, mode.family) {
+        families.sort_by_key(|f| *f != named);
+    }
     let (reference, anchor) = families
         .iter()
         .map(|&f| (f, peak_of(&raw[main][f.index()])))

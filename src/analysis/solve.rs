@@ -58,7 +58,7 @@ impl Solution {
         stability
             .eigenvalues
             .iter()
-            .map(|m| mode_shape(structure, &at, &m.shape))
+            .map(|m| mode_shape(structure, &at, m))
             .collect()
     }
 

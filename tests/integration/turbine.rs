@@ -613,8 +613,8 @@ fn a_rotors_mode_shapes_show_its_whirl_in_the_blades_phases() {
 }
 
 /// A turbine's tower mode is drawn on the tower (its main part): the bending or torsion it is
-/// named after, zero at the base and rising to +1 at the top, its content given by component; a
-/// blade mode stays on blade 1.
+/// named after, zero at the base and rising to +1 at the top, its content given by component (in
+/// the wind too, where the blades hold more of the tower top's yaw); a blade mode stays on blade 1.
 /// Both towers: ElastoDyn's assumed modes (no torsion) and the HAWC2 beam.
 #[test]
 fn a_turbines_tower_modes_are_drawn_on_its_tower() {
@@ -663,6 +663,23 @@ fn a_turbines_tower_modes_are_drawn_on_its_tower() {
         assert_eq!(flap.parts[flap.main].part, "blade 1", "{name}");
         assert_eq!(flap.parts.len(), 4, "{name}");
     }
+    // In the wind the tower top's yaw swings the blades' flap more than it twists the tower;
+    // named after the tower, the root is still drawn on it, its torsion the reference.
+    let p = preset(
+        "iea15mw-htc",
+        &["turbine.model=turbine", "operating.wind_speed=11"],
+    );
+    let shapes = shapes_of(&p);
+    let (m, s) = shapes
+        .iter()
+        .find(|(m, _)| m.label == "tower torsion 1")
+        .unwrap();
+    let c = m.components.unwrap();
+    assert!(c.tower < c.blade_flap, "{c:?}");
+    assert_eq!(
+        (s.parts[s.main].part.as_str(), s.reference),
+        ("tower", Family::Torsion)
+    );
 }
 
 /// A rotor's root is named only after a slot it holds some of: on the IEA 15MW's HAWC2 turbine
