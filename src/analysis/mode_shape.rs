@@ -16,6 +16,7 @@
 
 use crate::analysis::mode::Mode;
 use crate::physics::structure::{Family, PartKind, ShapePart, Structure};
+use crate::physics::turbine::tower::TowerMode;
 use nalgebra::{Complex, DVector};
 
 /// A component with less of the mode's kinetic energy than this is absent (round-off of an
@@ -53,13 +54,13 @@ pub struct ModeShapes {
 }
 
 /// The structure's parts with their motion rows, evaluated once for all the modes of a solve.
-pub struct SpanRows {
+pub struct PartRows {
     parts: Vec<ShapePart>,
 }
 
-impl SpanRows {
-    pub fn of(structure: &dyn Structure) -> SpanRows {
-        SpanRows {
+impl PartRows {
+    pub fn of(structure: &dyn Structure) -> PartRows {
+        PartRows {
             parts: structure.shape_parts(),
         }
     }
@@ -69,11 +70,12 @@ impl SpanRows {
 /// of `structure`'s parts, whose motion rows `at` holds. A root named after the tower, or whose
 /// largest energy component is the tower's, has the tower for its main part, and the plane it is
 /// named after for reference.
-pub fn mode_shape(structure: &dyn Structure, at: &SpanRows, mode: &Mode) -> ModeShapes {
+pub fn mode_shape(structure: &dyn Structure, at: &PartRows, mode: &Mode) -> ModeShapes {
     let q = &mode.shape;
     let raw: Vec<[Vec<Complex<f64>>; 3]> = at.parts.iter().map(|p| along(p, q)).collect();
     let shares = structure.shares(q);
-    let named_after_tower = mode.label.starts_with("tower ");
+    // The plane a root named after the tower moves in, as a family ([`TowerMode`]).
+    let named_plane = TowerMode::of_name(&mode.label).map(|t| t.family_and_number().0);
     let tower_dominates = structure.components(q).is_some_and(|c| {
         c.tower
             > c.blade_flap
@@ -81,20 +83,17 @@ pub fn mode_shape(structure: &dyn Structure, at: &SpanRows, mode: &Mode) -> Mode
                 .max(c.blade_twist)
                 .max(c.drivetrain)
     });
-    let main = at
+    let tower = at
         .parts
         .iter()
-        .position(|p| (named_after_tower || tower_dominates) && p.kind == PartKind::Tower)
-        .unwrap_or(0);
+        .position(|p| p.kind == PartKind::Tower)
+        .filter(|_| named_plane.is_some() || tower_dominates);
+    let main = tower.unwrap_or(0);
     // The dominant family (on the tower, the plane the root is named after), or the next where
     // the main part does not move in it (a blade mode's edge, say, that the tower holds none of).
     let mut families = Family::ALL;
     families.sort_by(|a, b| shares.array()[b.index()].total_cmp(&shares.array()[a.index()]));
-    let on_tower = at
-        .parts
-        .get(main)
-        .is_some_and(|p| p.kind == PartKind::Tower);
-    if let (true, true, Some(named)) = (on_tower, named_after_tower, mode.family) {
+    if let (Some(_), Some(named)) = (tower, named_plane) {
         families.sort_by_key(|f| *f != named);
     }
     let (reference, anchor) = families

@@ -4,7 +4,7 @@
 //! never assembles or linearises anything twice.
 
 use crate::analysis::eigen::{analyse_system, Stability};
-use crate::analysis::mode_shape::{mode_shape, ModeShapes, SpanRows};
+use crate::analysis::mode_shape::{mode_shape, ModeShapes, PartRows};
 use crate::analysis::simulate::Simulator;
 use crate::error::Result;
 use crate::physics::system::{LinearSystem, System};
@@ -54,7 +54,7 @@ impl Solution {
             Ok(l) => l.structure.as_ref(),
             Err(_) => self.system.structure(),
         };
-        let at = SpanRows::of(structure);
+        let at = PartRows::of(structure);
         stability
             .eigenvalues
             .iter()

@@ -152,7 +152,9 @@ impl MultiBlade {
         // entries per row and column, so each product costs O(n) per entry of A, not O(n²).
         let t = self.to_rotating(psi, omega);
         let rotated = times_sparse(a, &t) - self.rate(psi, omega);
-        Ok(sparse_times(&self.to_ground(psi, omega), &rotated))
+        // T⁻¹ M = (Mᵀ T⁻ᵀ)ᵀ.
+        let back = self.to_ground(psi, omega).transpose();
+        Ok(times_sparse(&rotated.transpose(), &back).transpose())
     }
 
     /// The ground-frame state matrix averaged over `azimuths` equally spaced azimuths of one
@@ -202,21 +204,6 @@ fn times_sparse(a: &DMatrix<f64>, t: &DMatrix<f64>) -> DMatrix<f64> {
         }
     }
     out
-}
-
-/// `t a` for a `t` with few nonzero entries in each row.
-fn sparse_times(t: &DMatrix<f64>, a: &DMatrix<f64>) -> DMatrix<f64> {
-    let rows: Vec<Vec<(usize, f64)>> = (0..t.nrows())
-        .map(|r| {
-            (0..t.ncols())
-                .filter(|&c| t[(r, c)] != 0.0)
-                .map(|c| (c, t[(r, c)]))
-                .collect()
-        })
-        .collect();
-    DMatrix::from_fn(t.nrows(), a.ncols(), |r, k| {
-        rows[r].iter().map(|&(c, v)| v * a[(c, k)]).sum()
-    })
 }
 
 fn place(t: &mut DMatrix<f64>, rows: &[usize], cols: &[usize], block: &DMatrix<f64>) {

@@ -470,20 +470,7 @@ impl Structure for GroundRotor {
         // Everything but the cyclic coordinates: the collective stands for the blade's own.
         let own: Vec<usize> = (0..k).chain(3 * k..n).collect();
         let pick = |v: &DVector<f64>| DVector::from_fn(own.len(), |i, _| v[own[i]]);
-        // Blade 1's rows at zero azimuth on them; the others differ in the tower top's.
-        let at_zero: Vec<(f64, MotionRows)> = self
-            .span_points()
-            .into_iter()
-            .map(|x| {
-                let rows = self.motion_rows_at(x, 0.0);
-                let own_rows = MotionRows {
-                    twist: pick(&rows.twist),
-                    flap: pick(&rows.flap),
-                    edge: pick(&rows.edge),
-                };
-                (x, own_rows)
-            })
-            .collect();
+        let span = self.span_points();
         let mut parts: Vec<ShapePart> = (0..BLADES)
             .map(|b| {
                 let azimuth = TAU * b as f64 / BLADES as f64;
@@ -495,17 +482,19 @@ impl Structure for GroundRotor {
                     map[(j, k + j)] = azimuth.cos();
                     map[(j, 2 * k + j)] = azimuth.sin();
                 }
-                let mut points = at_zero.clone();
-                if let Some((at, tower)) = &self.tower {
-                    let from = own.len() - tower.coordinates();
-                    debug_assert_eq!(own[from], *at);
-                    for (x, rows) in points.iter_mut() {
-                        let radius = self.hub_radius() + *x;
-                        let [flap, edge] = strip_rows(&tower.apex, azimuth, radius);
-                        rows.flap.rows_mut(from, flap.len()).copy_from(&flap);
-                        rows.edge.rows_mut(from, edge.len()).copy_from(&edge);
-                    }
-                }
+                // Its rows on the collective coordinates are its own modes' at any azimuth.
+                let points = span
+                    .iter()
+                    .map(|&x| {
+                        let rows = self.motion_rows_at(x, azimuth);
+                        let own_rows = MotionRows {
+                            twist: pick(&rows.twist),
+                            flap: pick(&rows.flap),
+                            edge: pick(&rows.edge),
+                        };
+                        (x, own_rows)
+                    })
+                    .collect();
                 ShapePart {
                     map,
                     ..ShapePart::direct(&format!("blade {}", b + 1), PartKind::Blade, points)

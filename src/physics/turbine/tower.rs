@@ -83,6 +83,19 @@ pub enum Plane {
 }
 
 impl TowerMode {
+    pub const ALL: [TowerMode; 5] = [
+        TowerMode::ForeAft1,
+        TowerMode::ForeAft2,
+        TowerMode::SideSide1,
+        TowerMode::SideSide2,
+        TowerMode::Torsion1,
+    ];
+
+    /// The tower mode a root is named after ([`TowerMode::label`]), none for any other name.
+    pub fn of_name(label: &str) -> Option<TowerMode> {
+        TowerMode::ALL.into_iter().find(|m| m.label() == label)
+    }
+
     /// An ElastoDyn tower's four, in its coordinates' order.
     pub const BENDING: [TowerMode; 4] = [
         TowerMode::ForeAft1,
