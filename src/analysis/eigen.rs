@@ -29,6 +29,9 @@ pub enum Verdict {
     Flutter,
     /// A non-oscillatory mode (ω = 0) has σ ≥ 0.
     Divergence,
+    /// A free rotor's turning grows ([`Mode::rigid_body`]): open loop, the generator holds its
+    /// torque while the aerodynamic torque rises with speed (docs/model.md §13.1).
+    Runaway,
 }
 
 /// All eigenvalues of one operating point.
@@ -172,6 +175,8 @@ fn verdict_of<'a>(roots: impl Iterator<Item = &'a Mode>, tol: f64) -> Verdict {
         Some(m) if m.re > tol => {
             if m.im > 0.0 {
                 Verdict::Flutter
+            } else if m.rigid_body() {
+                Verdict::Runaway
             } else {
                 Verdict::Divergence
             }

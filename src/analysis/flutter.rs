@@ -46,6 +46,19 @@ pub enum BoundaryKind {
     Flutter,
     /// The crossing root is real (ω = 0).
     Divergence,
+    /// The crossing root is a free rotor's turning ([`Mode::rigid_body`]).
+    Runaway,
+}
+
+impl BoundaryKind {
+    /// The boundary's name in messages: `flutter`, `divergence`, `runaway`.
+    pub fn word(self) -> &'static str {
+        match self {
+            BoundaryKind::Flutter => "flutter",
+            BoundaryKind::Divergence => "divergence",
+            BoundaryKind::Runaway => "runaway",
+        }
+    }
 }
 
 /// The first crossing of the largest σ through zero along a parameter, if any.
@@ -89,6 +102,11 @@ pub struct Search {
     #[serde(skip)]
     pub results: Vec<PointResult>,
 }
+
+/// Why a free rotor's turning can grow, and what holds it (docs/model.md §13.1).
+pub const RUNAWAY: &str = "open loop, the generator holds its steady torque while the \
+    aerodynamic torque rises with rotor speed (turbine.torque_slope gives the generator a \
+    slope; a speed controller's region 2 has 2Q/Ω)";
 
 /// Relative accuracy of the critical value (docs/model.md §6).
 pub const RELATIVE_TOLERANCE: f64 = 1e-4;
@@ -314,6 +332,8 @@ pub fn search(p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<S
         .ok_or_else(|| Error::numerical(format!("flutter: no roots at {key} = {x_u}{unit}")))?;
     let kind = if crossing.im > 0.0 {
         BoundaryKind::Flutter
+    } else if crossing.rigid_body() {
+        BoundaryKind::Runaway
     } else {
         BoundaryKind::Divergence
     };
@@ -353,10 +373,7 @@ pub fn search(p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<S
     let what = match kind {
         _ if start_unstable => format!(
             "stable again at {key} = {critical:.6}{unit}: the {} of {root} ends there",
-            match kind {
-                BoundaryKind::Flutter => "flutter",
-                BoundaryKind::Divergence => "divergence",
-            }
+            kind.word()
         ),
         BoundaryKind::Flutter => format!(
             "flutter at {key} = {critical:.6}{unit}: {root} at {:.4} Hz",
@@ -364,6 +381,9 @@ pub fn search(p: &ValidPreset, range: &SearchRange, cancel: &Cancel) -> Result<S
         ),
         BoundaryKind::Divergence => {
             format!("static divergence at {key} = {critical:.6}{unit}: {root}")
+        }
+        BoundaryKind::Runaway => {
+            format!("rotor speed runaway at {key} = {critical:.6}{unit}: {root}; {RUNAWAY}")
         }
     };
     Ok(Search {

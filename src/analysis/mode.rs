@@ -109,6 +109,13 @@ impl Mode {
         (!parts.is_empty() && self.family.is_some()).then(|| parts.join(", "))
     }
 
+    /// Whether the root is a rigid body's: a free rotor's turning (its in-vacuo frequency zero),
+    /// whose σ is the rotor speed's own stability under the generator's torque, not the
+    /// structure's (docs/model.md §13.1).
+    pub fn rigid_body(&self) -> bool {
+        self.in_vacuo_hz == Some(0.0) && self.im == 0.0
+    }
+
     /// Whether the mode is an overdamped pair of real roots.
     pub fn overdamped(&self) -> bool {
         self.second_re.is_some()

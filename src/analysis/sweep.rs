@@ -228,7 +228,7 @@ impl LineTracker {
             };
             // A rigid body's root (a free rotor's rotation, coupled with the air's lag or not)
             // is its one root at every point: no branch to follow.
-            if here.modes[j].in_vacuo_hz == Some(0.0) {
+            if here.modes[j].rigid_body() {
                 continue;
             }
             let key = Arc::as_ptr(before);

@@ -1,6 +1,7 @@
 //! `flutterscope eigen`: eigenvalues of the linearised aeroelastic system and the verdict.
 
 use crate::analysis::eigen::{analyse, Stability, Verdict};
+use crate::analysis::flutter::RUNAWAY;
 use crate::analysis::mode::Mode;
 use crate::error::Result;
 use crate::preset::ValidPreset;
@@ -56,6 +57,10 @@ pub fn render(p: &ValidPreset, s: &Stability) -> String {
             "UNSTABLE (static divergence): {} grows at σ = {:.4} 1/s without oscillating\n",
             m.described(),
             m.re
+        ),
+        (Verdict::Runaway, Some(m)) => format!(
+            "UNSTABLE (rotor speed runaway): {} grows at σ = {:.4} 1/s: {RUNAWAY}\n",
+            m.label, m.re
         ),
         (_, None) => "UNSTABLE\n".to_string(),
     };

@@ -1,7 +1,7 @@
 //! `flutterscope flutter`: the flutter (or divergence) boundary along one key.
 
-use crate::analysis::flutter::Search;
 use crate::analysis::flutter::{flutter_search, key_range};
+use crate::analysis::flutter::{BoundaryKind, Search};
 use crate::analysis::sweep::named_modes;
 use crate::error::Result;
 use crate::preset::ValidPreset;
@@ -78,8 +78,14 @@ pub fn run(
     } else {
         let mut out = format!("{}: {}\n", p.display_name(), search.message);
         if let Some(multiple) = overspeed {
+            // Only a structural boundary above rated is a margin against overspeed.
+            let what = if multiple >= 1.0 && search.boundary.kind != Some(BoundaryKind::Runaway) {
+                "overspeed margin: "
+            } else {
+                "at "
+            };
             out += &format!(
-                "overspeed margin: {multiple:.3}× the rated rotor speed ({} rpm, \
+                "{what}{multiple:.3}× the rated rotor speed ({} rpm, \
                  operating.rated_rotor_speed)\n",
                 p.operating.rated_rotor_speed
             );

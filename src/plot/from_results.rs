@@ -303,10 +303,7 @@ pub fn flutter(preset: &str, tracked: &TrackedSweep, search: &Search) -> Figure 
     freq.title = "(b) frequency".into();
     let b = &search.boundary;
     if let Some(x) = b.critical {
-        let kind = match b.kind {
-            Some(BoundaryKind::Divergence) => "divergence",
-            _ => "flutter",
-        };
+        let kind = b.kind.map_or("flutter", BoundaryKind::word);
         let mut label = format!("{kind} at {}", with_unit(x, unit));
         if let Some(f) = b.frequency_hz {
             label.push_str(&format!(", {f:.4} Hz"));

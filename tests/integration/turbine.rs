@@ -3,7 +3,8 @@
 //! NREL 5MW's published full-system frequencies, and through the real binary.
 
 use super::flutterscope_ok;
-use flutterscope::analysis::eigen::{analyse, linear_system};
+use flutterscope::analysis::eigen::{analyse, linear_system, Verdict};
+use flutterscope::analysis::flutter::{flutter_search, BoundaryKind};
 use flutterscope::analysis::mode::Mode;
 use flutterscope::analysis::mode_shape::ModeShapes;
 use flutterscope::analysis::response::{simulate, simulator};
@@ -364,15 +365,16 @@ fn a_generator_torque_that_rises_with_speed_holds_the_free_rotor() {
             .iter()
             .map(|m| m.re)
             .fold(f64::NEG_INFINITY, f64::max);
-        (root, worst)
+        (root, worst, stability.verdict)
     };
     let slope = 2.0 * 8.9046e6 / (5.0 * std::f64::consts::PI / 30.0);
-    let (open, _) = rotation(0.0);
-    let (held, worst) = rotation(slope);
+    let (open, _, open_verdict) = rotation(0.0);
+    let (held, worst, held_verdict) = rotation(slope);
     assert!(open > 0.0, "open loop: the rotation's σ = {open}");
+    assert_eq!(open_verdict, Verdict::Runaway);
     assert!(
-        held < 0.0 && worst < 0.0,
-        "held: σ = {held}, largest {worst}"
+        held < 0.0 && worst < 0.0 && held_verdict == Verdict::Stable,
+        "held: σ = {held}, largest {worst}, {held_verdict:?}"
     );
     // The drivetrain's inertia about the shaft: the hub's, the generator's and three blades'.
     let shift = open - held;
@@ -392,6 +394,26 @@ fn a_generator_torque_that_rises_with_speed_holds_the_free_rotor() {
     assert!(
         locked.contains("only a free generator turns against its torque's slope"),
         "{locked}"
+    );
+}
+
+/// A free rotor's turning that grows below rated (the NREL 5MW at 11 m/s: its aerodynamic
+/// torque rises with speed under 11.6 rpm) is the rotor speed's runaway, named so by the
+/// search and not an overspeed margin or a structural divergence.
+#[test]
+fn a_free_rotors_runaway_is_named_as_such() {
+    let p = Preset::load("nrel5mw", &["turbine.model=rotor".to_string()]).unwrap();
+    let search = flutter_search(&p, "operating.rotor_speed", 12.1, 5.0, 8).unwrap();
+    let b = &search.boundary;
+    let at = b.critical.unwrap();
+    assert_eq!(b.kind, Some(BoundaryKind::Runaway));
+    assert_eq!(b.mode.as_deref(), Some("rotor rotation"));
+    assert!((11.0..12.1).contains(&at), "{at} rpm");
+    assert!(
+        search.message.starts_with("rotor speed runaway at")
+            && search.message.contains("turbine.torque_slope"),
+        "{}",
+        search.message
     );
 }
 

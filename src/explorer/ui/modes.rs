@@ -133,31 +133,52 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
     frame.render_widget(table, area);
 }
 
-/// A rotor's or a turbine's long names shortened to fit `width` (`collective flap 1` →
-/// `coll flap 1`, `tower SS 2` → `twr SS 2`), and cut before the mode's number rather than
-/// through it, so that two modes never read alike; any other name as it is.
+/// A rotor's or a turbine's long names shortened to fit `width`, a step at a time
+/// (`collective flap 1` → `coll flap 1` → `coll fl 1` → `C fl 1`), and cut before the mode's
+/// number rather than through it, so that two modes never read alike; a blade's own names
+/// (`torsion 1`) as they are: the table shows them past `width`.
 fn fitted(label: &str, width: usize) -> String {
     let fits = |s: &str| s.chars().count() <= width;
-    if fits(label) {
+    let mut words: Vec<&str> = label.split(' ').collect();
+    let rotors = ["collective", "tower", "drivetrain", "rotor", "BW", "FW"];
+    if fits(label) || !rotors.contains(&words[0]) {
         return label.to_string();
     }
-    let short = label
-        .replacen("collective ", "coll ", 1)
-        .replacen("tower ", "twr ", 1)
-        .replacen("drivetrain ", "drive ", 1)
-        .replacen("rotor rotation", "rotation", 1);
-    // A blade's own names (`torsion 1`) are left whole: the table shows them past `width`.
-    if fits(&short) || short == label {
-        return short;
-    }
-    match short.rsplit_once(' ') {
-        Some((head, number)) if number.chars().all(|c| c.is_ascii_digit()) => {
-            let keep = width.saturating_sub(number.len() + 1);
-            format!("{} {number}", head.chars().take(keep).collect::<String>())
+    for step in SHORTER {
+        for w in words.iter_mut() {
+            if let Some((_, short)) = step.iter().find(|(long, _)| long == w) {
+                *w = short;
+            }
         }
-        _ => short,
+        words.retain(|w| !w.is_empty());
+        let short = words.join(" ");
+        if fits(&short) {
+            return short;
+        }
+    }
+    match words.split_last() {
+        Some((number, head)) if number.chars().all(|c| c.is_ascii_digit()) => {
+            let keep = width.saturating_sub(number.len() + 1);
+            format!(
+                "{} {number}",
+                head.join(" ").chars().take(keep).collect::<String>()
+            )
+        }
+        _ => words.join(" "),
     }
 }
+
+/// The words of a rotor's names, shorter at each step, until a name fits its column.
+const SHORTER: [&[(&str, &str)]; 3] = [
+    &[
+        ("collective", "coll"),
+        ("tower", "twr"),
+        ("drivetrain", "drive"),
+        ("rotor", ""),
+    ],
+    &[("flap", "fl"), ("edge", "ed"), ("torsion", "tor")],
+    &[("coll", "C"), ("twr", "T"), ("BW", "B"), ("FW", "F")],
+];
 
 /// ζ with 3 significant digits; in a narrow pane, where the column shows 5 characters and
 /// cuts from the left (0.0221 reads .0221), a ζ below 0.01 takes 2, so 0.00831 reads .0083
@@ -175,7 +196,12 @@ mod tests {
     fn long_names_keep_their_number() {
         assert_eq!(fitted("collective flap 1", 11), "coll flap 1");
         assert_eq!(fitted("tower SS 2", 9), "twr SS 2");
-        assert_eq!(fitted("collective torsion 2", 9), "coll to 2");
+        assert_eq!(fitted("collective torsion 2", 10), "coll tor 2");
+        assert_eq!(fitted("collective torsion 2", 9), "C tor 2");
+        assert_eq!(fitted("collective flap 1", 7), "C fl 1");
+        assert_eq!(fitted("collective edge 1", 7), "C ed 1");
+        assert_eq!(fitted("BW edge 12", 7), "B ed 12");
+        assert_eq!(fitted("tower torsion 1", 8), "T tor 1");
         assert_eq!(fitted("drivetrain 1", 9), "drive 1");
         assert_eq!(fitted("rotor rotation", 9), "rotation");
         assert_eq!(fitted("flap 1", 9), "flap 1");

@@ -78,12 +78,9 @@ fn value(key: &str, v: f64) -> String {
     }
 }
 
-/// "flutter" or "divergence".
+/// "flutter", "divergence" or "runaway".
 fn kind_word(b: &Boundary) -> &'static str {
-    match b.kind {
-        Some(BoundaryKind::Divergence) => "divergence",
-        _ => "flutter",
-    }
+    b.kind.map_or("flutter", BoundaryKind::word)
 }
 
 /// How far the boundary `c` is from the current value: for the rotor speed of a preset with a
@@ -236,6 +233,7 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
             Verdict::Stable => (" STABLE ", theme.stable()),
             Verdict::Flutter => (" FLUTTER ", theme.flutter()),
             Verdict::Divergence => (" DIVERGENCE ", theme.divergence()),
+            Verdict::Runaway => (" RUNAWAY ", theme.divergence()),
         },
     };
     // Longest first, the first that fits is shown: the mode named with the shares of its motion
