@@ -160,8 +160,9 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
     };
     let block =
         pane(TextLine::from(title), theme).title_bottom(TextLine::styled(bottom, theme.dim()));
-    // Canvas units per terminal column, to right-align the ω = 0 label.
-    let per_col = (ax.x[1] - ax.x[0]) / f64::from(inner_w.max(1));
+    // Canvas units per terminal column as the canvas maps its labels, to right-align the ω = 0
+    // label and to start a name exactly its length before its pole's marker.
+    let per_col = (ax.x[1] - ax.x[0]) / f64::from(inner_w.saturating_sub(1).max(1));
 
     let guide = theme.guide();
     let dim = theme.dim();
@@ -175,7 +176,7 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
             _ => Style::new(),
         })
         .collect();
-    let labels: Vec<String> = stab
+    let names: Vec<String> = stab
         .eigenvalues
         .iter()
         .map(|m| short_label(&m.label))
@@ -193,6 +194,27 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
         .iter()
         .chain(lags.iter())
         .any(|&(_, w)| w <= ax.real_below);
+    // The axes' own words: each decade at the left edge, σ = 0 at the top, ω = 0 at the right.
+    let mut guides: Vec<(f64, f64, String)> = (ax.dec_lo as i32..=ax.dec_hi as i32)
+        .map(|d| (ax.x[0], f64::from(d), decade(d)))
+        .collect();
+    if has_real {
+        guides.push((ax.x[1] - 3.5 * per_col, ax.y_real, "ω=0".to_string()));
+    }
+    guides.push((0.0, ax.y[1], "σ=0".to_string()));
+    let inner = Rect::new(0, 0, inner_w, area.height.saturating_sub(2));
+    let guide_cells: Vec<(u16, u16)> = guides
+        .iter()
+        .flat_map(|(x, y, text)| {
+            let (col, row) = canvas_cell(&ax, inner, *x, *y);
+            (0..text.chars().count() as u16).map(move |k| (col + k, row))
+        })
+        .collect();
+    let cells: Vec<(u16, u16)> = pole_pts
+        .iter()
+        .map(|&(x, y)| canvas_cell(&ax, inner, x, y))
+        .collect();
+    let labels = placed_labels(&cells, &names, &guide_cells, inner_w);
 
     let canvas = Canvas::default()
         .block(block)
@@ -220,30 +242,108 @@ pub fn render(state: &AppState, theme: &Theme, frame: &mut Frame, area: Rect) {
                 color: guide,
             });
             ctx.layer();
-            let mut d = ax.dec_lo as i32;
-            while d <= ax.dec_hi as i32 {
-                ctx.print(ax.x[0], d as f64, TextLine::styled(decade(d), dim));
-                d += 1;
+            for (x, y, text) in &guides {
+                ctx.print(*x, *y, TextLine::styled(text.clone(), dim));
             }
-            if has_real {
-                ctx.print(
-                    ax.x[1] - 3.5 * per_col,
-                    ax.y_real,
-                    TextLine::styled("ω=0", dim),
-                );
-            }
-            ctx.print(0.0, ax.y[1], TextLine::styled("σ=0", dim));
             for (i, &(x, y)) in pole_pts.iter().enumerate() {
                 let style = label_styles[i];
-                ctx.print(x, y, TextLine::styled(format!("×{}", labels[i]), style));
+                let (text, before) = &labels[i];
+                let x = x - f64::from(*before) * per_col;
+                ctx.print(x, y, TextLine::styled(text.clone(), style));
             }
         });
     frame.render_widget(canvas, area);
 }
 
+/// The terminal cell (column, row within `inner`) where the canvas prints a text at (x, y),
+/// as ratatui's `Canvas` places its labels.
+fn canvas_cell(ax: &Axes, inner: Rect, x: f64, y: f64) -> (u16, u16) {
+    let (w, h) = (ax.x[1] - ax.x[0], ax.y[1] - ax.y[0]);
+    let col = (x - ax.x[0]) * f64::from(inner.width.saturating_sub(1)) / w;
+    let row = (ax.y[1] - y) * f64::from(inner.height.saturating_sub(1)) / h;
+    (col.max(0.0) as u16, row.max(0.0) as u16)
+}
+
+/// Each pole's text and the canvas columns it starts before its marker: the marker `×` and,
+/// where the cells after it are free, its name (`×F4`), else where the cells before it are
+/// (`F5×`). Every marker is kept; names go to the poles in order (the least stable first), never
+/// over a marker, another name or the axes' words (`words`), and never touching another name or
+/// marker at the name's far end, so a crowded row reads `F5× ×F4`, never `×F5F4` or `×F5×`.
+fn placed_labels(
+    marks: &[(u16, u16)],
+    names: &[String],
+    words: &[(u16, u16)],
+    width: u16,
+) -> Vec<(String, u16)> {
+    use std::collections::HashSet;
+    let mark_set: HashSet<(u16, u16)> = marks.iter().copied().collect();
+    let mut text: HashSet<(u16, u16)> = words.iter().copied().collect();
+    marks
+        .iter()
+        .zip(names)
+        .map(|(&(col, row), name)| {
+            let n = name.chars().count() as u16;
+            // The name's cells, nearest its marker first, then the cell beyond its far end.
+            let after: Vec<Option<u16>> = (1..=n + 1).map(|k| col.checked_add(k)).collect();
+            let before: Vec<Option<u16>> = (1..=n + 1).map(|k| col.checked_sub(k)).collect();
+            let fits = |span: &[Option<u16>], text: &HashSet<(u16, u16)>| {
+                let (name_cells, beyond) = span.split_at(n as usize);
+                name_cells.iter().all(|c| {
+                    c.is_some_and(|c| {
+                        c < width && !mark_set.contains(&(c, row)) && !text.contains(&(c, row))
+                    })
+                }) && beyond[0]
+                    .is_none_or(|c| !mark_set.contains(&(c, row)) && !text.contains(&(c, row)))
+            };
+            let (span, placed) = if fits(&after, &text) {
+                (&after, (format!("×{name}"), 0))
+            } else if fits(&before, &text) {
+                (&before, (format!("{name}×"), n))
+            } else {
+                return ("×".to_string(), 0);
+            };
+            text.extend(span[..n as usize].iter().flatten().map(|&c| (c, row)));
+            placed
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn names_never_overwrite_another_pole_or_name() {
+        let cells = [(10, 2), (12, 2), (20, 2), (10, 3)];
+        let names = ["CT3", "FF5", "CE1", "BE1"].map(String::from);
+        let texts = |placed: Vec<(String, u16)>| -> Vec<String> {
+            placed.into_iter().map(|(t, _)| t).collect()
+        };
+        assert_eq!(
+            texts(placed_labels(&cells, &names, &[], 40)),
+            ["CT3×", "×FF5", "×CE1", "×BE1"]
+        );
+        assert_eq!(placed_labels(&cells, &names, &[], 40)[0].1, 3);
+        // With no room either side the marker stands alone; at the pane's edge a name that
+        // would be cut goes before its marker.
+        let crowded = [(2, 0), (0, 0), (4, 0)];
+        assert_eq!(texts(placed_labels(&crowded, &names[..3], &[], 40))[0], "×");
+        assert_eq!(
+            texts(placed_labels(&[(38, 0)], &names[..1], &[], 40)),
+            ["CT3×"]
+        );
+        // A name never touches another marker or name at its far end, nor covers the axes' words.
+        let f = ["F5", "F4"].map(String::from);
+        assert_eq!(
+            texts(placed_labels(&[(10, 0), (13, 0)], &f, &[], 40)),
+            ["F5×", "×F4"]
+        );
+        let words: Vec<(u16, u16)> = (0..4).map(|c| (c, 0)).collect();
+        assert_eq!(
+            texts(placed_labels(&[(5, 0), (7, 0)], &f, &words, 40)),
+            ["×", "×F4"]
+        );
+    }
 
     #[test]
     fn axes_hold_every_pole_and_the_stability_line() {
