@@ -276,8 +276,8 @@ fn placed_labels(
     width: u16,
 ) -> Vec<(String, u16)> {
     use std::collections::HashSet;
-    let mark_set: HashSet<(u16, u16)> = marks.iter().copied().collect();
-    let mut text: HashSet<(u16, u16)> = words.iter().copied().collect();
+    // Markers, the axes' words and the names placed so far: the cells a name may not take.
+    let mut taken: HashSet<(u16, u16)> = marks.iter().chain(words).copied().collect();
     marks
         .iter()
         .zip(names)
@@ -286,23 +286,21 @@ fn placed_labels(
             // The name's cells, nearest its marker first, then the cell beyond its far end.
             let after: Vec<Option<u16>> = (1..=n + 1).map(|k| col.checked_add(k)).collect();
             let before: Vec<Option<u16>> = (1..=n + 1).map(|k| col.checked_sub(k)).collect();
-            let fits = |span: &[Option<u16>], text: &HashSet<(u16, u16)>| {
+            let fits = |span: &[Option<u16>], taken: &HashSet<(u16, u16)>| {
                 let (name_cells, beyond) = span.split_at(n as usize);
-                name_cells.iter().all(|c| {
-                    c.is_some_and(|c| {
-                        c < width && !mark_set.contains(&(c, row)) && !text.contains(&(c, row))
-                    })
-                }) && beyond[0]
-                    .is_none_or(|c| !mark_set.contains(&(c, row)) && !text.contains(&(c, row)))
+                name_cells
+                    .iter()
+                    .all(|c| c.is_some_and(|c| c < width && !taken.contains(&(c, row))))
+                    && beyond[0].is_none_or(|c| !taken.contains(&(c, row)))
             };
-            let (span, placed) = if fits(&after, &text) {
+            let (span, placed) = if fits(&after, &taken) {
                 (&after, (format!("×{name}"), 0))
-            } else if fits(&before, &text) {
+            } else if fits(&before, &taken) {
                 (&before, (format!("{name}×"), n))
             } else {
                 return ("×".to_string(), 0);
             };
-            text.extend(span[..n as usize].iter().flatten().map(|&c| (c, row)));
+            taken.extend(span[..n as usize].iter().flatten().map(|&c| (c, row)));
             placed
         })
         .collect()
