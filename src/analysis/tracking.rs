@@ -12,8 +12,11 @@
 //!
 //! A match is **ambiguous** when another partner would cost almost as much (within
 //! [`AMBIGUITY_MARGIN`]) or when it swaps frequency order with another match (a crossing, or a
-//! veering narrower than the step); then [`follow`] re-solves the midpoint and follows the branch over the
-//! two half steps, down to [`REFINEMENT_DEPTH`] halvings, rather than guess.
+//! veering narrower than the step) and either root's shape has turned enough over the step
+//! ([`KEPT_SHAPE`]) for that veering to be one refinement could resolve; then [`follow`]
+//! re-solves the midpoint and follows the branch over the two half steps, down to
+//! [`REFINEMENT_DEPTH`] halvings, rather than guess. A rotor's roots of two whirls neither veer
+//! nor compete for a partner.
 
 use crate::analysis::mode::Mode;
 use crate::numeric::hungarian;
@@ -90,18 +93,45 @@ pub fn match_modes(previous: &[Mode], next: &[Mode]) -> Matching {
         .enumerate()
         .map(|(i, p)| {
             let Some(j) = *p else { return false };
-            let row = (0..m).filter(|&k| k != j).map(|k| c[i][k]);
-            let column = (0..n).filter(|&k| k != i).map(|k| c[k][j]);
-            let rival = row.chain(column).fold(f64::INFINITY, f64::min);
+            let rival = rival(previous, i, next, j, |a, b| c[a][b]);
             rival - c[i][j] < AMBIGUITY_MARGIN || crosses(previous, next, &partner, i)
         })
         .collect();
     Matching { partner, ambiguous }
 }
 
+/// The cheapest pairing that competes with `i` ↔ `j`: `i` with another root of `next`, or `j`
+/// with another root of `previous`, among the roots that could share a branch with them (a
+/// rotor's roots of two whirls never do: [`may_veer`]).
+fn rival(
+    previous: &[Mode],
+    i: usize,
+    next: &[Mode],
+    j: usize,
+    cost: impl Fn(usize, usize) -> f64,
+) -> f64 {
+    let row = (0..next.len())
+        .filter(|&k| k != j && may_veer(&previous[i], &next[k]))
+        .map(|k| cost(i, k));
+    let column = (0..previous.len())
+        .filter(|&k| k != i && may_veer(&previous[k], &next[j]))
+        .map(|k| cost(k, j));
+    row.chain(column).fold(f64::INFINITY, f64::min)
+}
+
+/// A root whose correlation with its partner over a step is within this of 1 keeps its shape too
+/// well to be passing through a veering that the finest refinement (1/2^[`REFINEMENT_DEPTH`] of
+/// the step) could resolve. Two modes veering over a width `w` turn each other's shapes: across
+/// a step `h` that holds the veering, `1 − MAC ≥ (w/h)²` for the pair matched across it by shape
+/// (the two-mode model of docs/model.md §6.2), so `1 − C ≤ (1/16)²` means `w ≤ h/16`.
+pub const KEPT_SHAPE: f64 = 1.0 / ((1 << (2 * REFINEMENT_DEPTH)) as f64);
+
 /// Whether root `i`'s match swaps frequency order with another matched root: a crossing within
 /// the step, which a veering narrower than the step looks like too (the shapes swap over the
-/// veering, so a coarse step matches them across it); only a finer step tells the two apart.
+/// veering, so a coarse step matches them across it); only a finer step tells the two apart,
+/// unless both roots keep their shapes over the step so well ([`KEPT_SHAPE`]) that any veering
+/// would be narrower than the finest step too: then the match by shape is what refinement would
+/// end on, and the step is a crossing.
 ///
 /// A rotor's roots in the ground frame cross only where they can veer: two roots of different
 /// whirls (backward, forward, collective: [`Whirl::of_name`]) are two blade roots 1P or 2P apart in the
@@ -114,8 +144,14 @@ fn crosses(previous: &[Mode], next: &[Mode], partner: &[Option<usize>], i: usize
             k != i
                 && may_veer(&previous[i], &previous[k])
                 && (previous[i].im - previous[k].im) * (next[j].im - next[l].im) < 0.0
+                && !(kept_shape(&previous[i], &next[j]) && kept_shape(&previous[k], &next[l]))
         })
     })
+}
+
+/// Whether a root's partner over a step has kept its shape ([`KEPT_SHAPE`]).
+fn kept_shape(a: &Mode, b: &Mode) -> bool {
+    1.0 - correlation(a, b) <= KEPT_SHAPE
 }
 
 /// Whether two roots could veer: not a rotor's roots of two different whirls.
@@ -201,13 +237,7 @@ fn branch(
 /// nearest in eigenvalue (a root's eigenvector can turn within a step where its eigenvalue moves
 /// on smoothly, as the IEA 15MW's 3.1 Hz flap root does near 10.345 rpm with bend–twist coupling).
 fn clear(previous: &[Mode], i: usize, next: &[Mode], j: usize) -> bool {
-    let row = (0..next.len())
-        .filter(|&k| k != j)
-        .map(|k| cost(&previous[i], &next[k]));
-    let column = (0..previous.len())
-        .filter(|&k| k != i)
-        .map(|k| cost(&previous[k], &next[j]));
-    let rival = row.chain(column).fold(f64::INFINITY, f64::min);
+    let rival = rival(previous, i, next, j, |a, b| cost(&previous[a], &next[b]));
     let nearest = (0..next.len()).min_by(|&a, &b| {
         distance(&previous[i], &next[a]).total_cmp(&distance(&previous[i], &next[b]))
     });
@@ -281,7 +311,8 @@ mod tests {
     fn only_roots_of_one_whirl_can_veer() {
         let cross = |a: &str, b: &str| {
             let before = [mode(a, 1.0, &[1.0, 0.0]), mode(b, 2.0, &[0.0, 1.0])];
-            let after = [mode(a, 2.0, &[1.0, 0.0]), mode(b, 1.0, &[0.0, 1.0])];
+            // Shapes turned as a veering's are, by more than KEPT_SHAPE.
+            let after = [mode(a, 2.0, &[1.0, 0.2]), mode(b, 1.0, &[-0.2, 1.0])];
             match_modes(&before, &after)
         };
         let m = cross("BW edge 2", "FW flap 3");
@@ -294,6 +325,23 @@ mod tests {
         ] {
             assert_eq!(cross(a, b).ambiguous, [true, true], "{a} and {b}");
         }
+    }
+
+    /// Two roots of nearly one shape compete for a partner only where they could share a
+    /// branch: of one whirl, the match is in doubt; of two whirls (a rotor's FW and collective
+    /// flap 5, 12 mHz apart), it is not.
+    #[test]
+    fn only_roots_of_one_whirl_compete_for_a_partner() {
+        let doubt = |a: &str, b: &str| {
+            let before = [mode(a, 6.80, &[1.0, 0.10]), mode(b, 6.82, &[1.0, 0.12])];
+            let after = [mode(a, 6.81, &[1.0, 0.10]), mode(b, 6.83, &[1.0, 0.12])];
+            let m = match_modes(&before, &after);
+            assert_eq!(m.partner, [Some(0), Some(1)]);
+            m.ambiguous
+        };
+        assert_eq!(doubt("FW flap 5", "collective flap 5"), [false, false]);
+        assert_eq!(doubt("FW flap 5", "FW flap 6"), [true, true]);
+        assert_eq!(doubt("flap 5", "tower FA 2"), [true, true]);
     }
 
     #[test]
@@ -366,6 +414,47 @@ mod tests {
                 }
             })
             .collect()
+    }
+
+    /// A veering far narrower than the finest refinement (coupling 10⁻³: width 0.002 against
+    /// a finest step of 0.025) turns neither shape measurably over the step, so the swap is taken
+    /// for the crossing it looks like without re-solving a midpoint; one as wide as 1.6 finest
+    /// steps (coupling 0.02) turns them, and is followed through midpoints onto its branch, as
+    /// a sweep fine enough to resolve it agrees.
+    #[test]
+    fn only_a_veering_refinement_could_resolve_is_refined() {
+        for (c, resolved) in [(1e-3, false), (0.02, true)] {
+            let solves = std::cell::Cell::new(0);
+            let solve = |p: f64| {
+                solves.set(solves.get() + 1);
+                Some(two_modes(p, c))
+            };
+            let (a_modes, b_modes) = (two_modes(0.31, c), two_modes(0.71, c));
+            let a = Point {
+                value: 0.31,
+                modes: &a_modes,
+            };
+            let b = Point {
+                value: 0.71,
+                modes: &b_modes,
+            };
+            let from = lower(&a_modes);
+            let to = follow(&a, from, &b, REFINEMENT_DEPTH, &solve).unwrap();
+            assert_eq!(solves.get() > 0, resolved, "c = {c}: midpoints solved");
+            // Resolved, the lower branch stays lower; unresolved, the shape crosses over.
+            assert_eq!(to == lower(&b_modes), resolved, "c = {c}");
+            if resolved {
+                let mut here = (from, a_modes.clone());
+                for step in 1..=400 {
+                    let next = two_modes(0.31 + 0.001 * step as f64, c);
+                    here = (match_modes(&here.1, &next).partner[here.0].unwrap(), next);
+                }
+                assert_eq!(
+                    here.0, to,
+                    "c = {c}: refinement disagrees with a fine sweep"
+                );
+            }
+        }
     }
 
     fn lower(modes: &[Mode]) -> usize {
