@@ -253,12 +253,20 @@ pub enum Command {
     Presets {
         #[arg(long)]
         json: bool,
+        /// The preset to print in full, as --show does (`flutterscope presets iea15mw`).
+        #[arg(value_name = "NAME|PATH", group = "shown", conflicts_with = "json")]
+        preset: Option<String>,
         /// Print this preset (built-in name or path) as TOML with every key, defaults included,
         /// after --set overrides: what the engine actually uses.
-        #[arg(long, value_name = "NAME|PATH", conflicts_with = "json")]
+        #[arg(
+            long,
+            value_name = "NAME|PATH",
+            group = "shown",
+            conflicts_with = "json"
+        )]
         show: Option<String>,
-        /// Override a key of the shown preset (repeatable; needs --show).
-        #[arg(long = "set", value_name = "KEY=VALUE", requires = "show")]
+        /// Override a key of the shown preset (repeatable; needs a preset to show).
+        #[arg(long = "set", value_name = "KEY=VALUE", requires = "shown")]
         set: Vec<String>,
     },
 }

@@ -98,7 +98,12 @@ pub fn run(command: Command) -> Result<()> {
             view,
             marker,
         } => snapshot::run(&preset, &size, view, marker),
-        Command::Presets { json, show, set } => match show {
+        Command::Presets {
+            json,
+            preset,
+            show,
+            set,
+        } => match show.or(preset) {
             Some(name) => presets::show(&name, &set),
             None => presets::run(json),
         },

@@ -300,6 +300,26 @@ fn presets_show_prints_every_key_with_defaults_and_overrides() {
         &run(&["presets", "--show", "no-such-blade"]),
         &["no-such-blade"],
     );
+    // The name alone, as a first try would type it, shows the same preset.
+    let named = run(&["presets", "goland", "--set", "operating.tunnel_speed=100"]);
+    let shown = run(&[
+        "presets",
+        "--show",
+        "goland",
+        "--set",
+        "operating.tunnel_speed=100",
+    ]);
+    assert_eq!(named.code, Some(0), "{}", named.stderr);
+    assert_eq!(named.stdout, shown.stdout);
+    assert!(
+        named.stdout.contains("tunnel_speed = 100.0"),
+        "{}",
+        named.stdout
+    );
+    assert_ne!(
+        run(&["presets", "goland", "--show", "liu2017"]).code,
+        Some(0)
+    );
 }
 
 // ---- hostile input: errors that name what is wrong and where ----
