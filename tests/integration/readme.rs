@@ -222,3 +222,215 @@ fn the_docs_describe_the_program_not_its_history() {
         }
     }
 }
+
+/// The preset of the README's ```toml block that names itself `name`.
+fn readme_preset(text: &str, name: &str) -> String {
+    let mut block: Option<String> = None;
+    for line in text.lines() {
+        match &mut block {
+            None if line == "```toml" => block = Some(String::new()),
+            Some(b) if line == "```" => {
+                if b.contains(&format!("name = \"{name}\"")) {
+                    return b.clone();
+                }
+                block = None;
+            }
+            Some(b) => {
+                b.push_str(line);
+                b.push('\n');
+            }
+            None => {}
+        }
+    }
+    panic!("README.md has no ```toml block named {name}")
+}
+
+/// One command of a page's shell transcripts (a fenced line `$ …`) and the lines shown after it.
+#[derive(Debug)]
+struct Transcript {
+    command: String,
+    shown: Vec<String>,
+}
+
+/// Every `$ …` line of `text`'s fenced blocks with the lines shown under it (up to the next
+/// prompt or fence); a trailing `# comment` is the page's, not the shell's.
+fn transcripts(text: &str) -> Vec<Transcript> {
+    let mut out: Vec<Transcript> = Vec::new();
+    let mut fenced = false;
+    // Whether the lines read belong to the last command's output.
+    let mut output = false;
+    for line in text.lines() {
+        if line.starts_with("```") {
+            fenced = !fenced;
+            output = false;
+        } else if let Some(command) = line.strip_prefix("$ ").filter(|_| fenced) {
+            let command = match command.find("  #") {
+                Some(at) => &command[..at],
+                None => command,
+            };
+            out.push(Transcript {
+                command: command.trim().to_string(),
+                shown: Vec::new(),
+            });
+            output = true;
+        } else if output {
+            if let Some(last) = out.last_mut() {
+                last.shown.push(line.to_string());
+            }
+        }
+    }
+    out
+}
+
+/// Whether `printed` is what a page shows as `shown`: a shown line `…` stands for any lines
+/// (none included), and a shown line ending in `…` or `…)` for the rest of a printed line from
+/// there. Numbers match to 1e-9 relative, so a full-precision float's last digit may differ.
+fn shows(shown: &[String], printed: &[&str]) -> bool {
+    match shown.split_first() {
+        None => printed.is_empty(),
+        Some((first, rest)) if first.trim() == "…" => {
+            (0..=printed.len()).any(|skip| shows(rest, &printed[skip..]))
+        }
+        Some((first, rest)) => {
+            let Some((line, others)) = printed.split_first() else {
+                return false;
+            };
+            let elided = first.ends_with('…') || first.ends_with("…)");
+            let same = match first.rfind('…').filter(|_| elided) {
+                Some(at) => line.starts_with(&first[..at]),
+                None => same_line(line, first),
+            };
+            same && shows(rest, others)
+        }
+    }
+}
+
+/// A line's text with every number replaced by `#`, and its numbers.
+fn numbers_of(line: &str) -> (String, Vec<f64>) {
+    let chars: Vec<char> = line.chars().collect();
+    let (mut text, mut numbers) = (String::new(), Vec::new());
+    let mut k = 0;
+    while k < chars.len() {
+        let starts = chars[k].is_ascii_digit()
+            || (chars[k] == '-' && chars.get(k + 1).is_some_and(|c| c.is_ascii_digit()));
+        if !starts {
+            text.push(chars[k]);
+            k += 1;
+            continue;
+        }
+        let begin = k;
+        k += 1;
+        while k < chars.len() {
+            let c = chars[k];
+            let exponent_sign = (c == '-' || c == '+') && chars[k - 1] == 'e';
+            if c.is_ascii_digit() || c == '.' || c == 'e' || exponent_sign {
+                k += 1;
+            } else {
+                break;
+            }
+        }
+        let token: String = chars[begin..k].iter().collect();
+        match token.parse::<f64>() {
+            Ok(x) => {
+                text.push('#');
+                numbers.push(x);
+            }
+            Err(_) => text.push_str(&token),
+        }
+    }
+    (text, numbers)
+}
+
+fn same_line(printed: &str, shown: &str) -> bool {
+    if printed == shown {
+        return true;
+    }
+    let (a, x) = numbers_of(printed);
+    let (b, y) = numbers_of(shown);
+    a == b
+        && x.len() == y.len()
+        && x.iter()
+            .zip(&y)
+            .all(|(p, q)| (p - q).abs() <= 1e-9 * p.abs().max(q.abs()))
+}
+
+fn copy_folder(from: &Path, to: &Path) {
+    std::fs::create_dir_all(to).unwrap();
+    for entry in std::fs::read_dir(from).unwrap() {
+        let path = entry.unwrap().path();
+        let target = to.join(path.file_name().unwrap());
+        if path.is_dir() {
+            copy_folder(&path, &target);
+        } else {
+            std::fs::copy(&path, &target).unwrap();
+        }
+    }
+}
+
+/// The pages' command transcripts print what they show, run as a user would in a fresh folder:
+/// README's "your own blade in five minutes" presets saved beside copies of the files they name
+/// (`nrel/`, `iea/`), every shell line of the pages run in order (`printf … > my.toml` makes a
+/// page's example file), and every command shown with its output (stdout, then stderr) printing
+/// that output now; one shown without output must succeed. Only the explorer (no subcommand) is
+/// not run.
+#[test]
+fn the_pages_commands_print_what_the_pages_show() {
+    let dir = std::env::temp_dir().join(format!("flutterscope-pages-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let blades = root().join("presets").join("blades");
+    copy_folder(&blades.join("nrel5mw"), &dir.join("nrel"));
+    copy_folder(&blades.join("iea15mw"), &dir.join("iea"));
+    let text = readme();
+    for name in ["my-openfast", "my-hawc2"] {
+        std::fs::write(dir.join(format!("{name}.toml")), readme_preset(&text, name)).unwrap();
+    }
+    let binary = assert_cmd::cargo::cargo_bin("flutterscope");
+    let mut checked = 0;
+    for page in ["README.md", "docs/commands.md", "docs/presets.md"] {
+        let text = std::fs::read_to_string(root().join(page)).unwrap();
+        for t in transcripts(&text) {
+            let ours = t.command.starts_with("flutterscope");
+            let explorer = t
+                .command
+                .split_whitespace()
+                .nth(1)
+                .is_some_and(|a| a.starts_with('-'));
+            if ours && explorer {
+                continue;
+            }
+            let command = match t.command.strip_prefix("flutterscope") {
+                Some(rest) => format!("'{}'{rest}", binary.display()),
+                None => t.command.clone(),
+            };
+            let out = std::process::Command::new("sh")
+                .arg("-c")
+                .arg(&command)
+                .current_dir(&dir)
+                .output()
+                .unwrap();
+            let printed = format!(
+                "{}{}",
+                String::from_utf8_lossy(&out.stdout),
+                String::from_utf8_lossy(&out.stderr)
+            );
+            if t.shown.is_empty() {
+                assert!(
+                    out.status.success(),
+                    "{page}: `{}` fails:\n{printed}",
+                    t.command
+                );
+                continue;
+            }
+            let lines: Vec<&str> = printed.lines().collect();
+            assert!(
+                shows(&t.shown, &lines),
+                "{page}: `{}` prints\n{printed}\nwhere the page shows\n{}",
+                t.command,
+                t.shown.join("\n")
+            );
+            checked += usize::from(ours);
+        }
+    }
+    assert!(checked >= 20, "only {checked} commands checked");
+    let _ = std::fs::remove_dir_all(&dir);
+}
