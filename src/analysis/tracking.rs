@@ -13,7 +13,7 @@
 //! A match is **ambiguous** when another partner would cost almost as much (within
 //! [`AMBIGUITY_MARGIN`]) or when it swaps frequency order with another match (a crossing, or a
 //! veering narrower than the step) and either root's shape has turned enough over the step
-//! ([`KEPT_SHAPE`]) for that veering to be one refinement could resolve; then [`follow`]
+//! ([`kept_shape`]) for that veering to be one refinement could resolve; then [`follow`]
 //! re-solves the midpoint and follows the branch over the two half steps, down to
 //! [`REFINEMENT_DEPTH`] halvings, rather than guess. A rotor's roots of two whirls neither veer
 //! nor compete for a partner.
@@ -73,8 +73,15 @@ pub struct Matching {
     pub ambiguous: Vec<bool>,
 }
 
-/// For each root of `previous`, its partner in `next` (optimal total cost), or none.
+/// For each root of `previous`, its partner in `next` (optimal total cost), or none, over a step
+/// that refinement may halve [`REFINEMENT_DEPTH`] times.
 pub fn match_modes(previous: &[Mode], next: &[Mode]) -> Matching {
+    match_refinable(previous, next, REFINEMENT_DEPTH)
+}
+
+/// [`match_modes`] over a step that refinement may still halve `halvings` times (what decides
+/// which frequency-order swaps are in doubt: [`kept_shape`]).
+fn match_refinable(previous: &[Mode], next: &[Mode], halvings: usize) -> Matching {
     let (n, m) = (previous.len(), next.len());
     let size = n.max(m);
     // Padding (unmatched) costs more than any real pairing (real costs are ≤ 2).
@@ -94,7 +101,7 @@ pub fn match_modes(previous: &[Mode], next: &[Mode]) -> Matching {
         .map(|(i, p)| {
             let Some(j) = *p else { return false };
             let rival = rival(previous, i, next, j, |a, b| c[a][b]);
-            rival - c[i][j] < AMBIGUITY_MARGIN || crosses(previous, next, &partner, i)
+            rival - c[i][j] < AMBIGUITY_MARGIN || crosses(previous, next, &partner, i, halvings)
         })
         .collect();
     Matching { partner, ambiguous }
@@ -119,17 +126,10 @@ fn rival(
     row.chain(column).fold(f64::INFINITY, f64::min)
 }
 
-/// A root whose correlation with its partner over a step is within this of 1 keeps its shape too
-/// well to be passing through a veering that the finest refinement (1/2^[`REFINEMENT_DEPTH`] of
-/// the step) could resolve. Two modes veering over a width `w` turn each other's shapes: across
-/// a step `h` that holds the veering, `1 − MAC ≥ (w/h)²` for the pair matched across it by shape
-/// (the two-mode model of docs/model.md §6.2), so `1 − C ≤ (1/16)²` means `w ≤ h/16`.
-pub const KEPT_SHAPE: f64 = 1.0 / ((1 << (2 * REFINEMENT_DEPTH)) as f64);
-
 /// Whether root `i`'s match swaps frequency order with another matched root: a crossing within
 /// the step, which a veering narrower than the step looks like too (the shapes swap over the
 /// veering, so a coarse step matches them across it); only a finer step tells the two apart,
-/// unless both roots keep their shapes over the step so well ([`KEPT_SHAPE`]) that any veering
+/// unless both roots keep their shapes over the step so well ([`kept_shape`]) that any veering
 /// would be narrower than the finest step too: then the match by shape is what refinement would
 /// end on, and the step is a crossing.
 ///
@@ -137,21 +137,33 @@ pub const KEPT_SHAPE: f64 = 1.0 / ((1 << (2 * REFINEMENT_DEPTH)) as f64);
 /// whirls (backward, forward, collective: [`Whirl::of_name`]) are two blade roots 1P or 2P apart in the
 /// blades' own frame, far from the near-resonance a veering needs, so their lines (which
 /// cross everywhere on a Campbell diagram) are crossings, not refined.
-fn crosses(previous: &[Mode], next: &[Mode], partner: &[Option<usize>], i: usize) -> bool {
+fn crosses(
+    previous: &[Mode],
+    next: &[Mode],
+    partner: &[Option<usize>],
+    i: usize,
+    halvings: usize,
+) -> bool {
     let Some(j) = partner[i] else { return false };
+    let kept = |a: &Mode, b: &Mode| kept_shape(a, b, halvings);
     partner.iter().enumerate().any(|(k, p)| {
         p.is_some_and(|l| {
             k != i
                 && may_veer(&previous[i], &previous[k])
                 && (previous[i].im - previous[k].im) * (next[j].im - next[l].im) < 0.0
-                && !(kept_shape(&previous[i], &next[j]) && kept_shape(&previous[k], &next[l]))
+                && !(kept(&previous[i], &next[j]) && kept(&previous[k], &next[l]))
         })
     })
 }
 
-/// Whether a root's partner over a step has kept its shape ([`KEPT_SHAPE`]).
-fn kept_shape(a: &Mode, b: &Mode) -> bool {
-    1.0 - correlation(a, b) <= KEPT_SHAPE
+/// Whether root `a`'s partner `b` over a step that refinement may still halve `halvings` times
+/// has kept its shape too well to be passing through a veering that refinement could resolve.
+/// Two modes veering over a width `w` turn each other's shapes: across a step `h` that holds the
+/// veering, `1 − MAC ≥ (w/h)²` for the pair matched across it by shape (the two-mode model of
+/// docs/model.md §6.2), so `1 − C ≤ 4^−halvings` means `w ≤ h/2^halvings`, the finest step
+/// (`(1/16)²` on a sweep's step). The finest step itself is held to one halving's bound.
+fn kept_shape(a: &Mode, b: &Mode, halvings: usize) -> bool {
+    1.0 - correlation(a, b) <= 0.25f64.powi(halvings.max(1) as i32)
 }
 
 /// Whether two roots could veer: not a rotor's roots of two different whirls.
@@ -211,7 +223,7 @@ fn branch(
     solve: &dyn Fn(f64) -> Option<Vec<Mode>>,
     undecided: Undecided,
 ) -> Option<usize> {
-    let m = match_modes(a.modes, b.modes);
+    let m = match_refinable(a.modes, b.modes, depth);
     if !m.ambiguous[index] {
         return m.partner[index];
     }
@@ -311,7 +323,7 @@ mod tests {
     fn only_roots_of_one_whirl_can_veer() {
         let cross = |a: &str, b: &str| {
             let before = [mode(a, 1.0, &[1.0, 0.0]), mode(b, 2.0, &[0.0, 1.0])];
-            // Shapes turned as a veering's are, by more than KEPT_SHAPE.
+            // Shapes turned as a veering's are, by more than kept_shape allows.
             let after = [mode(a, 2.0, &[1.0, 0.2]), mode(b, 1.0, &[-0.2, 1.0])];
             match_modes(&before, &after)
         };
