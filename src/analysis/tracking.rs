@@ -161,9 +161,10 @@ fn crosses(
 /// Two modes veering over a width `w` turn each other's shapes: across a step `h` that holds the
 /// veering, `1 − MAC ≥ (w/h)²` for the pair matched across it by shape (the two-mode model of
 /// docs/model.md §6.2), so `1 − C ≤ 4^−halvings` means `w ≤ h/2^halvings`, the finest step
-/// (`(1/16)²` on a sweep's step). The finest step itself is held to one halving's bound.
+/// (`(1/16)²` on a sweep's step). On the finest step (no halving left) a swap stays in doubt:
+/// there the finest step's own rule decides ([`clear`]).
 fn kept_shape(a: &Mode, b: &Mode, halvings: usize) -> bool {
-    1.0 - correlation(a, b) <= 0.25f64.powi(halvings.max(1) as i32)
+    halvings > 0 && 1.0 - correlation(a, b) <= 0.25f64.powi(halvings as i32)
 }
 
 /// Whether two roots could veer: not a rotor's roots of two different whirls.
