@@ -437,37 +437,66 @@ mod tests {
     #[test]
     fn only_a_veering_refinement_could_resolve_is_refined() {
         for (c, resolved) in [(1e-3, false), (0.02, true)] {
-            let solves = std::cell::Cell::new(0);
-            let solve = |p: f64| {
-                solves.set(solves.get() + 1);
-                Some(two_modes(p, c))
-            };
-            let (a_modes, b_modes) = (two_modes(0.31, c), two_modes(0.71, c));
-            let a = Point {
-                value: 0.31,
-                modes: &a_modes,
-            };
-            let b = Point {
-                value: 0.71,
-                modes: &b_modes,
-            };
-            let from = lower(&a_modes);
-            let to = follow(&a, from, &b, REFINEMENT_DEPTH, &solve).unwrap();
-            assert_eq!(solves.get() > 0, resolved, "c = {c}: midpoints solved");
+            let followed = follow_lower(0.31, 0.71, c);
+            assert_eq!(followed.solves > 0, resolved, "c = {c}: midpoints solved");
             // Resolved, the lower branch stays lower; unresolved, the shape crosses over.
-            assert_eq!(to == lower(&b_modes), resolved, "c = {c}");
+            assert_eq!(followed.to == followed.lower_at_b, resolved, "c = {c}");
             if resolved {
-                let mut here = (from, a_modes.clone());
-                for step in 1..=400 {
-                    let next = two_modes(0.31 + 0.001 * step as f64, c);
-                    here = (match_modes(&here.1, &next).partner[here.0].unwrap(), next);
-                }
                 assert_eq!(
-                    here.0, to,
+                    sweep_lower(0.31, 0.001, 400, c),
+                    followed.to,
                     "c = {c}: refinement disagrees with a fine sweep"
                 );
             }
         }
+    }
+
+    /// Where the lower root of [`two_modes`] at `a` lands at `b` by [`follow`].
+    struct Followed {
+        to: usize,
+        lower_at_b: usize,
+        /// Midpoints solved on the way.
+        solves: usize,
+    }
+
+    fn follow_lower(a: f64, b: f64, c: f64) -> Followed {
+        let solves = std::cell::Cell::new(0);
+        let solve = |p: f64| {
+            solves.set(solves.get() + 1);
+            Some(two_modes(p, c))
+        };
+        let (a_modes, b_modes) = (two_modes(a, c), two_modes(b, c));
+        let to = follow(
+            &Point {
+                value: a,
+                modes: &a_modes,
+            },
+            lower(&a_modes),
+            &Point {
+                value: b,
+                modes: &b_modes,
+            },
+            REFINEMENT_DEPTH,
+            &solve,
+        )
+        .unwrap();
+        Followed {
+            to,
+            lower_at_b: lower(&b_modes),
+            solves: solves.get(),
+        }
+    }
+
+    /// Where the lower root of [`two_modes`] at `a` lands after `steps` steps of `step`, each
+    /// matched without refinement.
+    fn sweep_lower(a: f64, step: f64, steps: usize, c: f64) -> usize {
+        let first = two_modes(a, c);
+        let mut here = (lower(&first), first);
+        for k in 1..=steps {
+            let next = two_modes(a + step * k as f64, c);
+            here = (match_modes(&here.1, &next).partner[here.0].unwrap(), next);
+        }
+        here.0
     }
 
     fn lower(modes: &[Mode]) -> usize {
@@ -483,32 +512,14 @@ mod tests {
         // Coarse steps straddling p = ½, where the matching is ambiguous: the branch is
         // followed through re-solved midpoints.
         for (c, crosses) in [(0.0, true), (0.1, false)] {
-            let solve = |p: f64| Some(two_modes(p, c));
-            let a_modes = two_modes(0.3, c);
-            let b_modes = two_modes(0.7, c);
-            let a = Point {
-                value: 0.3,
-                modes: &a_modes,
-            };
-            let b = Point {
-                value: 0.7,
-                modes: &b_modes,
-            };
-            let from = lower(&a_modes);
-            let to = follow(&a, from, &b, REFINEMENT_DEPTH, &solve).unwrap();
+            let followed = follow_lower(0.3, 0.7, c);
             // Uncoupled: the lower mode's shape crosses to the upper frequency. Coupled: the
             // lower branch stays lower, its shape turning through the veering.
-            assert_eq!(to != lower(&b_modes), crosses, "c = {c}");
+            assert_eq!(followed.to != followed.lower_at_b, crosses, "c = {c}");
             // And the frequency it lands on is continuous with a fine sweep's.
-            let mut here = (0.3, from, a_modes.clone());
-            for step in 1..=40 {
-                let p = 0.3 + 0.01 * step as f64;
-                let next = two_modes(p, c);
-                let j = match_modes(&here.2, &next).partner[here.1].unwrap();
-                here = (p, j, next);
-            }
             assert_eq!(
-                here.1, to,
+                sweep_lower(0.3, 0.01, 40, c),
+                followed.to,
                 "c = {c}: refinement disagrees with a fine sweep"
             );
         }

@@ -52,3 +52,17 @@ fn flutterscope_ok(args: &[&str]) -> std::process::Output {
     );
     out
 }
+
+/// A copy of the folder `from` and everything in it at `to`, as a user copies a model.
+fn copy_tree(from: &std::path::Path, to: &std::path::Path) {
+    std::fs::create_dir_all(to).unwrap();
+    for entry in std::fs::read_dir(from).unwrap() {
+        let entry = entry.unwrap();
+        let target = to.join(entry.file_name());
+        if entry.file_type().unwrap().is_dir() {
+            copy_tree(&entry.path(), &target);
+        } else {
+            std::fs::copy(entry.path(), target).unwrap();
+        }
+    }
+}

@@ -354,19 +354,6 @@ fn same_line(printed: &str, shown: &str) -> bool {
             .all(|(p, q)| (p - q).abs() <= 1e-9 * p.abs().max(q.abs()))
 }
 
-fn copy_folder(from: &Path, to: &Path) {
-    std::fs::create_dir_all(to).unwrap();
-    for entry in std::fs::read_dir(from).unwrap() {
-        let path = entry.unwrap().path();
-        let target = to.join(path.file_name().unwrap());
-        if path.is_dir() {
-            copy_folder(&path, &target);
-        } else {
-            std::fs::copy(&path, &target).unwrap();
-        }
-    }
-}
-
 /// The pages' command transcripts print what they show, run as a user would in a fresh folder:
 /// README's "your own blade in five minutes" presets saved beside copies of the files they name
 /// (`nrel/`, `iea/`), every shell line of the pages run in order (`printf … > my.toml` makes a
@@ -378,8 +365,8 @@ fn the_pages_commands_print_what_the_pages_show() {
     let dir = std::env::temp_dir().join(format!("flutterscope-pages-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     let blades = root().join("presets").join("blades");
-    copy_folder(&blades.join("nrel5mw"), &dir.join("nrel"));
-    copy_folder(&blades.join("iea15mw"), &dir.join("iea"));
+    crate::copy_tree(&blades.join("nrel5mw"), &dir.join("nrel"));
+    crate::copy_tree(&blades.join("iea15mw"), &dir.join("iea"));
     let text = readme();
     for name in ["my-openfast", "my-hawc2"] {
         std::fs::write(dir.join(format!("{name}.toml")), readme_preset(&text, name)).unwrap();

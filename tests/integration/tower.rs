@@ -3,7 +3,7 @@
 //! frequencies, its own rotating-frame form (the azimuth drops out after the multi-blade
 //! transform; the Floquet analysis of the periodic system agrees), and through the binary.
 
-use super::flutterscope_ok;
+use super::{copy_tree, flutterscope_ok};
 use flutterscope::analysis::eigen::analyse;
 use flutterscope::analysis::mode::Mode;
 use flutterscope::formats::elastodyn_tower::read_tower;
@@ -735,17 +735,4 @@ fn a_broken_htc_turbine_names_its_file_line_and_the_problem() {
 
 fn text_of_original(path: &Path) -> String {
     std::fs::read_to_string(path).unwrap()
-}
-
-fn copy_tree(from: &Path, to: &Path) {
-    std::fs::create_dir_all(to).unwrap();
-    for entry in std::fs::read_dir(from).unwrap() {
-        let entry = entry.unwrap();
-        let target = to.join(entry.file_name());
-        if entry.file_type().unwrap().is_dir() {
-            copy_tree(&entry.path(), &target);
-        } else {
-            std::fs::copy(entry.path(), target).unwrap();
-        }
-    }
 }
