@@ -35,31 +35,36 @@ pub fn eigen_decomposition(a: &DMatrix<f64>) -> Result<Roots> {
 /// defective cluster that fails inverse iteration and made faer's deflation spin forever;
 /// isolated, they reach neither solver, and B is the structure alone.
 ///
-/// Then (chosen by measurement, `cargo bench --bench stability`, `part_eigen_*`) B is
-/// balanced (D⁻¹BD) and reduced to Hessenberg form H = QᵀD⁻¹BDQ (faer's Householder
-/// reduction, `hessenberg_reduction.rs`); the eigenvalues come from the
-/// double-shift QR iteration on H *without* accumulating the Schur form or its vectors (a port
-/// of LAPACK's `dlahqr` with `wantt = wantz = false`: Ahues–Tisseur deflation, exceptional shifts,
-/// an iteration cap of 30·max(10, n) per eigenvalue). Each eigenvector, one per real root or
-/// conjugate pair, then comes from inverse iteration with the converged eigenvalue as shift
-/// (LAPACK `dhsein`/`dlaein`): one LU factorisation of the Hessenberg H − λI, O(n²), with tiny
-/// pivots replaced by ε‖H‖, then one or two solves; the left vector reuses the same factors
-/// (transposed solve). Both are accepted only when their residual ‖Hx − λx‖ is at round-off
-/// level; vectors map back by Q and D.
+/// Then B is balanced (D⁻¹BD), and one of two solvers, chosen by the active block's size
+/// ([`SCHUR_FROM`], measured), finds its roots; each is the other's fallback.
 ///
-/// Against faer's full decomposition (what this replaced: Schur form with its vectors, then
-/// back-substitution for all vectors) this does a fraction of the flops on our small matrices:
+/// *The fast path*, below [`SCHUR_FROM`] states (a blade's 20–84): reduction to Hessenberg form
+/// H = QᵀD⁻¹BDQ (faer's Householder reduction, `hessenberg_reduction.rs`); the eigenvalues from
+/// the double-shift QR iteration on H *without* accumulating the Schur form or its vectors (a
+/// port of LAPACK's `dlahqr` with `wantt = wantz = false`: Ahues–Tisseur deflation, exceptional
+/// shifts, an iteration cap of 30·max(10, n) per eigenvalue). Each eigenvector, one per real
+/// root or conjugate pair, then comes from inverse iteration with the converged eigenvalue as
+/// shift (LAPACK `dhsein`/`dlaein`): one LU factorisation of the Hessenberg H − λI, O(n²), with
+/// tiny pivots replaced by ε‖H‖, then one or two solves; the left vector reuses the same factors
+/// (transposed solve). Both are accepted only when their residual ‖Hx − λx‖ is at round-off
+/// level; vectors map back by Q and D. On small matrices this does a fraction of faer's flops:
 /// measured single-threaded, 20-state quasi-steady system ≈ 110 µs → ≈ 65 µs without left
 /// vectors (what the stability analysis asks for when there are no aero states), 56-state
 /// theodorsen system ≈ 1.7 ms → ≈ 1.2 ms with both (`part_eigen_*` in the stability bench).
 /// nalgebra's bounded `Schur::try_new` was also measured and is slower than faer here (it
 /// always accumulates Q, and it has no exceptional shifts). Roots of (nearly) equal value get
 /// different start vectors and are orthogonalised against each other, so an exactly repeated
-/// root still returns a basis of its eigenspace. Whenever the fast path fails — the QR
-/// iteration hits its cap, or a residual check fails (defective or extremely ill-conditioned
-/// roots) — B goes to faer's robust full decomposition (Francis QR with aggressive deflation)
-/// instead ([`Solver::Fallback`]); B never has a row or column that is zero off the diagonal, the
-/// structure on which that deflation spun. If faer fails too the result is an
+/// root still returns a basis of its eigenspace.
+///
+/// *faer's full decomposition* (Francis QR with small bulges and aggressive early deflation,
+/// the Schur vectors, back-substitution for every vector), from [`SCHUR_FROM`] states up (HGM
+/// and ONERA blades, a rotor, a turbine): one inverse iteration per root costs O(n²) each, O(n³)
+/// in all with poor locality, where faer's blocked sweeps run at matrix-product speed.
+///
+/// Whenever the first choice fails — the QR iteration hits its cap, a residual check fails
+/// (defective or extremely ill-conditioned roots), faer reports no convergence — B goes to the
+/// other ([`Solver::Fallback`]); B never has a row or column that is zero off the diagonal, the
+/// structure on which faer's deflation spun. If both fail the result is an
 /// [`Error::Numerical`]. Non-finite input is rejected up front, so neither path can spin on NaN.
 pub fn decompose(a: &DMatrix<f64>, want_left: bool) -> Result<Roots> {
     let n = a.nrows();
@@ -99,8 +104,17 @@ pub fn decompose(a: &DMatrix<f64>, want_left: bool) -> Result<Roots> {
     Ok(roots)
 }
 
-/// Balancing, then the fast path or faer's fallback, on a matrix with nothing to isolate (see
-/// [`decompose`]); vectors in the matrix's own coordinates.
+/// From this many states of the active block up, faer's complete decomposition comes first and
+/// the fast path is its fallback; below, the other way round. Measured on the same machine in
+/// the same minutes (IEA 15MW, theodorsen or HGM at 30–60 stations, and the rotor and turbine;
+/// docs/model.md §6.1): at 84 states the two take the same time (1.4–2.0 ms), from 104 states
+/// faer is faster (3.1 against 5.2 ms; at 264 states 24 against 54 ms with the fast path's two
+/// threads, 90 ms on one), its blocked QR sweeps and back-substitution beating one inverse
+/// iteration per root.
+const SCHUR_FROM: usize = 96;
+
+/// Balancing, then the fast path or faer's decomposition, each the other's fallback, on a matrix
+/// with nothing to isolate (see [`decompose`]); vectors in the matrix's own coordinates.
 fn active_roots(a: &DMatrix<f64>, want_left: bool) -> Result<Roots> {
     let n = a.nrows();
     if n == 0 {
@@ -116,9 +130,19 @@ fn active_roots(a: &DMatrix<f64>, want_left: bool) -> Result<Roots> {
     // 10⁵ rad/s roots). Right vectors map back as D r, left vectors as D⁻¹ l.
     let scale = balancing_scale(a);
     let b = balanced(a, &scale);
-    let ((values, right, left), solver) = match fast_decomposition(&b, want_left) {
-        Some(r) => (r, Solver::Fast),
-        None => (faer_decomposition(&b, want_left)?, Solver::Fallback),
+    let ((values, right, left), solver) = if n >= SCHUR_FROM {
+        match faer_decomposition(&b, want_left) {
+            Ok(r) => (r, Solver::Schur),
+            Err(e) => (
+                fast_decomposition(&b, want_left).ok_or(e)?,
+                Solver::Fallback,
+            ),
+        }
+    } else {
+        match fast_decomposition(&b, want_left) {
+            Some(r) => (r, Solver::Fast),
+            None => (faer_decomposition(&b, want_left)?, Solver::Fallback),
+        }
     };
     Ok(Roots {
         values,
@@ -174,45 +198,63 @@ pub(crate) fn fast_decomposition(b: &DMatrix<f64>, want_left: bool) -> Option<De
     Some((values, right, left))
 }
 
-/// faer's full real eigendecomposition (the robust fallback of [`decompose`]), packed one entry
-/// per real root and per conjugate pair (the member with ω > 0).
+/// faer's full real eigendecomposition (see [`decompose`]), packed one entry per real root and
+/// per conjugate pair (the member with ω > 0).
 pub(crate) fn faer_decomposition(b: &DMatrix<f64>, want_left: bool) -> Result<Decomposition> {
     let n = b.nrows();
     let evd = real_evd(b, want_left)
         .map_err(|e| Error::numerical(format!("eigenvalue iteration failed: {e:?}")))?;
-    let (u, ul) = (&evd.right, &evd.left);
-    let mut values = Vec::with_capacity(n);
-    let mut right: Vec<Vec<Complex<f64>>> = Vec::with_capacity(n);
-    let mut left: Vec<Vec<Complex<f64>>> = Vec::with_capacity(n);
+    // Each root's first column in faer's real form, and the sign that makes its ω positive
+    // (0 for a real root, whose vector is the column itself).
+    let mut roots: Vec<(usize, f64)> = Vec::with_capacity(n);
     let mut j = 0;
     while j < n {
-        let (re, im) = (evd.re[j], evd.im[j]);
-        if im == 0.0 || j + 1 == n {
-            values.push(Complex::new(re, 0.0));
-            right.push((0..n).map(|i| Complex::new(u[(i, j)], 0.0)).collect());
-            if want_left {
-                left.push((0..n).map(|i| Complex::new(ul[(i, j)], 0.0)).collect());
-            }
+        if evd.im[j] == 0.0 || j + 1 == n {
+            roots.push((j, 0.0));
             j += 1;
         } else {
-            // A complex pair occupies columns j (real part) and j + 1 (imaginary part) for the
-            // eigenvalue re + i·im[j] (left and right alike); keep the member with ω > 0.
-            let sign = im.signum();
-            values.push(Complex::new(re, im.abs()));
-            let pack = |m: &faer::Mat<f64>| -> Vec<Complex<f64>> {
-                (0..n)
-                    .map(|i| Complex::new(m[(i, j)], sign * m[(i, j + 1)]))
-                    .collect()
-            };
-            right.push(pack(u));
-            if want_left {
-                left.push(pack(ul));
-            }
+            roots.push((j, evd.im[j].signum()));
             j += 2;
         }
     }
-    let right = DMatrix::from_fn(n, right.len(), |i, k| right[k][i]);
-    let left = DMatrix::from_fn(n, left.len(), |i, k| left[k][i]);
+    let values: Vec<Complex<f64>> = roots
+        .iter()
+        .map(|&(j, sign)| Complex::new(evd.re[j], if sign == 0.0 { 0.0 } else { sign * evd.im[j] }))
+        .collect();
+    let pack = |m: &faer::Mat<f64>| {
+        DMatrix::from_fn(
+            m.nrows(),
+            if m.ncols() == 0 { 0 } else { roots.len() },
+            |i, k| {
+                let (j, sign) = roots[k];
+                let im = if sign == 0.0 {
+                    0.0
+                } else {
+                    sign * m[(i, j + 1)]
+                };
+                Complex::new(m[(i, j)], im)
+            },
+        )
+    };
+    let (mut right, mut left) = (pack(&evd.right), pack(&evd.left));
+    // faer's back-substitution divides by differences of eigenvalues: inside a cluster of
+    // exactly repeated roots (many identical stations) its vectors grow towards overflow (their
+    // participation products overflowed), or overflow, and extreme scaling can give NaN values;
+    // unit vectors, and the fast path where they are not finite.
+    for mut column in right.column_iter_mut().chain(left.column_iter_mut()) {
+        let largest = column.iter().map(|c| c.norm()).fold(0.0, f64::max);
+        if largest > 0.0 && largest.is_finite() {
+            column /= Complex::new(largest, 0.0);
+            let norm = column.norm();
+            column /= Complex::new(norm, 0.0);
+        }
+    }
+    let finite = |c: &Complex<f64>| c.re.is_finite() && c.im.is_finite();
+    if !(values.iter().all(finite) && right.iter().all(finite) && left.iter().all(finite)) {
+        return Err(Error::numerical(
+            "faer's eigendecomposition produced non-finite eigenvalues or eigenvectors",
+        ));
+    }
     Ok((values, right, left))
 }
 

@@ -23,7 +23,9 @@ pub struct Roots {
 pub enum Solver {
     /// Balancing, Hessenberg QR eigenvalues, inverse iteration (or nothing left to iterate on).
     Fast,
-    /// faer's full decomposition, after the fast path failed.
+    /// faer's full decomposition, the first choice on a large active block.
+    Schur,
+    /// The other of the two, after the first choice failed.
     Fallback,
 }
 
