@@ -242,11 +242,15 @@ pub(crate) fn faer_decomposition(b: &DMatrix<f64>, want_left: bool) -> Result<De
     // participation products overflowed), or overflow, and extreme scaling can give NaN values;
     // unit vectors, and the fast path where they are not finite.
     for mut column in right.column_iter_mut().chain(left.column_iter_mut()) {
-        let largest = column.iter().map(|c| c.norm()).fold(0.0, f64::max);
+        // Scaled by the largest component first, so the sum of squares cannot overflow.
+        let largest = column
+            .iter()
+            .map(|c| c.re.abs().max(c.im.abs()))
+            .fold(0.0, f64::max);
         if largest > 0.0 && largest.is_finite() {
-            column /= Complex::new(largest, 0.0);
-            let norm = column.norm();
-            column /= Complex::new(norm, 0.0);
+            column.unscale_mut(largest);
+            let norm = column.iter().map(|c| c.norm_sqr()).sum::<f64>().sqrt();
+            column.unscale_mut(norm);
         }
     }
     let finite = |c: &Complex<f64>| c.re.is_finite() && c.im.is_finite();

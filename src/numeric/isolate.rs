@@ -10,7 +10,7 @@
 //! of that structure; when nothing isolates, B is the matrix itself.
 
 use super::roots::Roots;
-use nalgebra::{Complex, DMatrix, DVector, Dyn, PermutationSequence};
+use nalgebra::{Complex, DMatrix, DVector};
 use std::ops::Range;
 
 /// A symmetric permutation P with PᵀAP = [[T1, X, Y], [0, B, Z], [0, 0, T2]], T1 and T2 upper
@@ -163,8 +163,9 @@ impl Isolation {
     }
 }
 
-/// LU factors P(B − λI) = LU (nalgebra's, partial pivoting) for one isolated λ.
-type Factors = (PermutationSequence<Dyn>, DMatrix<f64>, DMatrix<f64>);
+/// LU factors P(B − λI) = LU for one isolated λ: faer's partial pivoting (blocked: on the
+/// turbine's 263-state active block a quarter of the time of nalgebra's unblocked one).
+type Factors = faer::linalg::solvers::PartialPivLu<f64>;
 
 /// The triangular and LU solves of [`Isolation::roots`] on the permuted matrix C = PᵀAP, in
 /// place on a full permuted vector x (right: (C − λI)x = 0 row by row) or w (left:
@@ -256,14 +257,17 @@ impl Substitution<'_> {
         let k = match self.lu.iter().position(|(l, _)| *l == lambda) {
             Some(k) => k,
             None => {
-                let b = DMatrix::from_fn(m, m, |i, j| {
+                let b = faer::Mat::<f64>::from_fn(m, m, |i, j| {
                     self.c[(lo + i, lo + j)] - if i == j { lambda } else { 0.0 }
                 });
-                self.lu.push((lambda, nalgebra::LU::new(b).unpack()));
+                self.lu.push((lambda, b.partial_piv_lu()));
                 self.lu.len() - 1
             }
         };
-        let (p, l, u) = &self.lu[k].1;
+        let factors = &self.lu[k].1;
+        let (l, u) = (factors.L(), factors.U());
+        // Row i of P(B − λI) is row `from[i]` of B − λI.
+        let from = factors.P().arrays().0;
         let one = Complex::new(1.0, 0.0);
         if transposed {
             // (B − λI)ᵀ = UᵀLᵀP: Uᵀz = r forward, Lᵀy' = z backward (unit), y = P⁻¹y'.
@@ -275,10 +279,16 @@ impl Substitution<'_> {
                 let s = (i + 1..m).fold(Complex::new(0.0, 0.0), |s, j| s + v[lo + j] * l[(j, i)]);
                 v[lo + i] -= s;
             }
-            p.inv_permute_rows(&mut v.rows_mut(lo, m));
+            let y = v.rows(lo, m).clone_owned();
+            for (i, &f) in from.iter().enumerate() {
+                v[lo + f] = y[i];
+            }
         } else {
             // P(B − λI) = LU: Ly' = Pr forward (unit), Uy = y' backward.
-            p.permute_rows(&mut v.rows_mut(lo, m));
+            let r = v.rows(lo, m).clone_owned();
+            for (i, &f) in from.iter().enumerate() {
+                v[lo + i] = r[f];
+            }
             for i in 0..m {
                 let s = (0..i).fold(Complex::new(0.0, 0.0), |s, j| s + v[lo + j] * l[(i, j)]);
                 v[lo + i] -= s;
@@ -450,20 +460,25 @@ mod tests {
     #[test]
     fn distinct_isolated_roots_have_exact_vectors() {
         // Every root simple: each of the back-substitutions (through T1, T2 and the LU of
-        // B − λI, right and left) gives a true eigenvector.
-        let b = dense_block(&[-3.0], &[(-0.2, 2.0), (-1.0, 7.0)]);
-        let a = hidden(&[0.5, -1.5, 2.5, -6.0], &b, &[-0.25, 1.25, -9.0]);
-        let r = eigen_decomposition(&a).unwrap();
-        assert_eq!(r.values.len(), 4 + 3 + 3);
-        for k in 0..r.values.len() {
-            let (right, left) = residuals(&a, &r, k);
-            assert!(
-                right <= 1e-12 && left <= 1e-12,
-                "{}: {right:e}, {left:e}",
-                r.values[k]
-            );
+        // B − λI, right and left) gives a true eigenvector; the larger block's pivoting is
+        // more than a set of swaps, so a permutation applied the wrong way round would show.
+        let small = dense_block(&[-3.0], &[(-0.2, 2.0), (-1.0, 7.0)]);
+        let pairs: Vec<(f64, f64)> = (1..=6).map(|k| (-0.1 * k as f64, 1.5 * k as f64)).collect();
+        let large = dense_block(&[-3.0, -4.5, 0.75], &pairs);
+        for (b, block_roots) in [(small, 1 + 2), (large, 3 + 6)] {
+            let a = hidden(&[0.5, -1.5, 2.5, -6.0], &b, &[-0.25, 1.25, -9.0]);
+            let r = eigen_decomposition(&a).unwrap();
+            assert_eq!(r.values.len(), 4 + 3 + block_roots);
+            for k in 0..r.values.len() {
+                let (right, left) = residuals(&a, &r, k);
+                assert!(
+                    right <= 1e-12 && left <= 1e-12,
+                    "{}: {right:e}, {left:e}",
+                    r.values[k]
+                );
+            }
+            assert_unit_and_finite(&r);
         }
-        assert_unit_and_finite(&r);
     }
 
     #[test]
