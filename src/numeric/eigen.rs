@@ -219,46 +219,48 @@ pub(crate) fn faer_decomposition(b: &DMatrix<f64>, want_left: bool) -> Result<De
     }
     let values: Vec<Complex<f64>> = roots
         .iter()
-        .map(|&(j, sign)| Complex::new(evd.re[j], if sign == 0.0 { 0.0 } else { sign * evd.im[j] }))
+        .map(|&(j, sign)| {
+            let im = if sign == 0.0 { 0.0 } else { sign * evd.im[j] };
+            Complex::new(evd.re[j], im)
+        })
         .collect();
-    let pack = |m: &faer::Mat<f64>| {
-        DMatrix::from_fn(
-            m.nrows(),
-            if m.ncols() == 0 { 0 } else { roots.len() },
-            |i, k| {
-                let (j, sign) = roots[k];
-                let im = if sign == 0.0 {
-                    0.0
-                } else {
-                    sign * m[(i, j + 1)]
-                };
-                Complex::new(m[(i, j)], im)
-            },
+    let non_finite = || {
+        Error::numerical(
+            "faer's eigendecomposition produced non-finite eigenvalues or eigenvectors",
         )
     };
-    let (mut right, mut left) = (pack(&evd.right), pack(&evd.left));
+    if !values.iter().all(|c| c.re.is_finite() && c.im.is_finite()) {
+        return Err(non_finite());
+    }
     // faer's back-substitution divides by differences of eigenvalues: inside a cluster of
     // exactly repeated roots (many identical stations) its vectors grow towards overflow (their
-    // participation products overflowed), or overflow, and extreme scaling can give NaN values;
-    // unit vectors, and the fast path where they are not finite.
-    for mut column in right.column_iter_mut().chain(left.column_iter_mut()) {
-        // Scaled by the largest component first, so the sum of squares cannot overflow.
-        let largest = column
-            .iter()
-            .map(|c| c.re.abs().max(c.im.abs()))
-            .fold(0.0, f64::max);
-        if largest > 0.0 && largest.is_finite() {
-            column.unscale_mut(largest);
-            let norm = column.iter().map(|c| c.norm_sqr()).sum::<f64>().sqrt();
-            column.unscale_mut(norm);
+    // participation products overflowed), or overflow, and extreme scaling can give NaN: each
+    // vector is scaled by its largest component, and one that is not finite is an error (on
+    // which `decompose` turns to the fast path where faer came first).
+    let pack = |m: &faer::Mat<f64>| -> Option<DMatrix<Complex<f64>>> {
+        let columns = if m.ncols() == 0 { 0 } else { roots.len() };
+        let mut out = DMatrix::<Complex<f64>>::zeros(n, columns);
+        for (mut column, &(j, sign)) in out.column_iter_mut().zip(&roots) {
+            let re = m.col_as_slice(j);
+            // A pair's imaginary part is the next column, signed so that ω > 0.
+            let im = (sign != 0.0).then(|| m.col_as_slice(j + 1));
+            let mut largest = 0.0f64;
+            for (i, c) in column.iter_mut().enumerate() {
+                *c = Complex::new(re[i], im.map_or(0.0, |im| sign * im[i]));
+                let size = c.re.abs().max(c.im.abs());
+                if !size.is_finite() {
+                    return None;
+                }
+                largest = largest.max(size);
+            }
+            if largest > 0.0 {
+                column.unscale_mut(largest);
+            }
         }
-    }
-    let finite = |c: &Complex<f64>| c.re.is_finite() && c.im.is_finite();
-    if !(values.iter().all(finite) && right.iter().all(finite) && left.iter().all(finite)) {
-        return Err(Error::numerical(
-            "faer's eigendecomposition produced non-finite eigenvalues or eigenvectors",
-        ));
-    }
+        Some(out)
+    };
+    let right = pack(&evd.right).ok_or_else(non_finite)?;
+    let left = pack(&evd.left).ok_or_else(non_finite)?;
     Ok((values, right, left))
 }
 
@@ -371,5 +373,18 @@ pub(crate) mod tests {
             eigen_decomposition(&DMatrix::<f64>::zeros(2, 3)),
             Err(Error::Numerical(_))
         ));
+    }
+
+    #[test]
+    fn the_active_blocks_size_chooses_the_solver() {
+        // Dense, so nothing isolates: the whole matrix is the active block.
+        for (n, solver) in [(SCHUR_FROM - 1, Solver::Fast), (SCHUR_FROM, Solver::Schur)] {
+            let a = DMatrix::from_fn(n, n, |i, j| {
+                ((i * 31 + j * 17) as f64 * 0.618_034).sin() + if i == j { 2.0 } else { 0.0 }
+            });
+            let r = eigen_decomposition(&a).unwrap();
+            assert_eq!(r.solver, solver, "{n} states");
+            assert_eigenpairs(&a, &r, 1e-10);
+        }
     }
 }
