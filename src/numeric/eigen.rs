@@ -62,7 +62,8 @@ pub fn eigen_decomposition(a: &DMatrix<f64>) -> Result<Roots> {
 /// in all with poor locality, where faer's blocked sweeps run at matrix-product speed.
 ///
 /// Whenever the first choice fails — the QR iteration hits its cap, a residual check fails
-/// (defective or extremely ill-conditioned roots), faer reports no convergence — B goes to the
+/// (defective or extremely ill-conditioned roots), faer reports no convergence or returns
+/// non-finite values or vectors — B goes to the
 /// other ([`Solver::Fallback`]); B never has a row or column that is zero off the diagonal, the
 /// structure on which faer's deflation spun. If both fail the result is an
 /// [`Error::Numerical`]. Non-finite input is rejected up front, so neither path can spin on NaN.
