@@ -349,6 +349,26 @@ fn hgm_runs_in_eigen_sweep_flutter_and_simulate() {
         text.contains("aero model hgm") && text.contains("edge 1"),
         "{text}"
     );
+    // The whole turbine, each blade's stations with their four states, in the ground frame.
+    let turbine = super::flutterscope_ok(&[
+        "eigen",
+        "-p",
+        "iea15mw",
+        "--set",
+        "aero.model=hgm",
+        "--set",
+        "turbine.model=turbine",
+    ]);
+    let text = String::from_utf8_lossy(&turbine.stdout);
+    for name in [
+        "aero model hgm",
+        "BW edge 1",
+        "FW edge 1",
+        "tower FA 1",
+        "\nSTABLE: every root",
+    ] {
+        assert!(text.contains(name), "{name}: {text}");
+    }
     super::flutterscope_ok(&[
         "sweep",
         "-p",
