@@ -106,12 +106,8 @@ pub fn decompose(a: &DMatrix<f64>, want_left: bool) -> Result<Roots> {
 }
 
 /// From this many states of the active block up, faer's complete decomposition comes first and
-/// the fast path is its fallback; below, the other way round. Measured on the same machine in
-/// the same minutes (IEA 15MW, theodorsen or HGM at 30–60 stations, and the rotor and turbine;
-/// docs/model.md §6.1): at 84 states the two take the same time (1.4–2.0 ms), from 104 states
-/// faer is faster (3.1 against 5.2 ms; at 264 states 24 against 54 ms with the fast path's two
-/// threads, 90 ms on one), its blocked QR sweeps and back-substitution beating one inverse
-/// iteration per root.
+/// the fast path is its fallback; below, the other way round: the two take the same time at 84
+/// states, faer less from 104 (measured, docs/model.md §6.1 step 2).
 const SCHUR_FROM: usize = 96;
 
 /// Balancing, then the fast path or faer's decomposition, each the other's fallback, on a matrix
@@ -205,25 +201,22 @@ pub(crate) fn faer_decomposition(b: &DMatrix<f64>, want_left: bool) -> Result<De
     let n = b.nrows();
     let evd = real_evd(b, want_left)
         .map_err(|e| Error::numerical(format!("eigenvalue iteration failed: {e:?}")))?;
-    // Each root's first column in faer's real form, and the sign that makes its ω positive
-    // (0 for a real root, whose vector is the column itself).
-    let mut roots: Vec<(usize, f64)> = Vec::with_capacity(n);
+    // Each root's first column in faer's real form and, for a pair (whose imaginary part is the
+    // next column), the sign that makes its ω positive.
+    let mut roots: Vec<(usize, Option<f64>)> = Vec::with_capacity(n);
     let mut j = 0;
     while j < n {
         if evd.im[j] == 0.0 || j + 1 == n {
-            roots.push((j, 0.0));
+            roots.push((j, None));
             j += 1;
         } else {
-            roots.push((j, evd.im[j].signum()));
+            roots.push((j, Some(evd.im[j].signum())));
             j += 2;
         }
     }
     let values: Vec<Complex<f64>> = roots
         .iter()
-        .map(|&(j, sign)| {
-            let im = if sign == 0.0 { 0.0 } else { sign * evd.im[j] };
-            Complex::new(evd.re[j], im)
-        })
+        .map(|&(j, sign)| Complex::new(evd.re[j], sign.map_or(0.0, |s| s * evd.im[j])))
         .collect();
     let non_finite = || {
         Error::numerical(
@@ -243,11 +236,10 @@ pub(crate) fn faer_decomposition(b: &DMatrix<f64>, want_left: bool) -> Result<De
         let mut out = DMatrix::<Complex<f64>>::zeros(n, columns);
         for (mut column, &(j, sign)) in out.column_iter_mut().zip(&roots) {
             let re = m.col_as_slice(j);
-            // A pair's imaginary part is the next column, signed so that ω > 0.
-            let im = (sign != 0.0).then(|| m.col_as_slice(j + 1));
+            let im = sign.map(|s| (s, m.col_as_slice(j + 1)));
             let mut largest = 0.0f64;
             for (i, c) in column.iter_mut().enumerate() {
-                *c = Complex::new(re[i], im.map_or(0.0, |im| sign * im[i]));
+                *c = Complex::new(re[i], im.map_or(0.0, |(s, im)| s * im[i]));
                 let size = c.re.abs().max(c.im.abs());
                 if !size.is_finite() {
                     return None;
@@ -322,6 +314,11 @@ pub(crate) mod tests {
     }
 
     /// Every returned pair satisfies A r = λ r (and lᴴ A = λ lᴴ) to round-off.
+    /// Deterministic entries in (−1, 1).
+    pub(crate) fn noise(i: usize, j: usize, seed: usize) -> f64 {
+        ((i * 31 + j * 17 + seed * 7) as f64 * 0.618_034).sin()
+    }
+
     pub(crate) fn assert_eigenpairs(a: &DMatrix<f64>, r: &Roots, tol: f64) {
         let ac = a.map(|v| Complex::new(v, 0.0));
         let scale = a.norm();
@@ -380,9 +377,7 @@ pub(crate) mod tests {
     fn the_active_blocks_size_chooses_the_solver() {
         // Dense, so nothing isolates: the whole matrix is the active block.
         for (n, solver) in [(SCHUR_FROM - 1, Solver::Fast), (SCHUR_FROM, Solver::Schur)] {
-            let a = DMatrix::from_fn(n, n, |i, j| {
-                ((i * 31 + j * 17) as f64 * 0.618_034).sin() + if i == j { 2.0 } else { 0.0 }
-            });
+            let a = DMatrix::from_fn(n, n, |i, j| noise(i, j, 0) + if i == j { 2.0 } else { 0.0 });
             let r = eigen_decomposition(&a).unwrap();
             assert_eq!(r.solver, solver, "{n} states");
             assert_eigenpairs(&a, &r, 1e-10);

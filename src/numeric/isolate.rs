@@ -333,12 +333,8 @@ fn normalised(mut v: DVector<Complex<f64>>) -> DVector<Complex<f64>> {
 mod tests {
     use super::*;
     use crate::numeric::eigen::eigen_decomposition;
+    use crate::numeric::eigen::tests::noise;
     use crate::numeric::roots::Solver;
-
-    /// Deterministic entries in (−1, 1).
-    fn noise(i: usize, j: usize, seed: usize) -> f64 {
-        ((i * 31 + j * 17 + seed * 7) as f64 * 0.618_034).sin()
-    }
 
     /// S D S⁻¹ for the real Schur-like D with roots `reals` and pairs σ ± iω: a dense block with
     /// known eigenvalues and no structure to isolate.
