@@ -369,20 +369,22 @@ fn one_to_one(
     leave: Option<&dyn Fn(usize) -> f64>,
 ) -> Vec<Option<usize>> {
     let (n, m) = (rows.len(), columns.len());
-    let size = match leave {
-        None => n.max(m),
-        Some(_) => n + m,
-    };
     if n == 0 {
         return Vec::new();
     }
-    let matrix: Vec<Vec<f64>> = (0..size)
-        .map(|a| {
-            (0..size)
-                .map(|b| match (rows.get(a), columns.get(b)) {
-                    (Some(&i), Some(&k)) => cost(i, k),
-                    (Some(&i), None) => leave.map_or(0.0, |l| l(i)),
-                    _ => 0.0,
+    // Without `leave` a row beyond the columns gets none (zero-cost padding); with it, each row
+    // may take one of n further columns at the cost of being left.
+    let width = match leave {
+        None => m,
+        Some(_) => m + n,
+    };
+    let matrix: Vec<Vec<f64>> = rows
+        .iter()
+        .map(|&i| {
+            (0..width)
+                .map(|b| match columns.get(b) {
+                    Some(&k) => cost(i, k),
+                    None => leave.map_or(0.0, |l| l(i)),
                 })
                 .collect()
         })

@@ -2,12 +2,15 @@
 //! cost. Mode labelling pairs roots with natural modes by it, mode tracking pairs the modes of
 //! consecutive sweep points; both need the optimum, not a greedy pick.
 
-/// Minimum-cost perfect assignment on a square cost matrix (Kuhn–Munkres with potentials,
-/// O(n³)). Returns the column assigned to each row.
+/// Minimum-cost assignment of every row to its own column (Kuhn–Munkres with potentials,
+/// O(n²m) for n rows and m ≥ n columns). Returns the column assigned to each row. Fewer columns
+/// than rows count as padded with zero-cost columns: the rows left over get indices from m on.
+/// The caller's candidates are rows and its names columns (with a column per candidate for being
+/// left unnamed): no padding rows, so a third of the work of the square form on a turbine.
 ///
 /// Exact (comparisons only, no tolerance) and finite without an iteration cap: each pass of a
 /// row's search marks one more column as used, and with finite costs a free column is reached
-/// before every column is, so a row takes at most n + 1 passes. A NaN or infinite cost (which a
+/// before every column is, so a row takes at most m + 1 passes. A NaN or infinite cost (which a
 /// caller should never produce) is replaced by a finite cost above any complete assignment of
 /// the finite ones, so such a pairing is taken only when nothing else is possible.
 pub fn hungarian(cost: &[Vec<f64>]) -> Vec<usize> {
@@ -15,6 +18,7 @@ pub fn hungarian(cost: &[Vec<f64>]) -> Vec<usize> {
     if n == 0 {
         return Vec::new();
     }
+    let m = cost.iter().map(Vec::len).max().unwrap_or(0).max(n);
     let largest = cost
         .iter()
         .flatten()
@@ -22,14 +26,21 @@ pub fn hungarian(cost: &[Vec<f64>]) -> Vec<usize> {
         .fold(0.0_f64, |m, c| m.max(c.abs()));
     let worst = (1.0 + 2.0 * n as f64 * largest).min(f64::MAX / 4.0);
     let sane: Vec<Vec<f64>>;
-    let cost = if cost.iter().flatten().all(|c| c.is_finite()) {
+    let cost = if cost
+        .iter()
+        .all(|row| row.len() == m && row.iter().all(|c| c.is_finite()))
+    {
         cost
     } else {
         sane = cost
             .iter()
             .map(|row| {
-                row.iter()
-                    .map(|&c| if c.is_finite() { c } else { worst })
+                (0..m)
+                    .map(|j| match row.get(j) {
+                        Some(&c) if !c.is_finite() => worst,
+                        Some(&c) => c,
+                        None => 0.0,
+                    })
                     .collect()
             })
             .collect();
@@ -37,20 +48,20 @@ pub fn hungarian(cost: &[Vec<f64>]) -> Vec<usize> {
     };
     // 1-based arrays as in the classic formulation; column 0 is the virtual start.
     let mut u = vec![0.0; n + 1];
-    let mut v = vec![0.0; n + 1];
-    let mut owner = vec![0usize; n + 1];
-    let mut way = vec![0usize; n + 1];
+    let mut v = vec![0.0; m + 1];
+    let mut owner = vec![0usize; m + 1];
+    let mut way = vec![0usize; m + 1];
     for row in 1..=n {
         owner[0] = row;
         let mut j0 = 0;
-        let mut minv = vec![f64::INFINITY; n + 1];
-        let mut used = vec![false; n + 1];
+        let mut minv = vec![f64::INFINITY; m + 1];
+        let mut used = vec![false; m + 1];
         loop {
             used[j0] = true;
             let i0 = owner[j0];
             let mut delta = f64::INFINITY;
             let mut j1 = 0;
-            for j in 1..=n {
+            for j in 1..=m {
                 if used[j] {
                     continue;
                 }
@@ -64,7 +75,7 @@ pub fn hungarian(cost: &[Vec<f64>]) -> Vec<usize> {
                     j1 = j;
                 }
             }
-            for j in 0..=n {
+            for j in 0..=m {
                 if used[j] {
                     u[owner[j]] += delta;
                     v[j] -= delta;
@@ -87,7 +98,7 @@ pub fn hungarian(cost: &[Vec<f64>]) -> Vec<usize> {
         }
     }
     let mut assignment = vec![0; n];
-    for j in 1..=n {
+    for j in 1..=m {
         if owner[j] > 0 {
             assignment[owner[j] - 1] = j - 1;
         }
@@ -124,5 +135,21 @@ mod tests {
         let mut seen = a.clone();
         seen.sort();
         assert_eq!(seen, vec![0, 1, 2]);
+    }
+
+    /// Rows fewer than columns take the cheapest distinct columns; more rows than columns leave
+    /// the rows that fit worst beyond the last column, as zero-cost padding would.
+    #[test]
+    fn rectangular_costs_assign_every_row_once() {
+        let wide = vec![vec![4.0, 1.0, 3.0, 9.0], vec![2.0, 0.5, 5.0, 9.0]];
+        assert_eq!(hungarian(&wide), vec![1, 0]);
+        let tall = vec![vec![1.0, 7.0], vec![6.0, 2.0], vec![5.0, 5.0]];
+        let a = hungarian(&tall);
+        assert_eq!(&a[..2], &[0, 1]);
+        assert!(a[2] >= 2);
+        // The wide matrix padded square with zero-cost rows gives the same rows' columns.
+        let mut square = wide.clone();
+        square.extend([vec![0.0; 4], vec![0.0; 4]]);
+        assert_eq!(&hungarian(&square)[..2], &hungarian(&wide)[..]);
     }
 }

@@ -8,22 +8,22 @@
 //! analysis: a sweep's points already fill the pool), a second thread starts on each root's
 //! vectors as the iteration finds it, and once the iteration ends both threads share what is
 //! left. The iteration stays on the caller's thread and starts at once; the second thread is a
-//! job on rayon's pool ([`Helper`]). Handing both halves to the pool with `rayon::join` instead
-//! put the wake-up of a sleeping worker, and of the caller at the end, on the critical path (on
-//! the 2-core VM that made the key-press bench bimodal, 2.7 ms or 4 ms).
+//! job on rayon's pool ([`alongside`]). Handing both halves to the pool with `rayon::join`
+//! instead put the wake-up of a sleeping worker, and of the caller at the end, on the critical
+//! path (on the 2-core VM that made the key-press bench bimodal, 2.7 ms or 4 ms).
 //!
 //! Each vector comes out bit for bit as one sequential pass gives it: a root's vectors depend
 //! only on its own shift and the earlier members of its cluster of (numerically) repeated roots,
 //! so a root alone in its cluster is final as streamed, and every cluster with more than one
 //! member is computed again afterwards, whole and in order.
 
+use super::alongside;
 use super::hessenberg::{hessenberg_eigenvalues, hessenberg_eigenvalues_as_found};
 use super::inverse_iteration::{
     clusters, group_vectors, root_vectors, RootSolver, RootVectors, CLUSTER_RADIUS, PARALLEL_FROM,
 };
 use crossbeam_channel::Receiver;
 use nalgebra::{Complex, DMatrix};
-use std::sync::atomic::{AtomicU8, Ordering};
 use std::sync::Arc;
 
 /// The eigenvalues of `h` (one per real root and per conjugate pair, the member with ω ≥ 0, in
@@ -59,17 +59,23 @@ fn overlapped(
     want_left: bool,
 ) -> Option<(Vec<Complex<f64>>, Vec<RootVectors>)> {
     let (sender, receiver) = crossbeam_channel::unbounded::<Found>();
-    let helper = Helper::start(Arc::new(h.clone()), hnorm, want_left, receiver.clone());
-    let all = hessenberg_eigenvalues_as_found(h.clone(), |place, lambda| {
-        if lambda.im >= 0.0 {
-            // The receivers live until both threads are done with them.
-            let _ = sender.send((place, lambda));
-        }
-    });
-    // The iteration is over: once the queue is empty, both threads stop.
-    drop(sender);
-    let mine = vectors_of_found(h, hnorm, want_left, &receiver);
-    let theirs = helper.finish();
+    let (shared, queue) = (Arc::new(h.clone()), receiver.clone());
+    // If the second thread never started, the caller has drained the queue by the time it runs
+    // that piece itself, and the piece finds nothing to do.
+    let ((all, mine), theirs) = alongside(
+        || {
+            let all = hessenberg_eigenvalues_as_found(h.clone(), |place, lambda| {
+                if lambda.im >= 0.0 {
+                    // The receivers live until both pieces are done with them.
+                    let _ = sender.send((place, lambda));
+                }
+            });
+            // The iteration is over: once the queue is empty, both pieces stop.
+            drop(sender);
+            (all, vectors_of_found(h, hnorm, want_left, &receiver))
+        },
+        move || vectors_of_found(&shared, hnorm, want_left, &queue),
+    );
     let all = all?;
     // By place on the diagonal; a root whose vectors failed stays `None` like one never computed.
     let mut streamed: Vec<Option<RootVectors>> = vec![None; all.len()];
@@ -105,50 +111,6 @@ fn vectors_of_found(
         .iter()
         .map(|(place, lambda)| (place, solver.vectors(lambda, want_left)))
         .collect()
-}
-
-/// The second thread of [`overlapped`]: a job on rayon's pool, whose threads exist already (a
-/// thread of its own cost about 0.15 ms to start on the 2-core VM, a tenth of the eigen-analysis).
-/// The pool may be busy (a Campbell diagram computing while the explorer solves a key press), so
-/// the caller never waits for the job to start: once the caller has drained the queue itself, a
-/// job that has not started is called off and finds nothing to do.
-struct Helper {
-    state: Arc<AtomicU8>,
-    results: Receiver<Vec<(usize, Option<RootVectors>)>>,
-}
-
-const WAITING: u8 = 0;
-const STARTED: u8 = 1;
-const CALLED_OFF: u8 = 2;
-
-impl Helper {
-    fn start(h: Arc<DMatrix<f64>>, hnorm: f64, want_left: bool, found: Receiver<Found>) -> Helper {
-        let state = Arc::new(AtomicU8::new(WAITING));
-        let (send, results) = crossbeam_channel::bounded(1);
-        let job_state = Arc::clone(&state);
-        rayon::spawn(move || {
-            if job_state
-                .compare_exchange(WAITING, STARTED, Ordering::AcqRel, Ordering::Acquire)
-                .is_ok()
-            {
-                let _ = send.send(vectors_of_found(&h, hnorm, want_left, &found));
-            }
-        });
-        Helper { state, results }
-    }
-
-    /// The helper's vectors: none if it never started (the caller did them all), and none if it
-    /// died (inverse iteration returns `None` rather than panic; its roots would then have no
-    /// vectors and the caller falls back to faer).
-    fn finish(self) -> Vec<(usize, Option<RootVectors>)> {
-        match self
-            .state
-            .compare_exchange(WAITING, CALLED_OFF, Ordering::AcqRel, Ordering::Acquire)
-        {
-            Ok(_) => Vec::new(),
-            Err(_) => self.results.recv().unwrap_or_default(),
-        }
-    }
 }
 
 #[cfg(test)]

@@ -9,6 +9,7 @@
 //! that mode labelling and tracking share ([`hungarian`]). Nothing here depends on the rest of
 //! the crate but its error type.
 
+mod alongside;
 mod assignment;
 pub(crate) mod balance;
 pub mod banded;
@@ -26,6 +27,7 @@ pub mod phi_functions;
 pub mod root;
 mod roots;
 
+pub(crate) use alongside::alongside;
 pub use assignment::hungarian;
 pub use eigen::{decompose, eigen_decomposition};
 pub use roots::{shares, Roots, Solver};

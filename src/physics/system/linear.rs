@@ -4,6 +4,7 @@ use super::{check_finite, StripScratch, System};
 use crate::error::{Error, Result};
 use crate::physics::aero::{LOADS, RATES};
 use crate::physics::structure::Structure;
+use faer::linalg::solvers::Solve;
 use nalgebra::{DMatrix, DVector};
 use std::sync::Arc;
 
@@ -147,25 +148,42 @@ impl System {
                 }
             }
         }
-        let mut response = DMatrix::zeros(m, inputs);
+        // Each block answers only the inputs its modes feel (its blade's coordinates and lag
+        // states and the hub's) and moves only the accelerations and its blade's lag rates:
+        // solved and multiplied on those alone (a turbine's three blocks touch a third each).
+        let inertial = &self.mass_inv * &qk_p;
         for block in blocks.members() {
-            let sub = qr_p.select_rows(&block).select_columns(&block);
-            let solved = sub.lu().solve(&qr.select_rows(&block)).ok_or_else(|| {
-                Error::numerical(
+            let inputs_felt: Vec<usize> = (0..inputs)
+                .filter(|&c| block.iter().any(|&r| qr[(r, c)] != 0.0))
+                .collect();
+            let lags_moved: Vec<usize> = (0..na)
+                .filter(|&l| block.iter().any(|&r| g_p[(l, r)] != 0.0))
+                .collect();
+            let b = block.len();
+            let lu = faer::Mat::from_fn(b, b, |i, j| qr_p[(block[i], block[j])]).partial_piv_lu();
+            if lu.U().diagonal().column_vector().iter().any(|&u| u == 0.0) {
+                return Err(Error::numerical(
                     "the left-out modes' quasi-static response: their stiffness less the air's \
                      is singular",
-                )
-            })?;
-            for (k, &i) in block.iter().enumerate() {
-                response.row_mut(i).copy_from(&solved.row(k));
+                ));
             }
-        }
-        let loads = &self.mass_inv * (&qk_p * &response);
-        let mut accelerations = a.view_mut((nq, 0), (nq, inputs));
-        accelerations += loads;
-        if na > 0 {
-            let mut rates = a.view_mut((2 * nq, 0), (na, inputs));
-            rates += &g_p * &response;
+            let response = lu.solve(faer::Mat::from_fn(b, inputs_felt.len(), |i, k| {
+                qr[(block[i], inputs_felt[k])]
+            }));
+            let moves =
+                faer::Mat::from_fn(nq + lags_moved.len(), b, |i, j| match i.checked_sub(nq) {
+                    None => inertial[(i, block[j])],
+                    Some(l) => g_p[(lags_moved[l], block[j])],
+                });
+            let added = moves * response;
+            for (k, &c) in inputs_felt.iter().enumerate() {
+                for i in 0..nq {
+                    a[(nq + i, c)] += added[(i, k)];
+                }
+                for (l, &lag) in lags_moved.iter().enumerate() {
+                    a[(2 * nq + lag, c)] += added[(nq + l, k)];
+                }
+            }
         }
         Ok(())
     }

@@ -16,6 +16,7 @@ pub mod tower;
 pub mod tower_beam;
 
 use crate::error::{Error, Result};
+use crate::numeric::alongside;
 use crate::numeric::mbc::MultiBlade;
 use crate::physics::structure::Structure;
 use crate::physics::system::{LinearSystem, System};
@@ -33,10 +34,18 @@ pub fn rotor_system(
     x_eq: &DVector<f64>,
     inputs: &RotorInputs,
 ) -> Result<LinearSystem> {
-    let at = rotating_system(blade, x_eq, inputs, 0.0)?;
+    let rotor = rotor_of(blade, x_eq, inputs, 0.0)?;
+    // The names' reference (the rotor in vacuo) needs the rotor alone: it is built while the
+    // strips are linearised.
+    let in_vacuo = Arc::clone(&rotor);
+    let omega = inputs.rotor_speed;
+    let (at, ground) = alongside(
+        || linearised_on(blade, x_eq, inputs, rotor),
+        move || GroundRotor::new(&in_vacuo, omega),
+    );
+    let (at, ground) = (at?, ground?);
     let a = at.layout.transform(&at.system.a, 0.0, inputs.rotor_speed)?;
     let x_eq = at.layout.to_ground(0.0, inputs.rotor_speed) * &at.system.x_eq;
-    let ground = GroundRotor::new(&at.rotor, inputs.rotor_speed)?;
     let view = ground.blade_view();
     let [tip_twist, tip_flap] = view.tip.at(0.0);
     Ok(LinearSystem {
@@ -70,7 +79,18 @@ pub fn rotating_system(
     inputs: &RotorInputs,
     azimuth: f64,
 ) -> Result<RotatingSystem> {
-    let k = blade.nq();
+    let rotor = rotor_of(blade, x_eq, inputs, azimuth)?;
+    linearised_on(blade, x_eq, inputs, rotor)
+}
+
+/// The rotor of `inputs` made of `blade`'s structure, its blades at the equilibrium `x_eq`,
+/// blade 0 at `azimuth` (rad).
+fn rotor_of(
+    blade: &System,
+    x_eq: &DVector<f64>,
+    inputs: &RotorInputs,
+    azimuth: f64,
+) -> Result<Arc<Rotor>> {
     if x_eq.len() != blade.dim() {
         return Err(Error::numerical(format!(
             "rotor: the blade's equilibrium has {} states, the blade {}",
@@ -78,11 +98,27 @@ pub fn rotating_system(
             blade.dim()
         )));
     }
+    let q_eq = x_eq.rows(0, blade.nq()).into_owned();
+    Ok(Arc::new(Rotor::new(
+        blade.structure_arc(),
+        inputs,
+        &q_eq,
+        azimuth,
+    )?))
+}
+
+/// [`rotating_system`] on the `rotor` built for it ([`rotor_of`]).
+fn linearised_on(
+    blade: &System,
+    x_eq: &DVector<f64>,
+    inputs: &RotorInputs,
+    rotor: Arc<Rotor>,
+) -> Result<RotatingSystem> {
+    let k = blade.nq();
     let n_blades = inputs.blades;
     let left_out = blade.left_out_response(x_eq);
     let q_eq = x_eq.rows(0, k).into_owned();
     let z_eq = x_eq.rows(2 * k, blade.n_aero()).into_owned();
-    let rotor = Arc::new(Rotor::new(blade.structure_arc(), inputs, &q_eq, azimuth)?);
     let mut system = blade.on_rotor(Arc::clone(&rotor) as _, n_blades)?;
     if let Some(p) = left_out {
         system = system.with_left_out_at(&repeated(&p, n_blades));
