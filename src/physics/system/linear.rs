@@ -4,7 +4,6 @@ use super::{check_finite, StripScratch, System};
 use crate::error::{Error, Result};
 use crate::physics::aero::{LOADS, RATES};
 use crate::physics::structure::Structure;
-use faer::linalg::solvers::Solve;
 use nalgebra::{DMatrix, DVector};
 use std::sync::Arc;
 
@@ -160,18 +159,20 @@ impl System {
                 .filter(|&l| block.iter().any(|&r| g_p[(l, r)] != 0.0))
                 .collect();
             let b = block.len();
-            let lu = faer::Mat::from_fn(b, b, |i, j| qr_p[(block[i], block[j])]).partial_piv_lu();
-            if lu.U().diagonal().column_vector().iter().any(|&u| u == 0.0) {
-                return Err(Error::numerical(
-                    "the left-out modes' quasi-static response: their stiffness less the air's \
-                     is singular",
-                ));
-            }
-            let response = lu.solve(faer::Mat::from_fn(b, inputs_felt.len(), |i, k| {
-                qr[(block[i], inputs_felt[k])]
-            }));
+            let rhs = DMatrix::from_fn(b, inputs_felt.len(), |i, k| qr[(block[i], inputs_felt[k])]);
+            let response = qr_p
+                .select_rows(&block)
+                .select_columns(&block)
+                .lu()
+                .solve(&rhs)
+                .ok_or_else(|| {
+                    Error::numerical(
+                        "the left-out modes' quasi-static response: their stiffness less the \
+                         air's is singular",
+                    )
+                })?;
             let moves =
-                faer::Mat::from_fn(nq + lags_moved.len(), b, |i, j| match i.checked_sub(nq) {
+                DMatrix::from_fn(nq + lags_moved.len(), b, |i, j| match i.checked_sub(nq) {
                     None => inertial[(i, block[j])],
                     Some(l) => g_p[(lags_moved[l], block[j])],
                 });
