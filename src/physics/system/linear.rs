@@ -111,6 +111,7 @@ impl System {
         let mut qk_p = DMatrix::zeros(nq, m);
         let mut g_p = DMatrix::zeros(na, m);
         let mut blocks = Blocks::new(m);
+        let mut groups: Vec<StationGroup> = Vec::new();
         let (q, v, z) = self.split(x);
         let mut scratch = StripScratch::new(ns);
         for (si, s) in self.stations.iter().enumerate() {
@@ -123,20 +124,31 @@ impl System {
                 std::array::from_fn(|l| std::array::from_fn(|j| w * eval.dloads_dk[l][j + offset]))
             };
             let (position, rate) = (d(0), d(RATES));
-            // L D (each left-out mode's load per unit of each rate), R D likewise.
-            let (left_position, left_rate) = (left.times(&position), left.times(&rate));
-            let rows_position = rows.times(&position);
-            for (k, &c) in rows.entries.iter().enumerate() {
-                for (i, &r) in left.entries.iter().enumerate() {
-                    qr[(r, c)] += dot3(&left_position[i], &rows.values[k]);
-                    qr[(r, nq + c)] += dot3(&left_rate[i], &rows.values[k]);
-                    qk_p[(c, r)] += dot3(&rows_position[k], &left.values[i]);
+            // L D (each left-out mode's load per unit of each rate), R D likewise: stacked with
+            // the other stations of the same entries, multiplied out once per group below.
+            let group = match groups
+                .iter()
+                .position(|g| g.left == left.entries && g.rows == rows.entries)
+            {
+                Some(g) => g,
+                None => {
+                    groups.push(StationGroup::new(
+                        left.entries.clone(),
+                        rows.entries.clone(),
+                    ));
+                    groups.len() - 1
                 }
-            }
-            for (k, &c) in left.entries.iter().enumerate() {
-                for (i, &r) in left.entries.iter().enumerate() {
-                    qr_p[(r, c)] -= dot3(&left_position[i], &left.values[k]);
-                }
+            };
+            let g = &mut groups[group];
+            for j in 0..RATES {
+                g.left_position
+                    .extend(left.values.iter().map(|v| lp(v, &position, j)));
+                g.left_rate
+                    .extend(left.values.iter().map(|v| lp(v, &rate, j)));
+                g.left_values.extend(left.values.iter().map(|v| v[j]));
+                g.rows_position
+                    .extend(rows.values.iter().map(|v| lp(v, &position, j)));
+                g.rows_values.extend(rows.values.iter().map(|v| v[j]));
             }
             for lag in 0..ns {
                 let dz: [f64; LOADS] = std::array::from_fn(|l| w * eval.dloads_dz[l][lag]);
@@ -144,6 +156,25 @@ impl System {
                 for (i, &r) in left.entries.iter().enumerate() {
                     qr[(r, 2 * nq + si * ns + lag)] += dot3(&left.values[i], &dz);
                     g_p[(si * ns + lag, r)] += dot3(&left.values[i], &dzdot);
+                }
+            }
+        }
+        for g in &groups {
+            let [left_position, left_rate, left_values, rows_position, rows_values] = g.matrices();
+            let by_rows = |l: &DMatrix<f64>| l * rows_values.transpose();
+            let (position_terms, rate_terms) = (by_rows(&left_position), by_rows(&left_rate));
+            let hub_terms = rows_position * left_values.transpose();
+            let own_terms = left_position * left_values.transpose();
+            for (k, &c) in g.rows.iter().enumerate() {
+                for (i, &r) in g.left.iter().enumerate() {
+                    qr[(r, c)] += position_terms[(i, k)];
+                    qr[(r, nq + c)] += rate_terms[(i, k)];
+                    qk_p[(c, r)] += hub_terms[(k, i)];
+                }
+            }
+            for (k, &c) in g.left.iter().enumerate() {
+                for (i, &r) in g.left.iter().enumerate() {
+                    qr_p[(r, c)] -= own_terms[(i, k)];
                 }
             }
         }
@@ -261,13 +292,52 @@ impl Gathered {
             .collect();
         Gathered { entries, values }
     }
+}
 
-    /// Each entry's values times `d` (the rows as the columns of a matrix, times `d`).
-    fn times(&self, d: &[[f64; RATES]; LOADS]) -> Vec<[f64; RATES]> {
-        self.values
-            .iter()
-            .map(|v| std::array::from_fn(|j| (0..LOADS).map(|l| v[l] * d[l][j]).sum()))
-            .collect()
+/// Column `j` of `v D`: the load per unit of rate `j` through derivatives `d`.
+fn lp(v: &[f64; RATES], d: &[[f64; RATES]; LOADS], j: usize) -> f64 {
+    (0..LOADS).map(|l| v[l] * d[l][j]).sum()
+}
+
+/// Stations whose left-out rows and kinematic rows have the same nonzero entries (a blade's
+/// stations, on a rotor each blade's): their rank-3 terms stacked side by side, three columns a
+/// station, so that `Σ L D Rᵀ` over them is one matrix product.
+struct StationGroup {
+    left: Vec<usize>,
+    rows: Vec<usize>,
+    left_position: Vec<f64>,
+    left_rate: Vec<f64>,
+    left_values: Vec<f64>,
+    rows_position: Vec<f64>,
+    rows_values: Vec<f64>,
+}
+
+impl StationGroup {
+    fn new(left: Vec<usize>, rows: Vec<usize>) -> StationGroup {
+        StationGroup {
+            left,
+            rows,
+            left_position: Vec::new(),
+            left_rate: Vec::new(),
+            left_values: Vec::new(),
+            rows_position: Vec::new(),
+            rows_values: Vec::new(),
+        }
+    }
+
+    /// `L D_position`, `L D_rate`, `L`, `R D_position`, `R`, each entries × (3 × stations).
+    fn matrices(&self) -> [DMatrix<f64>; 5] {
+        let (nl, nr) = (self.left.len(), self.rows.len());
+        let on = |entries: usize, values: &[f64]| {
+            DMatrix::from_column_slice(entries, values.len() / entries.max(1), values)
+        };
+        [
+            on(nl, &self.left_position),
+            on(nl, &self.left_rate),
+            on(nl, &self.left_values),
+            on(nr, &self.rows_position),
+            on(nr, &self.rows_values),
+        ]
     }
 }
 
