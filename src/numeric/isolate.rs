@@ -164,8 +164,40 @@ impl Isolation {
 }
 
 /// LU factors P(B − λI) = LU for one isolated λ: faer's partial pivoting (blocked: on the
-/// turbine's 263-state active block a quarter of the time of nalgebra's unblocked one).
-type Factors = faer::linalg::solvers::PartialPivLu<f64>;
+/// turbine's 263-state active block a quarter of the time of nalgebra's unblocked one), on this
+/// thread. faer's `partial_piv_lu` runs on its global parallelism, rayon's whole pool, and so
+/// took 2.3 ms against about 0.6 ms for the turbine's block on a loaded 2-core machine.
+struct Factors {
+    /// L below the diagonal (unit diagonal implied), U on and above it.
+    lu: faer::Mat<f64>,
+    /// Row i of P(B − λI) is row `from[i]` of B − λI.
+    from: Vec<usize>,
+}
+
+impl Factors {
+    fn of(mut lu: faer::Mat<f64>) -> Factors {
+        use faer::dyn_stack::{MemBuffer, MemStack};
+        use faer::linalg::lu::partial_pivoting::factor::{lu_in_place, lu_in_place_scratch};
+        let m = lu.nrows();
+        let (mut from, mut to) = (vec![0usize; m], vec![0usize; m]);
+        let par = faer::Par::Seq;
+        let mut scratch = MemBuffer::new(lu_in_place_scratch::<usize, f64>(
+            m,
+            m,
+            par,
+            Default::default(),
+        ));
+        lu_in_place(
+            lu.as_mut(),
+            &mut from,
+            &mut to,
+            par,
+            MemStack::new(&mut scratch),
+            Default::default(),
+        );
+        Factors { lu, from }
+    }
+}
 
 /// The triangular and LU solves of [`Isolation::roots`] on the permuted matrix C = PᵀAP, in
 /// place on a full permuted vector x (right: (C − λI)x = 0 row by row) or w (left:
@@ -260,14 +292,12 @@ impl Substitution<'_> {
                 let b = faer::Mat::<f64>::from_fn(m, m, |i, j| {
                     self.c[(lo + i, lo + j)] - if i == j { lambda } else { 0.0 }
                 });
-                self.lu.push((lambda, b.partial_piv_lu()));
+                self.lu.push((lambda, Factors::of(b)));
                 self.lu.len() - 1
             }
         };
         let factors = &self.lu[k].1;
-        let (l, u) = (factors.L(), factors.U());
-        // Row i of P(B − λI) is row `from[i]` of B − λI.
-        let from = factors.P().arrays().0;
+        let (l, u, from) = (&factors.lu, &factors.lu, &factors.from);
         let one = Complex::new(1.0, 0.0);
         if transposed {
             // (B − λI)ᵀ = UᵀLᵀP: Uᵀz = r forward, Lᵀy' = z backward (unit), y = P⁻¹y'.
