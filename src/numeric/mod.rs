@@ -6,8 +6,9 @@
 //! used for the strong-form natural modes), banded symmetric matrices and the lowest eigenpairs
 //! of a banded pencil by shift-invert block Lanczos (the tabulated blade's modes), the
 //! multi-blade coordinate transform of a rotor's states ([`mbc`]), and the optimal assignment
-//! that mode labelling and tracking share ([`hungarian`]). Nothing here depends on the rest of
-//! the crate but its error type.
+//! that mode labelling and tracking share ([`hungarian`]), and the running of a solve's two
+//! independent pieces on two cores (`alongside.rs`). Nothing here depends on the rest of the
+//! crate but its error type.
 
 mod alongside;
 mod assignment;
