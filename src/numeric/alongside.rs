@@ -44,7 +44,7 @@ fn take<F>(slot: &Mutex<Option<F>>) -> Option<F> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
     #[test]
@@ -53,10 +53,9 @@ mod tests {
         assert_eq!((a, b.as_str()), (4, "four"));
     }
 
-    /// With every worker held, the job cannot start: the caller runs the second piece itself
-    /// instead of waiting (the explorer's key press while a Campbell diagram fills the pool).
-    #[test]
-    fn a_busy_pool_leaves_both_pieces_to_the_caller() {
+    /// Holds every worker of rayon's pool until the returned sender is dropped (a Campbell
+    /// diagram filling the pool), once each has started.
+    pub(crate) fn every_worker_held() -> crossbeam_channel::Sender<()> {
         let (release, hold) = crossbeam_channel::unbounded::<()>();
         let (busy, all_busy) = crossbeam_channel::unbounded::<()>();
         for _ in 0..rayon::current_num_threads() {
@@ -69,6 +68,14 @@ mod tests {
         for _ in 0..rayon::current_num_threads() {
             all_busy.recv().unwrap();
         }
+        release
+    }
+
+    /// With every worker held, the job cannot start: the caller runs the second piece itself
+    /// instead of waiting (the explorer's key press while a Campbell diagram fills the pool).
+    #[test]
+    fn a_busy_pool_leaves_both_pieces_to_the_caller() {
+        let release = every_worker_held();
         let caller = std::thread::current().id();
         let (done, answer) = crossbeam_channel::bounded(1);
         std::thread::spawn(move || {

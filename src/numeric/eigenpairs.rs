@@ -116,6 +116,7 @@ fn vectors_of_found(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::numeric::alongside::tests::every_worker_held;
     use crate::numeric::inverse_iteration::tests::clustered;
 
     /// Clusters of repeated roots (streamed, then computed again) beside distinct ones: the
@@ -149,23 +150,12 @@ mod tests {
     }
 
     /// With every thread of the pool busy, the helper cannot start: the caller does every root
-    /// itself and calls the helper off instead of waiting for it (the explorer's key press while a
-    /// Campbell diagram fills the pool).
+    /// itself and then runs the helper's piece on an empty queue instead of waiting for it (the
+    /// explorer's key press while a Campbell diagram fills the pool).
     #[test]
     fn a_busy_pool_costs_the_overlap_not_the_answer() {
         let (h, hnorm, values, sequential) = clustered_with_one_pass();
-        let (release, hold) = crossbeam_channel::unbounded::<()>();
-        let (busy, all_busy) = crossbeam_channel::unbounded::<()>();
-        for _ in 0..rayon::current_num_threads() {
-            let (hold, busy) = (hold.clone(), busy.clone());
-            rayon::spawn(move || {
-                let _ = busy.send(());
-                let _ = hold.recv();
-            });
-        }
-        for _ in 0..rayon::current_num_threads() {
-            all_busy.recv().unwrap();
-        }
+        let release = every_worker_held();
         let (done, result) = crossbeam_channel::bounded(1);
         let h_owned = h.clone();
         std::thread::spawn(move || {

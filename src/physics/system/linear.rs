@@ -97,7 +97,8 @@ impl System {
     /// Each station moves few of the coordinates and few of the left-out modes (a rotor's
     /// station its own blade's), so its terms are formed on those alone: the rank-3 products
     /// `L D Rᵀ` of its left-out rows `L`, load derivatives `D` and kinematic rows `R`, gathered
-    /// on their nonzero entries. The left-out modes that no station couples (another blade's)
+    /// on their nonzero entries and summed over the stations that share them ([`StationGroup`])
+    /// by one matrix product. The left-out modes that no station couples (another blade's)
     /// answer apart: `Λ − ∂Q_R/∂p` is solved block by block.
     fn condense_left_out(&self, x: &DVector<f64>, a: &mut DMatrix<f64>) -> Result<()> {
         let Some(left_out) = self.left_out.as_deref() else {
