@@ -312,7 +312,13 @@ impl Outline {
         // The window may run across s = 0: look at the contour shifted by a whole turn too.
         for shift in [-1.0, 0.0, 1.0] {
             let (lo, hi) = (s - half - shift, s + half - shift);
-            for i in 0..self.points.len() - 1 {
+            // Only the segments that reach into the window add to the sum.
+            let first = self.arc.partition_point(|&a| a <= lo).saturating_sub(1);
+            let last = self
+                .arc
+                .partition_point(|&a| a < hi)
+                .min(self.points.len() - 1);
+            for i in first..last {
                 let overlap = self.arc[i + 1].min(hi) - self.arc[i].max(lo);
                 if overlap > 0.0 {
                     let t = self.tangent(i);

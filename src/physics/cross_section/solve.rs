@@ -30,11 +30,13 @@ use super::material::section_stiffness;
 use super::mesh::Mesh;
 use crate::error::{Error, Result};
 use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::perm::PermRef;
+use faer::sparse::linalg::amd;
 use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, CholeskySymbolicParams, SymbolicCholesky, SymmetricOrdering,
 };
 use faer::sparse::linalg::SupernodalThreshold;
-use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Conj, Mat, Par, Side};
 use nalgebra::{Matrix6, SMatrix, Vector6};
 use std::sync::Arc;
@@ -256,31 +258,35 @@ fn scatter(out: &mut [f64], nodes: &[usize; 4], add: &Vec12) {
     }
 }
 
-/// The sparsity of the warping matrix `E` on the free components (lower triangle, by columns)
-/// and where each element's entries go in it: built from which nodes share an element, so the
-/// matrix is assembled in place rather than from sorted triplets.
+/// The sparsity of the warping matrix `E` on the free components (lower triangle, by columns):
+/// built from which nodes share an element, so the matrix is assembled in place rather than
+/// from sorted triplets.
+#[derive(Debug)]
 struct Pattern {
     col_ptr: Vec<usize>,
     row_idx: Vec<usize>,
-    /// For element `k`, `slots[k][i * 12 + j]` is the value index of the entry that the
-    /// element's components `i` and `j` make, when `i`'s free index is at or below `j`'s in the
-    /// matrix (else, or for a held component, `usize::MAX`).
-    slots: Vec<[usize; 144]>,
+    /// Each warping component's free index (`usize::MAX` where held).
+    free: Vec<usize>,
+    /// For each node, the number of free components before its first: where its rows start.
+    first_free: Vec<usize>,
 }
 
 impl Pattern {
-    fn new(quads: &[Quad], nodes: usize, free: &[usize], nfree: usize) -> Pattern {
-        // Each node's neighbours (itself included), sorted.
-        let mut near: Vec<Vec<usize>> = vec![Vec::with_capacity(9); nodes];
-        for q in quads {
-            for &a in &q.nodes {
-                near[a].extend_from_slice(&q.nodes);
+    fn new(near: &[Vec<usize>], pinned: &[usize; 6]) -> Pattern {
+        let nodes = near.len();
+        let mut free = vec![0usize; 3 * nodes];
+        let mut nfree = 0;
+        for (k, f) in free.iter_mut().enumerate() {
+            if pinned.contains(&k) {
+                *f = usize::MAX;
+            } else {
+                *f = nfree;
+                nfree += 1;
             }
         }
-        for list in &mut near {
-            list.sort_unstable();
-            list.dedup();
-        }
+        let first_free = (0..nodes)
+            .map(|a| 3 * a - pinned.iter().filter(|&&k| k < 3 * a).count())
+            .collect();
         // Column f (a free component of node a) holds the free components of a's neighbours
         // at or below it; free indices grow with the component index, so they come sorted.
         let mut col_ptr = Vec::with_capacity(nfree + 1);
@@ -300,32 +306,98 @@ impl Pattern {
             }
             col_ptr.push(row_idx.len());
         }
-        let slots = quads
-            .iter()
-            .map(|q| {
-                let mut s = [usize::MAX; 144];
-                let dof = |i: usize| free[3 * q.nodes[i / 3] + i % 3];
-                for i in 0..12 {
-                    for j in 0..12 {
-                        let (fi, fj) = (dof(i), dof(j));
-                        if fi == usize::MAX || fj == usize::MAX || fi < fj {
-                            continue;
-                        }
-                        let rows = &row_idx[col_ptr[fj]..col_ptr[fj + 1]];
-                        if let Ok(at) = rows.binary_search(&fi) {
-                            s[i * 12 + j] = col_ptr[fj] + at;
-                        }
-                    }
-                }
-                s
-            })
-            .collect();
         Pattern {
             col_ptr,
             row_idx,
-            slots,
+            free,
+            first_free,
         }
     }
+
+    fn len(&self) -> usize {
+        self.col_ptr.len() - 1
+    }
+
+    /// Where an element's entries go: `slots[i * 12 + j]` is the value index of the entry that
+    /// its components `i` and `j` make, when `i`'s free index is at or below `j`'s in the
+    /// matrix (else, or for a held component, `usize::MAX`). In a column a node's rows are
+    /// contiguous, so one search finds each node's block.
+    fn slots(&self, nodes: &[usize; 4]) -> [usize; 144] {
+        let mut s = [usize::MAX; 144];
+        for j in 0..12 {
+            let f = self.free[3 * nodes[j / 3] + j % 3];
+            if f == usize::MAX {
+                continue;
+            }
+            let start = self.col_ptr[f];
+            let rows = &self.row_idx[start..self.col_ptr[f + 1]];
+            for (ai, &a) in nodes.iter().enumerate() {
+                let mut at = start + rows.partition_point(|&r| r < self.first_free[a].max(f));
+                for c in 0..3 {
+                    let r = self.free[3 * a + c];
+                    if r == usize::MAX || r < f {
+                        continue;
+                    }
+                    s[(3 * ai + c) * 12 + j] = at;
+                    at += 1;
+                }
+            }
+        }
+        s
+    }
+}
+
+/// Each node's neighbours (itself included), sorted: the nodes it shares an element with.
+fn node_graph(elements: &[[usize; 4]], nodes: usize) -> Vec<Vec<usize>> {
+    let mut near: Vec<Vec<usize>> = vec![Vec::with_capacity(9); nodes];
+    for e in elements {
+        for &a in e {
+            near[a].extend_from_slice(e);
+        }
+    }
+    for list in &mut near {
+        list.sort_unstable();
+        list.dedup();
+    }
+    near
+}
+
+/// The fill-reducing order of the free warping components (forward and inverse): the
+/// approximate minimum degree order of the nodes, each node's components kept together. A
+/// node's three components couple to the same neighbours, so ordering the node graph gives
+/// the order of the component graph at a third of its size (and keeps each node's components
+/// in one supernode).
+fn fill_reducing_order(near: &[Vec<usize>], pattern: &Pattern) -> Result<(Vec<usize>, Vec<usize>)> {
+    let n = near.len();
+    let mut col_ptr = Vec::with_capacity(n + 1);
+    col_ptr.push(0);
+    for list in near {
+        col_ptr.push(col_ptr.last().unwrap_or(&0) + list.len());
+    }
+    let row_idx: Vec<usize> = near.iter().flatten().copied().collect();
+    let graph = SymbolicSparseColMatRef::new_checked(n, n, &col_ptr, None, &row_idx);
+    let (mut order, mut inverse) = (vec![0usize; n], vec![0usize; n]);
+    amd::order(
+        &mut order,
+        &mut inverse,
+        graph,
+        amd::Control::default(),
+        MemStack::new(&mut MemBuffer::new(amd::order_scratch::<usize>(
+            n,
+            row_idx.len(),
+        ))),
+    )
+    .map_err(|err| Error::numerical(format!("cross-section: no node order ({err:?})")))?;
+    let forward: Vec<usize> = order
+        .iter()
+        .flat_map(|&a| (0..3).map(move |c| pattern.free[3 * a + c]))
+        .filter(|&f| f != usize::MAX)
+        .collect();
+    let mut inverse = vec![0usize; forward.len()];
+    for (k, &f) in forward.iter().enumerate() {
+        inverse[f] = k;
+    }
+    Ok((forward, inverse))
 }
 
 /// Six warping components held at zero to take out the rigid motions: both in-plane components
@@ -370,6 +442,7 @@ fn pins(nodes: &[[f64; 2]], first: usize) -> Result<[usize; 6]> {
 /// nodes and elements with other plies (the fibres turned) reuses it ([`analyse_reusing`]).
 #[derive(Debug, Clone)]
 pub struct Factorisation {
+    pattern: Arc<Pattern>,
     symbolic: Arc<SymbolicCholesky<usize>>,
     /// What it was made for: the node count, each element's nodes and the held warping
     /// components (which follow from the nodes' positions).
@@ -385,6 +458,37 @@ impl PartialEq for Factorisation {
 }
 
 impl Factorisation {
+    /// The pattern and symbolic factorisation of `mesh`'s warping matrix with `pinned` held.
+    fn new(mesh: &Mesh, pinned: [usize; 6]) -> Result<Factorisation> {
+        let elements: Vec<[usize; 4]> = mesh.elements.iter().map(|e| e.nodes).collect();
+        let near = node_graph(&elements, mesh.nodes.len());
+        let pattern = Pattern::new(&near, &pinned);
+        let (forward, inverse) = fill_reducing_order(&near, &pattern)?;
+        let n = pattern.len();
+        let structure =
+            SymbolicSparseColMatRef::new_checked(n, n, &pattern.col_ptr, None, &pattern.row_idx);
+        let symbolic = factorize_symbolic_cholesky(
+            structure,
+            Side::Lower,
+            SymmetricOrdering::Custom(PermRef::new_checked(&forward, &inverse, n)),
+            CholeskySymbolicParams {
+                // Supernodal: on these meshes faster than the simplicial factor faer picks.
+                supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+                ..Default::default()
+            },
+        )
+        .map_err(|err| {
+            Error::numerical(format!("cross-section: no factorisation pattern ({err:?})"))
+        })?;
+        Ok(Factorisation {
+            pattern: Arc::new(pattern),
+            symbolic: Arc::new(symbolic),
+            nodes: mesh.nodes.len(),
+            elements: Arc::new(elements),
+            pinned,
+        })
+    }
+
     /// Whether it was made for `mesh`'s nodes and elements, with these warping components held.
     fn fits(&self, mesh: &Mesh, pinned: &[usize; 6]) -> bool {
         self.pinned == *pinned
@@ -430,65 +534,52 @@ pub(crate) fn analyse_pinned(
     let quads = quads(mesh, reference)?;
     let ndof = 3 * mesh.nodes.len();
     let pinned = pins(&mesh.nodes, first.min(mesh.nodes.len() - 1))?;
-    let mut free = vec![0usize; ndof];
-    let mut nfree = 0;
-    for (k, f) in free.iter_mut().enumerate() {
-        if pinned.contains(&k) {
-            *f = usize::MAX;
-        } else {
-            *f = nfree;
-            nfree += 1;
-        }
-    }
-    let pattern = Pattern::new(&quads, mesh.nodes.len(), &free, nfree);
+    let factorisation = match reuse.filter(|f| f.fits(mesh, &pinned)) {
+        Some(f) => f.clone(),
+        None => Factorisation::new(mesh, pinned)?,
+    };
+    let pattern = &*factorisation.pattern;
+    let (free, nfree) = (&pattern.free, pattern.len());
 
-    // E (sparse, free components, lower triangle), R (dense columns), 𝒜 and the mass.
+    // E (sparse, free components, lower triangle), R (dense columns), 𝒜 and the mass, each
+    // element's part summed over its Gauss points before it goes to its slots.
     let mut values = vec![0.0; pattern.row_idx.len()];
     let mut r = vec![[0.0; 6]; ndof];
     let mut a6 = Matrix6::zeros();
     let mut mass = Matrix6::zeros();
-    for (quad, slots) in quads.iter().zip(&pattern.slots) {
+    for quad in &quads {
         let q = &quad.q;
+        let mut ke = [[0.0; 12]; 12];
+        let mut re = [[0.0; 6]; 12];
         for p in &quad.points {
-            // Q times B's columns, and Q times S_zZ's: each a sum of at most two of Q's columns.
-            let mut qb = [Vector6::<f64>::zeros(); 12];
-            let mut rows = [[(0usize, 0.0); 2]; 12];
-            for i in 0..12 {
-                let (a, c) = (i / 3, i % 3);
-                rows[i] = b_rows(c, p.dx[a], p.dy[a]);
-                let [(r1, v1), (r2, v2)] = rows[i];
-                qb[i] = q.column(r1) * v1 + q.column(r2) * v2;
+            // Q B and Q S_zZ by rows, weighted: B's column for a node's component has two
+            // nonzero rows, so each is a sum of two of Q's columns; by rows, the products with
+            // Bᵀ below run along contiguous memory.
+            let mut qb = [[0.0; 12]; 6];
+            for a in 0..4 {
+                let (dx, dy) = (p.dx[a] * p.w, p.dy[a] * p.w);
+                for (r, row) in qb.iter_mut().enumerate() {
+                    row[3 * a] = q[(r, 0)] * dx + q[(r, 5)] * dy;
+                    row[3 * a + 1] = q[(r, 1)] * dy + q[(r, 5)] * dx;
+                    row[3 * a + 2] = q[(r, 3)] * dy + q[(r, 4)] * dx;
+                }
             }
             let (x, y) = (p.x, p.y);
-            let qz = [
-                q.column(4).into_owned(),
-                q.column(3).into_owned(),
-                q.column(2).into_owned(),
-                q.column(2) * y,
-                q.column(2) * -x,
-                q.column(3) * x - q.column(4) * y,
-            ];
+            let qz: [[f64; 6]; 6] = std::array::from_fn(|r| {
+                let (q2, q3, q4) = (q[(r, 2)] * p.w, q[(r, 3)] * p.w, q[(r, 4)] * p.w);
+                [q4, q3, q2, q2 * y, -q2 * x, q3 * x - q4 * y]
+            });
             for i in 0..12 {
-                let [(r1, v1), (r2, v2)] = rows[i];
-                for j in 0..=i {
-                    // The pair lands below the diagonal in one order; in both when the two are
-                    // one component (a triangle's repeated node).
-                    let (below, above) = (slots[i * 12 + j], slots[j * 12 + i]);
-                    let v = (v1 * qb[j][r1] + v2 * qb[j][r2]) * p.w;
-                    if below != usize::MAX {
-                        values[below] += v;
-                    }
-                    if i != j && above != usize::MAX {
-                        values[above] += v;
-                    }
+                let [(r1, v1), (r2, v2)] = b_rows(i % 3, p.dx[i / 3], p.dy[i / 3]);
+                for j in 0..12 {
+                    ke[i][j] += v1 * qb[r1][j] + v2 * qb[r2][j];
                 }
-                let g = 3 * quad.nodes[i / 3] + i % 3;
-                for (c, qzc) in qz.iter().enumerate() {
-                    r[g][c] += (v1 * qzc[r1] + v2 * qzc[r2]) * p.w;
+                for c in 0..6 {
+                    re[i][c] += v1 * qz[r1][c] + v2 * qz[r2][c];
                 }
             }
-            for (c, qzc) in qz.iter().enumerate() {
-                let col = p.zt(qzc) * p.w;
+            for c in 0..6 {
+                let col = p.zt(&Vector6::from_fn(|r, _| qz[r][c]));
                 for k in 0..6 {
                     a6[(k, c)] += col[k];
                 }
@@ -504,6 +595,24 @@ pub(crate) fn analyse_pinned(
             mass[(3, 4)] -= m * x * y;
             mass[(5, 5)] += m * (x * x + y * y);
         }
+        let slots = pattern.slots(&quad.nodes);
+        for i in 0..12 {
+            for j in 0..=i {
+                // The pair lands below the diagonal in one order; in both when the two are one
+                // component (a triangle's repeated node).
+                let (below, above) = (slots[i * 12 + j], slots[j * 12 + i]);
+                if below != usize::MAX {
+                    values[below] += ke[i][j];
+                }
+                if i != j && above != usize::MAX {
+                    values[above] += ke[i][j];
+                }
+            }
+            let g = 3 * quad.nodes[i / 3] + i % 3;
+            for c in 0..6 {
+                r[g][c] += re[i][c];
+            }
+        }
     }
     mass[(1, 1)] = mass[(0, 0)];
     mass[(2, 2)] = mass[(0, 0)];
@@ -513,35 +622,19 @@ pub(crate) fn analyse_pinned(
         }
     }
 
-    let structure =
-        SymbolicSparseColMat::new_checked(nfree, nfree, pattern.col_ptr, None, pattern.row_idx);
-    let e = SparseColMatRef::new(structure.as_ref(), &values);
+    let structure = SymbolicSparseColMatRef::new_checked(
+        nfree,
+        nfree,
+        &pattern.col_ptr,
+        None,
+        &pattern.row_idx,
+    );
+    let e = SparseColMatRef::new(structure, &values);
     let not_definite = |err: String| {
         Error::numerical(format!(
             "cross-section: the warping stiffness is not positive definite ({err}): a material \
              without stiffness, or elements not connected to the rest of the section"
         ))
-    };
-    let factorisation = match reuse.filter(|f| f.fits(mesh, &pinned)) {
-        Some(f) => f.clone(),
-        None => Factorisation {
-            // Supernodal: on these meshes 12 % faster than the simplicial factor faer picks.
-            symbolic: Arc::new(
-                factorize_symbolic_cholesky(
-                    structure.as_ref(),
-                    Side::Lower,
-                    SymmetricOrdering::Amd,
-                    CholeskySymbolicParams {
-                        supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
-                        ..Default::default()
-                    },
-                )
-                .map_err(|err| not_definite(format!("{err:?}")))?,
-            ),
-            nodes: mesh.nodes.len(),
-            elements: Arc::new(mesh.elements.iter().map(|e| e.nodes).collect()),
-            pinned,
-        },
     };
     let symbolic = &*factorisation.symbolic;
     let mut factor = vec![0.0; symbolic.len_val()];
