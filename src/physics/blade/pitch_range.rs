@@ -147,12 +147,24 @@ impl PitchRangeBlade {
         let basis = compressed(&samples[0].mass, &snapshots, &table.origin)?;
         let project =
             |a: &SymmetricBand| -> DMatrix<f64> { symmetrised(basis.tr_mul(&a.mul(&basis))) };
-        let harmonics = |f: &dyn Fn(&BladeMatrices<SymmetricBand>) -> &SymmetricBand| {
-            Harmonics::from_samples(&samples.iter().map(|s| project(f(s))).collect::<Vec<_>>())
+        // Each sample's projections, the samples on all cores: `[M, K₀, K_Ω]` and the mass's
+        // three families.
+        let reduced: Vec<([DMatrix<f64>; 3], [DMatrix<f64>; 3])> = samples
+            .par_iter()
+            .map(|s| {
+                (
+                    [project(&s.mass), project(&s.k0), project(&s.k_omega)],
+                    reduced_family_mass(&s.mass, &basis, &s.beam.layout()),
+                )
+            })
+            .collect();
+        let harmonics = |of: &dyn Fn(&([DMatrix<f64>; 3], [DMatrix<f64>; 3])) -> &DMatrix<f64>| {
+            Harmonics::from_samples(&reduced.iter().map(|r| of(r).clone()).collect::<Vec<_>>())
         };
         let damping = damping
             .map(|f| {
                 let projected = (0..SAMPLES)
+                    .into_par_iter()
                     .map(|k| {
                         stiffness_damping(table, mesh, sample_pitch(k), f).map(|c| project(&c))
                     })
@@ -160,13 +172,7 @@ impl PitchRangeBlade {
                 Ok::<_, Error>(Harmonics::from_samples(&projected))
             })
             .transpose()?;
-        let families: Vec<[DMatrix<f64>; 3]> = samples
-            .iter()
-            .map(|s| reduced_family_mass(&s.mass, &basis, &s.beam.layout()))
-            .collect();
-        let family = [0, 1, 2].map(|g| {
-            Harmonics::from_samples(&families.iter().map(|f| f[g].clone()).collect::<Vec<_>>())
-        });
+        let family = [0, 1, 2].map(|g| harmonics(&|r| &r.1[g]));
         let curve_load = [0, 1].map(|turn| {
             Harmonics::from_samples(
                 &samples
@@ -197,9 +203,9 @@ impl PitchRangeBlade {
             table: table.clone(),
             mesh: mesh.clone(),
             beam: Beam::of(table),
-            mass: harmonics(&|s| &s.mass),
-            k0: harmonics(&|s| &s.k0),
-            k_omega: harmonics(&|s| &s.k_omega),
+            mass: harmonics(&|r| &r.0[0]),
+            k0: harmonics(&|r| &r.0[1]),
+            k_omega: harmonics(&|r| &r.0[2]),
             damping,
             family,
             basis: Arc::new(basis),
