@@ -112,6 +112,39 @@ pub struct ModalBlade {
     rigid_mass: DMatrix<f64>,
 }
 
+/// The M-orthonormal basis of the lowest `per_speed` modes at each of `reference_speeds`
+/// (rad/s), each speed's solve started from the one before's modes (docs/model.md §11.4).
+pub fn lowest_modes_basis(
+    matrices: &BladeMatrices<SymmetricBand>,
+    reference_speeds: &[f64],
+    per_speed: usize,
+) -> Result<DMatrix<f64>> {
+    let n = matrices.mass.size();
+    let per_speed = per_speed.min(n);
+    let (mass, k0, k_omega) = (&matrices.mass, &matrices.k0, &matrices.k_omega);
+    let mut columns: Vec<DVector<f64>> = Vec::new();
+    let mut previous = DMatrix::zeros(n, 0);
+    for &omega in reference_speeds {
+        let k = k0.plus(omega * omega, k_omega);
+        let modes = lowest_modes(&k, mass, per_speed, &previous).map_err(|e| {
+            e.at(format!(
+                "{}: blade modes at Ω = {omega} rad/s",
+                matrices.table.origin
+            ))
+        })?;
+        columns.extend(modes.vectors.column_iter().map(|c| c.into_owned()));
+        previous = modes.vectors;
+    }
+    let basis = m_orthonormal(mass, columns);
+    if basis.ncols() == 0 {
+        return Err(Error::numerical(format!(
+            "{}: blade modal basis is empty",
+            matrices.table.origin
+        )));
+    }
+    Ok(basis)
+}
+
 impl ModalBlade {
     /// Reduce onto the lowest `per_speed` modes at each of `reference_speeds` (rad/s), made
     /// M-orthonormal together: modes at rotor speeds between and near the references are then
@@ -132,29 +165,8 @@ impl ModalBlade {
         reference_speeds: &[f64],
         per_speed: usize,
     ) -> Result<ModalBlade> {
-        let n = matrices.mass.size();
-        let per_speed = per_speed.min(n);
+        let basis = lowest_modes_basis(&matrices, reference_speeds, per_speed)?;
         let (mass, k0, k_omega) = (&matrices.mass, &matrices.k0, &matrices.k_omega);
-        let mut columns: Vec<DVector<f64>> = Vec::new();
-        let mut previous = DMatrix::zeros(n, 0);
-        for &omega in reference_speeds {
-            let k = k0.plus(omega * omega, k_omega);
-            let modes = lowest_modes(&k, mass, per_speed, &previous).map_err(|e| {
-                e.at(format!(
-                    "{}: blade modes at Ω = {omega} rad/s",
-                    matrices.table.origin
-                ))
-            })?;
-            columns.extend(modes.vectors.column_iter().map(|c| c.into_owned()));
-            previous = modes.vectors;
-        }
-        let basis = m_orthonormal(mass, columns);
-        if basis.ncols() == 0 {
-            return Err(Error::numerical(format!(
-                "{}: blade modal basis is empty",
-                matrices.table.origin
-            )));
-        }
         let reduced_k0 = symmetrised(basis.tr_mul(&k0.mul(&basis)));
         let reduced_k_omega = symmetrised(basis.tr_mul(&k_omega.mul(&basis)));
         let reduced_family = reduced_family_mass(mass, &basis, &matrices.beam.layout());

@@ -16,8 +16,8 @@
 
 use super::fem::{assemble_banded, Beam, BladeGeometry, BladeMatrices, Mesh};
 use super::modal::{
-    m_orthonormal, reduced_family_mass, stiffness_damping, ModalBlade, Projections,
-    StiffnessFactors,
+    lowest_modes_basis, m_orthonormal, reduced_family_mass, stiffness_damping, ModalBlade,
+    Projections, StiffnessFactors,
 };
 use super::BladeTable;
 use crate::error::{Error, Result};
@@ -97,6 +97,12 @@ pub fn snapshot_pitches(low: f64, high: f64) -> Vec<f64> {
         .collect()
 }
 
+/// One Fourier sample's matrices on the basis: `M`, `K₀`, `K_Ω` and the mass's three families.
+struct SampleProjections {
+    matrices: [DMatrix<f64>; 3],
+    family: [DMatrix<f64>; 3],
+}
+
 /// A blade's structure reduced on one basis for every pitch of a range.
 #[derive(Debug, Clone)]
 pub struct PitchRangeBlade {
@@ -131,34 +137,38 @@ impl PitchRangeBlade {
         per_speed: usize,
         damping: Option<StiffnessFactors>,
     ) -> Result<PitchRangeBlade> {
-        let snapshots: Vec<DMatrix<f64>> = pitches
-            .par_iter()
-            .map(|&pitch| {
-                let matrices = assemble_banded(table, mesh, pitch)?;
-                Ok(ModalBlade::from_bands(matrices, speeds, per_speed)?
-                    .basis()
-                    .clone())
-            })
-            .collect::<Result<_>>()?;
-        let samples: Vec<BladeMatrices<SymmetricBand>> = (0..SAMPLES)
-            .into_par_iter()
-            .map(|k| assemble_banded(table, mesh, sample_pitch(k)))
-            .collect::<Result<_>>()?;
+        // The snapshots' solves and the Fourier samples' assemblies share the cores.
+        let (snapshots, samples) = rayon::join(
+            || {
+                pitches
+                    .par_iter()
+                    .map(|&pitch| {
+                        let matrices = assemble_banded(table, mesh, pitch)?;
+                        lowest_modes_basis(&matrices, speeds, per_speed)
+                    })
+                    .collect::<Result<Vec<DMatrix<f64>>>>()
+            },
+            || {
+                (0..SAMPLES)
+                    .into_par_iter()
+                    .map(|k| assemble_banded(table, mesh, sample_pitch(k)))
+                    .collect::<Result<Vec<BladeMatrices<SymmetricBand>>>>()
+            },
+        );
+        let (snapshots, samples) = (snapshots?, samples?);
         let basis = compressed(&samples[0].mass, &snapshots, &table.origin)?;
         let project =
             |a: &SymmetricBand| -> DMatrix<f64> { symmetrised(basis.tr_mul(&a.mul(&basis))) };
         // Each sample's projections, the samples on all cores: `[M, K₀, K_Ω]` and the mass's
         // three families.
-        let reduced: Vec<([DMatrix<f64>; 3], [DMatrix<f64>; 3])> = samples
+        let reduced: Vec<SampleProjections> = samples
             .par_iter()
-            .map(|s| {
-                (
-                    [project(&s.mass), project(&s.k0), project(&s.k_omega)],
-                    reduced_family_mass(&s.mass, &basis, &s.beam.layout()),
-                )
+            .map(|s| SampleProjections {
+                matrices: [project(&s.mass), project(&s.k0), project(&s.k_omega)],
+                family: reduced_family_mass(&s.mass, &basis, &s.beam.layout()),
             })
             .collect();
-        let harmonics = |of: &dyn Fn(&([DMatrix<f64>; 3], [DMatrix<f64>; 3])) -> &DMatrix<f64>| {
+        let harmonics = |of: &dyn Fn(&SampleProjections) -> &DMatrix<f64>| {
             Harmonics::from_samples(&reduced.iter().map(|r| of(r).clone()).collect::<Vec<_>>())
         };
         let damping = damping
@@ -172,7 +182,7 @@ impl PitchRangeBlade {
                 Ok::<_, Error>(Harmonics::from_samples(&projected))
             })
             .transpose()?;
-        let family = [0, 1, 2].map(|g| harmonics(&|r| &r.1[g]));
+        let family = [0, 1, 2].map(|g| harmonics(&|r| &r.family[g]));
         let curve_load = [0, 1].map(|turn| {
             Harmonics::from_samples(
                 &samples
@@ -203,9 +213,9 @@ impl PitchRangeBlade {
             table: table.clone(),
             mesh: mesh.clone(),
             beam: Beam::of(table),
-            mass: harmonics(&|r| &r.0[0]),
-            k0: harmonics(&|r| &r.0[1]),
-            k_omega: harmonics(&|r| &r.0[2]),
+            mass: harmonics(&|r| &r.matrices[0]),
+            k0: harmonics(&|r| &r.matrices[1]),
+            k_omega: harmonics(&|r| &r.matrices[2]),
             damping,
             family,
             basis: Arc::new(basis),

@@ -247,15 +247,17 @@ fn quads(mesh: &Mesh, reference: [f64; 2]) -> Result<Vec<Quad>> {
         .collect()
 }
 
-/// The element's part of a nodal vector (warping components node by node).
-fn gather(v: &[f64], nodes: &[usize; 4]) -> Vec12 {
-    Vec12::from_fn(|i, _| v[3 * nodes[i / 3] + i % 3])
-}
-
-fn scatter(out: &mut [f64], nodes: &[usize; 4], add: &Vec12) {
-    for i in 0..12 {
-        out[3 * nodes[i / 3] + i % 3] += add[i];
+/// The free components' rows of a nodal field given row by row, as columns (held ones left out).
+fn free_columns<const N: usize>(rows: &[[f64; N]], free: &[usize], nfree: usize) -> Mat<f64> {
+    let mut m = Mat::<f64>::zeros(nfree, N);
+    for (row, &f) in rows.iter().zip(free) {
+        if f != usize::MAX {
+            for (c, v) in row.iter().enumerate() {
+                m[(f, c)] = *v;
+            }
+        }
     }
+    m
 }
 
 /// The sparsity of the warping matrix `E` on the free components (lower triangle, by columns):
@@ -652,120 +654,114 @@ pub(crate) fn analyse_pinned(
             Default::default(),
         )
         .map_err(|err| not_definite(format!("{err:?}")))?;
-    // Solves E w = f on the free components; the held ones stay zero.
-    let solve = |rhs: &[Vec<f64>]| -> Vec<Vec<f64>> {
-        let mut m = Mat::<f64>::zeros(nfree, rhs.len());
-        for (c, col) in rhs.iter().enumerate() {
-            for (k, v) in col.iter().enumerate() {
-                if free[k] != usize::MAX {
-                    m[(free[k], c)] = *v;
-                }
-            }
-        }
+    // Solves E w = f in place on the free components' columns.
+    let solve = |rhs: &mut Mat<f64>| {
+        let k = rhs.ncols();
         llt.solve_in_place_with_conj(
             Conj::No,
-            m.as_mut(),
+            rhs.as_mut(),
             par,
             MemStack::new(&mut MemBuffer::new(
-                llt.solve_in_place_scratch::<f64>(rhs.len(), par),
+                llt.solve_in_place_scratch::<f64>(k, par),
             )),
         );
-        (0..rhs.len())
-            .map(|c| {
-                (0..ndof)
-                    .map(|k| {
-                        if free[k] == usize::MAX {
-                            0.0
-                        } else {
-                            m[(free[k], c)]
-                        }
-                    })
-                    .collect()
-            })
-            .collect()
     };
-    let r_cols: Vec<Vec<f64>> = (0..6)
-        .map(|c| r.iter().map(|row| row[c]).collect())
-        .collect();
-    let xr = solve(&r_cols);
     let dot = |u: &[f64], v: &[f64]| u.iter().zip(v).map(|(a, b)| a * b).sum::<f64>();
-    let rt = |v: &[f64]| Vector6::from_fn(|c, _| dot(&r_cols[c], v));
+    let rf = free_columns(&r, free, nfree);
+    let mut xr = rf.clone();
+    solve(&mut xr);
+    let rt = |m: &Mat<f64>, c: usize| {
+        Vector6::from_fn(|i, _| dot(rf.col_as_slice(i), m.col_as_slice(c)))
+    };
     let mut schur = a6;
-    for i in 0..6 {
-        for j in 0..6 {
-            schur[(i, j)] -= dot(&r_cols[i], &xr[j]);
-        }
+    for j in 0..6 {
+        schur.set_column(j, &(schur.column(j) - rt(&xr, j)));
     }
     let schur = ((schur + schur.transpose()) * 0.5).cholesky().ok_or_else(|| {
         Error::numerical("cross-section: the section has no positive stiffness (is a material's stiffness zero?)")
     })?;
-    // X = x_f − Xr Y with Y = S⁻¹(g − Rᵀ x_f).
-    let column = |xf: Vec<f64>, g: Vector6<f64>| -> (Vec<f64>, Vector6<f64>) {
-        let y = schur.solve(&(g - rt(&xf)));
-        let mut x = xf;
-        for (c, col) in xr.iter().enumerate() {
-            for (k, v) in col.iter().enumerate() {
-                x[k] -= v * y[c];
-            }
-        }
-        (x, y)
-    };
-    let mut xs: Vec<Vec<f64>> = vec![Vec::new(); 6];
+    // The warping by rows, `x[k][j]` for component k and unit force j, and the section strains
+    // `ys[j]`: X = x_f − Xr Y with Y = S⁻¹(g − Rᵀ x_f), x_f the column of `xf` (zero if none).
+    let mut x = vec![[0.0; 6]; ndof];
     let mut ys = [Vector6::zeros(); 6];
-    for j in 2..6 {
-        let (x, y) = column(vec![0.0; ndof], Vector6::ith(j, 1.0));
-        xs[j] = x;
-        ys[j] = y;
-    }
-    // The shear columns: their warping's slope is the bending columns' (w' = X Aᵀ T).
-    let slope: [(Vec<f64>, Vector6<f64>); 2] = [
-        (xs[4].iter().map(|v| -v).collect(), -ys[4]),
-        (xs[3].clone(), ys[3]),
-    ];
-    let mut f_rhs = Vec::with_capacity(2);
-    let mut g_rhs = Vec::with_capacity(2);
-    for (j, (xd, yd)) in slope.iter().enumerate() {
-        // f = −(C − Cᵀ) X' + M Y',  g = e_j − Mᵀ X'.
-        let mut f = vec![0.0; ndof];
-        let mut g = Vector6::ith(j, 1.0);
-        for quad in &quads {
-            let ve = gather(xd, &quad.nodes);
-            let mut fe = Vec12::zeros();
-            for p in &quad.points {
-                let qs = quad.q * p.s(&ve);
-                let qb = quad.q * p.b(&ve);
-                let qz = quad.q * p.z(yd);
-                fe += (p.st(&(qb + qz)) - p.bt(&qs)) * p.w;
-                g -= p.zt(&qs) * p.w;
+    let column = |x: &mut [[f64; 6]], j: usize, xf: Option<(&Mat<f64>, usize)>, g: Vector6<f64>| {
+        let y = schur.solve(&(g - xf.map_or(Vector6::zeros(), |(m, c)| rt(m, c))));
+        for (k, &f) in free.iter().enumerate() {
+            if f != usize::MAX {
+                let mut v = xf.map_or(0.0, |(m, c)| m[(f, c)]);
+                for c in 0..6 {
+                    v -= xr[(f, c)] * y[c];
+                }
+                x[k][j] = v;
             }
-            scatter(&mut f, &quad.nodes, &fe);
         }
-        f_rhs.push(f);
-        g_rhs.push(g);
+        y
+    };
+    for (j, y) in ys.iter_mut().enumerate().skip(2) {
+        *y = column(&mut x, j, None, Vector6::ith(j, 1.0));
     }
-    let xf = solve(&f_rhs);
-    for (j, (xfj, g)) in xf.into_iter().zip(g_rhs).enumerate() {
-        let (x, y) = column(xfj, g);
-        xs[j] = x;
-        ys[j] = y;
+    // The shear columns: their warping's slope is the bending columns' (w' = X Aᵀ T):
+    // X'₁ = −X₅, X'₂ = X₄ (0-based 4 and 3).
+    let slope = |v: &[f64; 6]| [-v[4], v[3]];
+    let y_slope = [-ys[4], ys[3]];
+    // f = −(C − Cᵀ) X' + M Y',  g = e_j − Mᵀ X', both columns at once.
+    let mut f = vec![[0.0; 2]; ndof];
+    let mut g = [Vector6::ith(0, 1.0), Vector6::ith(1, 1.0)];
+    for quad in &quads {
+        let ve: [Vec12; 2] = std::array::from_fn(|j| {
+            Vec12::from_fn(|i, _| slope(&x[3 * quad.nodes[i / 3] + i % 3])[j])
+        });
+        let mut fe = [Vec12::zeros(); 2];
+        for p in &quad.points {
+            for j in 0..2 {
+                let qs = quad.q * p.s(&ve[j]);
+                let qbz = quad.q * (p.b(&ve[j]) + p.z(&y_slope[j]));
+                fe[j] += (p.st(&qbz) - p.bt(&qs)) * p.w;
+                g[j] -= p.zt(&qs) * p.w;
+            }
+        }
+        for (i, (a, b)) in fe[0].iter().zip(fe[1].iter()).enumerate() {
+            let k = 3 * quad.nodes[i / 3] + i % 3;
+            f[k][0] += a;
+            f[k][1] += b;
+        }
+    }
+    let mut xf = free_columns(&f, free, nfree);
+    solve(&mut xf);
+    for (j, g) in g.into_iter().enumerate() {
+        ys[j] = column(&mut x, j, Some((&xf, j)), g);
     }
 
     // F = ∫εᵀQε over the six unit forces, ε = S_zZ Y + B X + S X'.
-    let zero = vec![0.0; ndof];
-    let neg4: Vec<f64> = xs[4].iter().map(|v| -v).collect();
-    let xd: [&[f64]; 6] = [&neg4, &xs[3], &zero, &zero, &zero, &zero];
     let mut flex = Matrix6::zeros();
     for quad in &quads {
-        let xe: [Vec12; 6] = std::array::from_fn(|j| gather(&xs[j], &quad.nodes));
-        let de: [Vec12; 6] = std::array::from_fn(|j| gather(xd[j], &quad.nodes));
+        let xe: [[f64; 6]; 12] = std::array::from_fn(|i| x[3 * quad.nodes[i / 3] + i % 3]);
         for p in &quad.points {
-            let mut eps = Matrix6::zeros();
-            for j in 0..6 {
-                let mut col = p.z(&ys[j]) + p.b(&xe[j]);
-                if j < 2 {
-                    col += p.s(&de[j]);
+            // B X by rows over the six columns, and S X' for the two shear columns.
+            let mut e = [[0.0; 6]; 6];
+            for a in 0..4 {
+                let (dx, dy, n) = (p.dx[a], p.dy[a], p.n[a]);
+                let (u, w, z) = (&xe[3 * a], &xe[3 * a + 1], &xe[3 * a + 2]);
+                for j in 0..6 {
+                    e[0][j] += dx * u[j];
+                    e[1][j] += dy * w[j];
+                    e[3][j] += dy * z[j];
+                    e[4][j] += dx * z[j];
+                    e[5][j] += dy * u[j] + dx * w[j];
                 }
-                eps.set_column(j, &col);
+                let d: [[f64; 2]; 3] = std::array::from_fn(|c| slope(&xe[3 * a + c]));
+                for j in 0..2 {
+                    e[2][j] += n * d[2][j];
+                    e[3][j] += n * d[1][j];
+                    e[4][j] += n * d[0][j];
+                }
+            }
+            let mut eps = Matrix6::from_fn(|r, j| e[r][j]);
+            for j in 0..6 {
+                let zc = p.z(&ys[j]);
+                for r in 0..6 {
+                    eps[(r, j)] += zc[r];
+                }
             }
             flex += eps.transpose() * (quad.q * eps) * p.w;
         }
