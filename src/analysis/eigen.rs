@@ -138,8 +138,8 @@ pub fn analyse_system(ls: &LinearSystem) -> Result<Stability> {
             .rotating_shift_hz(&m.label)
             .map(|shift| m.frequency_hz + shift);
     }
-    named.sort_by(|a, b| b.re.total_cmp(&a.re));
-    lags.sort_by(|a, b| b.re.total_cmp(&a.re));
+    least_stable_first(&mut named);
+    least_stable_first(&mut lags);
     for (k, m) in lags.iter_mut().enumerate() {
         m.label = format!("aero lag {}", k + 1);
     }
@@ -155,6 +155,21 @@ pub fn analyse_system(ls: &LinearSystem) -> Result<Stability> {
 /// `roots` less the `count` real roots nearest zero, where they lie within `tol` of it: the
 /// azimuth of a free rotor ([`crate::physics::structure::Structure::rigid_body_roots`]),
 /// neither a mode nor a stability margin.
+/// Roots by decay rate, the least stable first; roots whose rates agree to 1e-9 of the largest
+/// root (a rotor's backward, forward and collective whirls of one blade mode in vacuo, whose
+/// rates are one number up to round-off) by frequency, so that their order does not turn on
+/// the last bits.
+fn least_stable_first(modes: &mut [Mode]) {
+    let scale = modes.iter().map(|m| m.re.hypot(m.im)).fold(0.0, f64::max);
+    let grid = (1e-9 * scale).max(f64::MIN_POSITIVE);
+    modes.sort_by(|a, b| {
+        (b.re / grid)
+            .round()
+            .total_cmp(&(a.re / grid).round())
+            .then(a.im.total_cmp(&b.im))
+    });
+}
+
 fn without_rigid_body_roots(mut roots: Vec<Mode>, count: usize, tol: f64) -> Vec<Mode> {
     for _ in 0..count {
         let nearest = roots

@@ -128,13 +128,46 @@ impl SymmetricBand {
         }
     }
 
-    /// `A X` for every column of `x`.
+    /// `A X` for every column of `x`: [`Self::mul_into`]'s sums in its order, each band entry
+    /// applied to a whole row of `X` at once (rows made contiguous by transposing), so the
+    /// inner loop runs along memory over the columns.
     pub fn mul(&self, x: &DMatrix<f64>) -> DMatrix<f64> {
-        let mut y = DMatrix::zeros(x.nrows(), x.ncols());
-        for c in 0..x.ncols() {
-            self.mul_into(x.column(c).as_slice(), y.column_mut(c).as_mut_slice());
+        let (n, band) = (self.n, self.band);
+        assert_eq!(
+            x.nrows(),
+            n,
+            "banded product: {} rows for a {n} × {n} matrix",
+            x.nrows()
+        );
+        let width = band + 1;
+        let b = x.ncols();
+        let xt = x.transpose();
+        let xs = xt.as_slice();
+        let mut yt = DMatrix::zeros(b, n);
+        let ys = yt.as_mut_slice();
+        let mut yi = vec![0.0; b];
+        for i in 0..n {
+            let row = &self.lower[i * width..(i + 1) * width];
+            let lo = i.saturating_sub(band);
+            let xi = &xs[i * b..(i + 1) * b];
+            for (v, x) in yi.iter_mut().zip(xi) {
+                *v = row[band] * x;
+            }
+            for j in lo..i {
+                let a = row[j + band - i];
+                let xj = &xs[j * b..(j + 1) * b];
+                for (v, x) in yi.iter_mut().zip(xj) {
+                    *v += a * x;
+                }
+                for (y, x) in ys[j * b..(j + 1) * b].iter_mut().zip(xi) {
+                    *y += a * x;
+                }
+            }
+            for (y, v) in ys[i * b..(i + 1) * b].iter_mut().zip(&yi) {
+                *y += v;
+            }
         }
-        y
+        yt.transpose()
     }
 
     /// The Cholesky factor, or `None` when a pivot is not positive (the matrix is not positive
@@ -225,6 +258,15 @@ mod tests {
         let mut y = vec![0.0; 12];
         b.mul_into(x.as_slice(), &mut y);
         assert!((DVector::from_vec(y) - &a * &x).norm() < 1e-13);
+        // Many columns at once: each the single-vector product, to the bit.
+        let xs = DMatrix::from_fn(12, 5, |i, c| ((i * 3 + c) as f64 * 0.37).cos());
+        let ys = b.mul(&xs);
+        assert!((&ys - &a * &xs).norm() < 1e-13);
+        for c in 0..5 {
+            let mut yc = vec![0.0; 12];
+            b.mul_into(xs.column(c).as_slice(), &mut yc);
+            assert_eq!(ys.column(c).as_slice(), &yc[..], "column {c}");
+        }
 
         let mut z = x.as_slice().to_vec();
         b.cholesky().unwrap().solve_in_place(&mut z);

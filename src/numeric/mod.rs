@@ -25,6 +25,7 @@ mod isolate;
 pub mod lanczos;
 pub mod mbc;
 pub mod phi_functions;
+pub mod products;
 pub mod root;
 mod roots;
 

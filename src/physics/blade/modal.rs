@@ -11,6 +11,7 @@ use crate::error::{Error, Result};
 use crate::numeric::banded::SymmetricBand;
 use crate::numeric::cholesky::symmetrised;
 use crate::numeric::lanczos::lowest_modes;
+use crate::numeric::products::tr_mul;
 use nalgebra::{DMatrix, DVector, SymmetricEigen};
 use std::sync::Arc;
 
@@ -362,19 +363,25 @@ pub fn reduced_family_mass(
 ) -> [DMatrix<f64>; 3] {
     let group = |i: usize| layout.family_of(i);
     let (n, b) = (basis.nrows(), basis.ncols());
-    let mut products = [(); 3].map(|_| DMatrix::zeros(n, b));
+    // `M_b Φ` row by row: each band entry within a family adds a row of Φ to a row of the
+    // product, rows made contiguous by transposing.
+    let phi_t = basis.transpose();
+    let rows = phi_t.as_slice();
+    let mut products_t = [(); 3].map(|_| DMatrix::zeros(b, n));
     for i in 0..n {
         let g = group(i);
         let lo = i.saturating_sub(mass.band());
         let hi = (i + mass.band() + 1).min(n);
+        let out = &mut products_t[g].as_mut_slice()[i * b..(i + 1) * b];
         for j in (lo..hi).filter(|&j| group(j) == g) {
             let mij = mass.get(i, j);
-            for c in 0..b {
-                products[g][(i, c)] += mij * basis[(j, c)];
+            for (p, x) in out.iter_mut().zip(&rows[j * b..(j + 1) * b]) {
+                *p += mij * x;
             }
         }
     }
-    products.map(|mb| symmetrised(basis.tr_mul(&mb)))
+    let products = products_t.map(|p| p.transpose());
+    products.map(|mb| symmetrised(tr_mul(basis, &mb)))
 }
 
 /// Shares of `[flap, edge, twist]` from basis coordinates `y` and [`reduced_family_mass`].

@@ -23,6 +23,7 @@ use super::BladeTable;
 use crate::error::{Error, Result};
 use crate::numeric::banded::SymmetricBand;
 use crate::numeric::cholesky::symmetrised;
+use crate::numeric::products::tr_mul;
 use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
 use std::f64::consts::TAU;
@@ -158,7 +159,7 @@ impl PitchRangeBlade {
         let (snapshots, samples) = (snapshots?, samples?);
         let basis = compressed(&samples[0].mass, &snapshots, &table.origin)?;
         let project =
-            |a: &SymmetricBand| -> DMatrix<f64> { symmetrised(basis.tr_mul(&a.mul(&basis))) };
+            |a: &SymmetricBand| -> DMatrix<f64> { symmetrised(tr_mul(&basis, &a.mul(&basis))) };
         // Each sample's projections, the samples on all cores: `[M, K₀, K_Ω]` and the mass's
         // three families.
         let reduced: Vec<SampleProjections> = samples
