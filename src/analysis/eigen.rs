@@ -152,9 +152,6 @@ pub fn analyse_system(ls: &LinearSystem) -> Result<Stability> {
     })
 }
 
-/// `roots` less the `count` real roots nearest zero, where they lie within `tol` of it: the
-/// azimuth of a free rotor ([`crate::physics::structure::Structure::rigid_body_roots`]),
-/// neither a mode nor a stability margin.
 /// Roots by decay rate, the least stable first; roots whose rates agree to 1e-9 of the largest
 /// root (a rotor's backward, forward and collective whirls of one blade mode in vacuo, whose
 /// rates are one number up to round-off) by frequency, so that their order does not turn on
@@ -170,6 +167,9 @@ fn least_stable_first(modes: &mut [Mode]) {
     });
 }
 
+/// `roots` less the `count` real roots nearest zero, where they lie within `tol` of it: the
+/// azimuth of a free rotor ([`crate::physics::structure::Structure::rigid_body_roots`]),
+/// neither a mode nor a stability margin.
 fn without_rigid_body_roots(mut roots: Vec<Mode>, count: usize, tol: f64) -> Vec<Mode> {
     for _ in 0..count {
         let nearest = roots
@@ -238,6 +238,27 @@ mod tests {
     use crate::numeric::eigen::tests::assert_eigenpairs;
     use crate::numeric::eigen::{faer_decomposition, fast_decomposition};
     use crate::numeric::eigen_decomposition;
+
+    /// Three whirls of one blade mode whose rates differ in the last bits come out by
+    /// frequency whichever bits they carry; a rate a millionth apart still decides.
+    #[test]
+    fn rates_equal_to_round_off_are_ordered_by_frequency() {
+        let sigma = -1.3505234946235527;
+        let order = |rates: [f64; 3]| {
+            let mut modes: Vec<Mode> = rates
+                .iter()
+                .zip([36.3, 33.8, 35.0])
+                .map(|(&re, im)| Mode::root(re, im))
+                .collect();
+            modes.push(Mode::root(sigma * (1.0 + 1e-6), 34.0));
+            least_stable_first(&mut modes);
+            modes.iter().map(|m| m.im).collect::<Vec<_>>()
+        };
+        let expected = vec![33.8, 35.0, 36.3, 34.0];
+        let ulp = sigma * f64::EPSILON;
+        assert_eq!(order([sigma, sigma + ulp, sigma - ulp]), expected);
+        assert_eq!(order([sigma - ulp, sigma, sigma + 2.0 * ulp]), expected);
+    }
 
     #[test]
     fn fast_path_handles_state_matrices_and_agrees_with_faer() {

@@ -113,6 +113,11 @@ pub struct ModalBlade {
     rigid_mass: DMatrix<f64>,
 }
 
+/// `Φᵀ A Φ` of a banded matrix on the basis `Φ`, symmetrised against round-off.
+pub fn projected(a: &SymmetricBand, basis: &DMatrix<f64>) -> DMatrix<f64> {
+    symmetrised(tr_mul(basis, &a.mul(basis)))
+}
+
 /// The M-orthonormal basis of the lowest `per_speed` modes at each of `reference_speeds`
 /// (rad/s), each speed's solve started from the one before's modes (docs/model.md §11.4).
 pub fn lowest_modes_basis(
@@ -168,8 +173,8 @@ impl ModalBlade {
     ) -> Result<ModalBlade> {
         let basis = lowest_modes_basis(&matrices, reference_speeds, per_speed)?;
         let (mass, k0, k_omega) = (&matrices.mass, &matrices.k0, &matrices.k_omega);
-        let reduced_k0 = symmetrised(basis.tr_mul(&k0.mul(&basis)));
-        let reduced_k_omega = symmetrised(basis.tr_mul(&k_omega.mul(&basis)));
+        let reduced_k0 = projected(k0, &basis);
+        let reduced_k_omega = projected(k_omega, &basis);
         let reduced_family = reduced_family_mass(mass, &basis, &matrices.beam.layout());
         let reduced_centrifugal_load = basis.tr_mul(&matrices.centrifugal_load());
         Ok(ModalBlade {

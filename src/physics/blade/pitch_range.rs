@@ -16,14 +16,12 @@
 
 use super::fem::{assemble_banded, Beam, BladeGeometry, BladeMatrices, Mesh};
 use super::modal::{
-    lowest_modes_basis, m_orthonormal, reduced_family_mass, stiffness_damping, ModalBlade,
-    Projections, StiffnessFactors,
+    lowest_modes_basis, m_orthonormal, projected, reduced_family_mass, stiffness_damping,
+    ModalBlade, Projections, StiffnessFactors,
 };
 use super::BladeTable;
 use crate::error::{Error, Result};
 use crate::numeric::banded::SymmetricBand;
-use crate::numeric::cholesky::symmetrised;
-use crate::numeric::products::tr_mul;
 use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
 use std::f64::consts::TAU;
@@ -158,14 +156,16 @@ impl PitchRangeBlade {
         );
         let (snapshots, samples) = (snapshots?, samples?);
         let basis = compressed(&samples[0].mass, &snapshots, &table.origin)?;
-        let project =
-            |a: &SymmetricBand| -> DMatrix<f64> { symmetrised(tr_mul(&basis, &a.mul(&basis))) };
         // Each sample's projections, the samples on all cores: `[M, K₀, K_Ω]` and the mass's
         // three families.
         let reduced: Vec<SampleProjections> = samples
             .par_iter()
             .map(|s| SampleProjections {
-                matrices: [project(&s.mass), project(&s.k0), project(&s.k_omega)],
+                matrices: [
+                    projected(&s.mass, &basis),
+                    projected(&s.k0, &basis),
+                    projected(&s.k_omega, &basis),
+                ],
                 family: reduced_family_mass(&s.mass, &basis, &s.beam.layout()),
             })
             .collect();
@@ -174,13 +174,14 @@ impl PitchRangeBlade {
         };
         let damping = damping
             .map(|f| {
-                let projected = (0..SAMPLES)
+                let on_basis = (0..SAMPLES)
                     .into_par_iter()
                     .map(|k| {
-                        stiffness_damping(table, mesh, sample_pitch(k), f).map(|c| project(&c))
+                        stiffness_damping(table, mesh, sample_pitch(k), f)
+                            .map(|c| projected(&c, &basis))
                     })
                     .collect::<Result<Vec<_>>>()?;
-                Ok::<_, Error>(Harmonics::from_samples(&projected))
+                Ok::<_, Error>(Harmonics::from_samples(&on_basis))
             })
             .transpose()?;
         let family = [0, 1, 2].map(|g| harmonics(&|r| &r.family[g]));

@@ -93,31 +93,36 @@ fn b_rows(c: usize, dx: f64, dy: f64) -> [(usize, f64); 2] {
 }
 
 impl Point {
-    /// `B v`: the in-plane derivatives' strains of the element warping `v`.
+    /// `B X`: the in-plane derivatives' strains of an element's warping, `x[i][j]` component
+    /// `i` of column `j`, by rows (`[r][j]`, strain `r` of column `j`).
     #[inline]
-    fn b(&self, v: &Vec12) -> Vector6<f64> {
-        let mut e = Vector6::zeros();
+    fn b<const N: usize>(&self, x: &[[f64; N]; 12]) -> [[f64; N]; 6] {
+        let mut e = [[0.0; N]; 6];
         for a in 0..4 {
             let (dx, dy) = (self.dx[a], self.dy[a]);
-            let (u, w, z) = (v[3 * a], v[3 * a + 1], v[3 * a + 2]);
-            e[0] += dx * u;
-            e[1] += dy * w;
-            e[3] += dy * z;
-            e[4] += dx * z;
-            e[5] += dy * u + dx * w;
+            let (u, w, z) = (&x[3 * a], &x[3 * a + 1], &x[3 * a + 2]);
+            for j in 0..N {
+                e[0][j] += dx * u[j];
+                e[1][j] += dy * w[j];
+                e[3][j] += dy * z[j];
+                e[4][j] += dx * z[j];
+                e[5][j] += dy * u[j] + dx * w[j];
+            }
         }
         e
     }
 
-    /// `S v`: the strains of the warping's slope `v` along the beam.
+    /// `S X`: the strains of the warping's slope along the beam, by rows as [`Self::b`].
     #[inline]
-    fn s(&self, v: &Vec12) -> Vector6<f64> {
-        let mut e = Vector6::zeros();
+    fn s<const N: usize>(&self, x: &[[f64; N]; 12]) -> [[f64; N]; 6] {
+        let mut e = [[0.0; N]; 6];
         for a in 0..4 {
             let n = self.n[a];
-            e[2] += n * v[3 * a + 2];
-            e[3] += n * v[3 * a + 1];
-            e[4] += n * v[3 * a];
+            for j in 0..N {
+                e[2][j] += n * x[3 * a + 2][j];
+                e[3][j] += n * x[3 * a + 1][j];
+                e[4][j] += n * x[3 * a][j];
+            }
         }
         e
     }
@@ -269,8 +274,6 @@ struct Pattern {
     row_idx: Vec<usize>,
     /// Each warping component's free index (`usize::MAX` where held).
     free: Vec<usize>,
-    /// For each node, the number of free components before its first: where its rows start.
-    first_free: Vec<usize>,
 }
 
 impl Pattern {
@@ -286,9 +289,6 @@ impl Pattern {
                 nfree += 1;
             }
         }
-        let first_free = (0..nodes)
-            .map(|a| 3 * a - pinned.iter().filter(|&&k| k < 3 * a).count())
-            .collect();
         // Column f (a free component of node a) holds the free components of a's neighbours
         // at or below it; free indices grow with the component index, so they come sorted.
         let mut col_ptr = Vec::with_capacity(nfree + 1);
@@ -312,12 +312,16 @@ impl Pattern {
             col_ptr,
             row_idx,
             free,
-            first_free,
         }
     }
 
     fn len(&self) -> usize {
         self.col_ptr.len() - 1
+    }
+
+    fn structure(&self) -> SymbolicSparseColMatRef<'_, usize> {
+        let n = self.len();
+        SymbolicSparseColMatRef::new_checked(n, n, &self.col_ptr, None, &self.row_idx)
     }
 
     /// Where an element's entries go: `slots[i * 12 + j]` is the value index of the entry that
@@ -334,14 +338,16 @@ impl Pattern {
             let start = self.col_ptr[f];
             let rows = &self.row_idx[start..self.col_ptr[f + 1]];
             for (ai, &a) in nodes.iter().enumerate() {
-                let mut at = start + rows.partition_point(|&r| r < self.first_free[a].max(f));
+                // The node's first row found by search, the next ones following it.
+                let mut at = None;
                 for c in 0..3 {
                     let r = self.free[3 * a + c];
                     if r == usize::MAX || r < f {
                         continue;
                     }
-                    s[(3 * ai + c) * 12 + j] = at;
-                    at += 1;
+                    let here = at.unwrap_or_else(|| start + rows.partition_point(|&row| row < r));
+                    s[(3 * ai + c) * 12 + j] = here;
+                    at = Some(here + 1);
                 }
             }
         }
@@ -467,10 +473,8 @@ impl Factorisation {
         let pattern = Pattern::new(&near, &pinned);
         let (forward, inverse) = fill_reducing_order(&near, &pattern)?;
         let n = pattern.len();
-        let structure =
-            SymbolicSparseColMatRef::new_checked(n, n, &pattern.col_ptr, None, &pattern.row_idx);
         let symbolic = factorize_symbolic_cholesky(
-            structure,
+            pattern.structure(),
             Side::Lower,
             SymmetricOrdering::Custom(PermRef::new_checked(&forward, &inverse, n)),
             CholeskySymbolicParams {
@@ -624,14 +628,7 @@ pub(crate) fn analyse_pinned(
         }
     }
 
-    let structure = SymbolicSparseColMatRef::new_checked(
-        nfree,
-        nfree,
-        &pattern.col_ptr,
-        None,
-        &pattern.row_idx,
-    );
-    let e = SparseColMatRef::new(structure, &values);
+    let e = SparseColMatRef::new(pattern.structure(), &values);
     let not_definite = |err: String| {
         Error::numerical(format!(
             "cross-section: the warping stiffness is not positive definite ({err}): a material \
@@ -708,14 +705,14 @@ pub(crate) fn analyse_pinned(
     let mut f = vec![[0.0; 2]; ndof];
     let mut g = [Vector6::ith(0, 1.0), Vector6::ith(1, 1.0)];
     for quad in &quads {
-        let ve: [Vec12; 2] = std::array::from_fn(|j| {
-            Vec12::from_fn(|i, _| slope(&x[3 * quad.nodes[i / 3] + i % 3])[j])
-        });
+        let ve: [[f64; 2]; 12] = std::array::from_fn(|i| slope(&x[3 * quad.nodes[i / 3] + i % 3]));
         let mut fe = [Vec12::zeros(); 2];
         for p in &quad.points {
+            let (bv, sv) = (p.b(&ve), p.s(&ve));
             for j in 0..2 {
-                let qs = quad.q * p.s(&ve[j]);
-                let qbz = quad.q * (p.b(&ve[j]) + p.z(&y_slope[j]));
+                let column = |rows: &[[f64; 2]; 6]| Vector6::from_fn(|r, _| rows[r][j]);
+                let qs = quad.q * column(&sv);
+                let qbz = quad.q * (column(&bv) + p.z(&y_slope[j]));
                 fe[j] += (p.st(&qbz) - p.bt(&qs)) * p.w;
                 g[j] -= p.zt(&qs) * p.w;
             }
@@ -737,24 +734,12 @@ pub(crate) fn analyse_pinned(
     for quad in &quads {
         let xe: [[f64; 6]; 12] = std::array::from_fn(|i| x[3 * quad.nodes[i / 3] + i % 3]);
         for p in &quad.points {
-            // B X by rows over the six columns, and S X' for the two shear columns.
-            let mut e = [[0.0; 6]; 6];
-            for a in 0..4 {
-                let (dx, dy, n) = (p.dx[a], p.dy[a], p.n[a]);
-                let (u, w, z) = (&xe[3 * a], &xe[3 * a + 1], &xe[3 * a + 2]);
-                for j in 0..6 {
-                    e[0][j] += dx * u[j];
-                    e[1][j] += dy * w[j];
-                    e[3][j] += dy * z[j];
-                    e[4][j] += dx * z[j];
-                    e[5][j] += dy * u[j] + dx * w[j];
-                }
-                let d: [[f64; 2]; 3] = std::array::from_fn(|c| slope(&xe[3 * a + c]));
-                for j in 0..2 {
-                    e[2][j] += n * d[2][j];
-                    e[3][j] += n * d[1][j];
-                    e[4][j] += n * d[0][j];
-                }
+            // B X over the six columns, and S X' for the two shear columns.
+            let mut e = p.b(&xe);
+            let de: [[f64; 2]; 12] = std::array::from_fn(|i| slope(&xe[i]));
+            for (row, sd) in e.iter_mut().zip(p.s(&de)) {
+                row[0] += sd[0];
+                row[1] += sd[1];
             }
             let mut eps = Matrix6::from_fn(|r, j| e[r][j]);
             for j in 0..6 {
