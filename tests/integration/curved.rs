@@ -234,5 +234,5 @@ fn the_iea15mw_prebend_moves_its_edge_and_torsion_modes_and_its_tip() {
         "tip pulled downwind by {pulled} m"
     );
     let eased = (twist_s - twist_c).to_degrees();
-    assert!((eased - 0.424).abs() < 0.01, "tip twist eased by {eased}°");
+    assert!((eased - 0.434).abs() < 0.01, "tip twist eased by {eased}°");
 }

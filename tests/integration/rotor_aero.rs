@@ -306,7 +306,7 @@ fn nrel5mw_overspeed_equilibrium() {
     // At a tip speed ratio of about 20 the outboard blade runs at negative angles of attack and bends
     // 18.4 m upwind, twisting 24° toward feather.
     assert!(
-        (twist.to_degrees() - 23.82).abs() < 0.05 && (flap + 18.44).abs() < 0.05,
+        (twist.to_degrees() - 24.13).abs() < 0.05 && (flap + 18.44).abs() < 0.05,
         "{twist} {flap}"
     );
     let p = at(33.0);
@@ -409,7 +409,7 @@ fn the_flutter_mode_is_named_by_its_branch_from_the_start_of_the_search() {
 }
 
 /// The truncated basis's static correction (docs/model.md §12.6, §12.4): on 12 modes the IEA
-/// 15MW's operating point is the 40-mode one (within 0.11 % of power and 0.03° of tip twist,
+/// 15MW's operating point is the 40-mode one (within 0.1 % of power and 0.02° of tip twist,
 /// below and above rated and at cut-out, where the pitch makes the power most sensitive), while
 /// the 12 modes alone twist 1° too much at rated and 2° too little at 25 m/s.
 #[test]
@@ -432,8 +432,7 @@ fn the_static_correction_makes_twelve_modes_give_the_forty_mode_operating_point(
         let (power, twist) = point(wind, 12, true);
         let (converged_power, converged_twist) = point(wind, 40, true);
         assert!(
-            (power / converged_power - 1.0).abs() < 1.1e-3
-                && (twist - converged_twist).abs() < 0.03,
+            (power / converged_power - 1.0).abs() < 1e-3 && (twist - converged_twist).abs() < 0.02,
             "{wind} m/s: {power} W, {twist}° against {converged_power} W, {converged_twist}°"
         );
         let (_, twist_alone) = point(wind, 12, false);

@@ -838,6 +838,18 @@ impl StationMap {
         twist_moment: f64,
     ) -> DVector<f64> {
         let mut f = DVector::zeros(dofs);
+        self.add_point_load(&mut f, flap_force, edge_force, twist_moment);
+        f
+    }
+
+    /// [`StationMap::point_load`] added into `f`: a distributed load summed point by point.
+    pub fn add_point_load(
+        &self,
+        f: &mut DVector<f64>,
+        flap_force: f64,
+        edge_force: f64,
+        twist_moment: f64,
+    ) {
         for (k, d) in self.dofs.iter().enumerate() {
             if let Some(i) = d {
                 f[*i] += flap_force * self.rows[0][k]
@@ -845,7 +857,6 @@ impl StationMap {
                     + twist_moment * self.rows[4][k];
             }
         }
-        f
     }
 }
 

@@ -12,6 +12,7 @@ use crate::numeric::banded::SymmetricBand;
 use crate::numeric::cholesky::symmetrised;
 use crate::numeric::lanczos::lowest_modes;
 use crate::numeric::products::tr_mul;
+use crate::physics::basis::gauss_rule;
 use nalgebra::{DMatrix, DVector, SymmetricEigen};
 use std::sync::Arc;
 
@@ -113,13 +114,40 @@ pub struct ModalBlade {
     rigid_mass: DMatrix<f64>,
 }
 
+/// The blade at rest under a torque spread evenly along its span (`K₀⁻¹ f`): the static
+/// response the lowest modes represent worst, since a distributed torque excites every torsion
+/// mode alike (docs/model.md §11.4, §12.6). With it in the basis, the static correction of the
+/// left-out modes reaches the twist a converged basis gives.
+fn static_twist(matrices: &BladeMatrices<SymmetricBand>) -> Result<DVector<f64>> {
+    let n = matrices.mass.size();
+    let mut twist = DVector::zeros(n);
+    let rule = gauss_rule(2);
+    for element in matrices.mesh.nodes.windows(2) {
+        let h = element[1] - element[0];
+        for (x, w) in rule.0.iter().zip(&rule.1) {
+            matrices
+                .reference_axis_at(element[0] + (1.0 + x) * h / 2.0)?
+                .add_point_load(&mut twist, 0.0, 0.0, w * h / 2.0);
+        }
+    }
+    let stiffness = matrices.k0.cholesky().ok_or_else(|| {
+        Error::numerical(format!(
+            "{}: the blade's stiffness at rest is not positive definite",
+            matrices.table.origin
+        ))
+    })?;
+    stiffness.solve_in_place(twist.as_mut_slice());
+    Ok(twist)
+}
+
 /// `Φᵀ A Φ` of a banded matrix on the basis `Φ`, symmetrised against round-off.
 pub fn projected(a: &SymmetricBand, basis: &DMatrix<f64>) -> DMatrix<f64> {
     symmetrised(tr_mul(basis, &a.mul(basis)))
 }
 
 /// The M-orthonormal basis of the lowest `per_speed` modes at each of `reference_speeds`
-/// (rad/s), each speed's solve started from the one before's modes (docs/model.md §11.4).
+/// (rad/s), each speed's solve started from the one before's modes, and the blade's
+/// [`static_twist`] (docs/model.md §11.4).
 pub fn lowest_modes_basis(
     matrices: &BladeMatrices<SymmetricBand>,
     reference_speeds: &[f64],
@@ -141,6 +169,7 @@ pub fn lowest_modes_basis(
         columns.extend(modes.vectors.column_iter().map(|c| c.into_owned()));
         previous = modes.vectors;
     }
+    columns.push(static_twist(matrices)?);
     let basis = m_orthonormal(mass, columns);
     if basis.ncols() == 0 {
         return Err(Error::numerical(format!(
