@@ -445,8 +445,9 @@ fn the_static_correction_makes_twelve_modes_give_the_forty_mode_operating_point(
 
 /// The left-out modes in the state matrix (docs/model.md §12.6, §12.4): on 12 modes the IEA
 /// 15MW's aeroelastic modes at rated are the 40-mode ones within 0.5 % in frequency, each by its
-/// name, but the overdamped flap 2 root (ζ ≈ 0.6); on the static correction alone flap 1 was
-/// 2.7 % and flap 3 6 % off.
+/// name. On the static correction alone flap 1 was 2.7 % and flap 3 6 % off; on the left-out
+/// modes' quasi-static response, without their dynamics, the overdamped flap 2 (ζ ≈ 0.6) was
+/// 2.6 % off.
 #[test]
 fn twelve_modes_give_the_forty_mode_aeroelastic_modes() {
     let modes = |count: usize| {
@@ -457,14 +458,11 @@ fn twelve_modes_give_the_forty_mode_aeroelastic_modes() {
     };
     let (twelve, forty) = (modes(12), modes(40));
     let mut compared = 0;
-    for m in twelve
-        .iter()
-        .filter(|m| m.frequency_hz > 0.0 && m.label != "flap 2")
-    {
+    for m in twelve.iter().filter(|m| m.frequency_hz > 0.0) {
         let converged = forty.iter().find(|c| c.label == m.label).unwrap();
         let error = m.frequency_hz / converged.frequency_hz - 1.0;
         assert!(error.abs() < 5e-3, "{}: {error:+.4}", m.label);
         compared += 1;
     }
-    assert!(compared >= 11, "{compared}");
+    assert!(compared >= 12, "{compared}");
 }

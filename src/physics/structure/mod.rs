@@ -360,6 +360,13 @@ pub trait Structure: Send + Sync {
     fn rotating_shift_hz(&self, _label: &str) -> Option<f64> {
         None
     }
+    /// Whether a system's state matrix on these coordinates is the same at every instant, so
+    /// that it gives the rates of any motion the state implies (docs/model.md §12.6, the
+    /// left-out modes' dynamics); not for a rotor whose blades' frames turn against the hub's
+    /// coordinates, whose state matrix is one azimuth's (§13).
+    fn time_invariant(&self) -> bool {
+        true
+    }
     /// A motion's shares by component, for a structure made of several (a rotor, a turbine).
     fn components(&self, _q: &[Complex<f64>]) -> Option<Components> {
         None

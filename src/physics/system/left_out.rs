@@ -9,7 +9,7 @@ use crate::error::{Error, Result};
 use crate::physics::aero::RATES;
 use crate::physics::inflow::Station;
 use crate::physics::structure::Structure;
-use nalgebra::DVector;
+use nalgebra::{DMatrix, DVector};
 
 /// The left-out modes as the stations see them.
 pub(super) struct LeftOut {
@@ -19,6 +19,8 @@ pub(super) struct LeftOut {
     tip_rows: [DVector<f64>; RATES],
     /// `ω_j²`: each mode's stiffness.
     stiffness: DVector<f64>,
+    /// Their structural damping matrix (modal: `2ζ_jω_j` on the diagonal).
+    damping: DMatrix<f64>,
     /// Their share of the structure's own static load (the centrifugal pull on a curved axis).
     static_load: DVector<f64>,
     /// Their static response to it, `[φ, u, v]` at each station: the part of every offset the
@@ -81,6 +83,7 @@ impl LeftOut {
             tip_rows: motion(structure.length()),
             rows,
             stiffness,
+            damping: rest.damping().clone(),
             static_load,
             fixed,
             scale,
@@ -145,6 +148,11 @@ impl LeftOut {
     /// `ω_j²` of each left-out mode.
     pub fn stiffness(&self) -> &DVector<f64> {
         &self.stiffness
+    }
+
+    /// Their structural damping matrix.
+    pub fn damping(&self) -> &DMatrix<f64> {
+        &self.damping
     }
 
     /// The static coordinates under generalised load `force`.

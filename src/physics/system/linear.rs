@@ -111,6 +111,12 @@ impl System {
         let mut qr_p = DMatrix::from_diagonal(left_out.stiffness());
         let mut qk_p = DMatrix::zeros(nq, m);
         let mut g_p = DMatrix::zeros(na, m);
+        // The same per unit of the left-out modes' rates, for their dynamics.
+        let mut rates = LeftOutRates {
+            own: -left_out.damping(),
+            retained: DMatrix::zeros(nq, m),
+            lags: DMatrix::zeros(na, m),
+        };
         let mut blocks = Blocks::new(m);
         let mut groups: Vec<StationGroup> = Vec::new();
         let (q, v, z) = self.split(x);
@@ -149,33 +155,42 @@ impl System {
                 g.left_values.extend(left.values.iter().map(|v| v[j]));
                 g.rows_position
                     .extend(rows.values.iter().map(|v| lp(v, &position, j)));
+                g.rows_rate
+                    .extend(rows.values.iter().map(|v| lp(v, &rate, j)));
                 g.rows_values.extend(rows.values.iter().map(|v| v[j]));
             }
             for lag in 0..ns {
                 let dz: [f64; LOADS] = std::array::from_fn(|l| w * eval.dloads_dz[l][lag]);
                 let dzdot: [f64; RATES] = std::array::from_fn(|j| eval.dzdot_dk[lag][j]);
+                let dzdot_rate: [f64; RATES] =
+                    std::array::from_fn(|j| eval.dzdot_dk[lag][j + RATES]);
                 for (i, &r) in left.entries.iter().enumerate() {
                     qr[(r, 2 * nq + si * ns + lag)] += dot3(&left.values[i], &dz);
                     g_p[(si * ns + lag, r)] += dot3(&left.values[i], &dzdot);
+                    rates.lags[(si * ns + lag, r)] += dot3(&left.values[i], &dzdot_rate);
                 }
             }
         }
         for g in &groups {
-            let [left_position, left_rate, left_values, rows_position, rows_values] = g.matrices();
+            let [left_position, left_rate, left_values, rows_position, rows_rate, rows_values] =
+                g.matrices();
             let by_rows = |l: &DMatrix<f64>| l * rows_values.transpose();
             let (position_terms, rate_terms) = (by_rows(&left_position), by_rows(&left_rate));
-            let hub_terms = rows_position * left_values.transpose();
-            let own_terms = left_position * left_values.transpose();
+            let by_left = |l: &DMatrix<f64>| l * left_values.transpose();
+            let (hub_terms, hub_rate_terms) = (by_left(&rows_position), by_left(&rows_rate));
+            let (own_terms, own_rate_terms) = (by_left(&left_position), by_left(&left_rate));
             for (k, &c) in g.rows.iter().enumerate() {
                 for (i, &r) in g.left.iter().enumerate() {
                     qr[(r, c)] += position_terms[(i, k)];
                     qr[(r, nq + c)] += rate_terms[(i, k)];
                     qk_p[(c, r)] += hub_terms[(k, i)];
+                    rates.retained[(c, r)] += hub_rate_terms[(k, i)];
                 }
             }
             for (k, &c) in g.left.iter().enumerate() {
                 for (i, &r) in g.left.iter().enumerate() {
                     qr_p[(r, c)] -= own_terms[(i, k)];
+                    rates.own[(r, c)] += own_rate_terms[(i, k)];
                 }
             }
         }
@@ -183,6 +198,8 @@ impl System {
         // states and the hub's) and moves only the accelerations and its blade's lag rates:
         // solved and multiplied on those alone (a turbine's three blocks touch a third each).
         let inertial = &self.mass_inv * &qk_p;
+        let dynamic = self.structure.time_invariant();
+        let mut quasi_static = DMatrix::zeros(if dynamic { m } else { 0 }, inputs);
         for block in blocks.members() {
             let inputs_felt: Vec<usize> = (0..inputs)
                 .filter(|&c| block.iter().any(|&r| qr[(r, c)] != 0.0))
@@ -208,7 +225,14 @@ impl System {
                     None => inertial[(i, block[j])],
                     Some(l) => g_p[(lags_moved[l], block[j])],
                 });
-            let added = moves * response;
+            let added = moves * &response;
+            if dynamic {
+                for (k, &c) in inputs_felt.iter().enumerate() {
+                    for (i, &r) in block.iter().enumerate() {
+                        quasi_static[(r, c)] = response[(i, k)];
+                    }
+                }
+            }
             for (k, &c) in inputs_felt.iter().enumerate() {
                 for i in 0..nq {
                     a[(nq + i, c)] += added[(i, k)];
@@ -217,6 +241,16 @@ impl System {
                     a[(2 * nq + lag, c)] += added[(nq + l, k)];
                 }
             }
+        }
+        if dynamic {
+            rates.retained = &self.mass_inv * &rates.retained;
+            let moves = LeftOutMoves {
+                stiffness_less_air: qr_p,
+                retained: inertial,
+                lags: g_p,
+                rates,
+            };
+            moves.with_dynamics(a, nq, &quasi_static)?;
         }
         Ok(())
     }
@@ -276,6 +310,64 @@ impl LinearSystem {
     }
 }
 
+/// What the left-out modes' own rates move, per unit of each.
+struct LeftOutRates {
+    /// Their generalised loads, `∂Q_R/∂ṗ − C_R` (the air's damping less the structure's).
+    own: DMatrix<f64>,
+    /// The retained accelerations, `M⁻¹ ∂Q/∂ṗ`.
+    retained: DMatrix<f64>,
+    /// The lag states' rates, `∂G/∂ṗ`.
+    lags: DMatrix<f64>,
+}
+
+/// The left-out modes' terms in the state matrix.
+struct LeftOutMoves {
+    /// `Λ − ∂Q_R/∂p`.
+    stiffness_less_air: DMatrix<f64>,
+    /// The retained accelerations per unit of their coordinates, `M⁻¹ ∂Q/∂p`.
+    retained: DMatrix<f64>,
+    /// The lag states' rates per unit of their coordinates, `∂G/∂p`.
+    lags: DMatrix<f64>,
+    rates: LeftOutRates,
+}
+
+impl LeftOutMoves {
+    /// The state matrix `a` with the left-out modes' rates and inertia (docs/model.md §12.6):
+    /// their coordinates answer `p̈ + C_R ṗ + (Λ − ∂Q_R/∂p) p = ∂Q_R/∂x x + ∂Q_R/∂ṗ ṗ`, with
+    /// `ṗ = G A x` and `p̈ = G A² x` taken from the quasi-static response `p = G x` and the
+    /// state matrix `A` it gives (`quasi_static` and `a` on entry): the improved reduced system
+    /// of O'Callahan, here with the air's damping. The response gains `(Λ − ∂Q_R/∂p)⁻¹` of
+    /// the rates' loads, and `a` what that and the rates move. One step: iterated (Friswell,
+    /// Garvey & Penny 1995), it settles no nearer the whole basis's roots here, for twice the
+    /// cost (§12.6).
+    fn with_dynamics(
+        self,
+        a: &mut DMatrix<f64>,
+        nq: usize,
+        quasi_static: &DMatrix<f64>,
+    ) -> Result<()> {
+        let LeftOutMoves {
+            stiffness_less_air,
+            retained,
+            lags,
+            rates,
+        } = self;
+        let na = a.nrows() - 2 * nq;
+        let rate = quasi_static * &*a;
+        let load = &rates.own * &rate - &rate * &*a;
+        let dynamic_response = stiffness_less_air.lu().solve(&load).ok_or_else(|| {
+            Error::numerical(
+                "the left-out modes' dynamic response: their stiffness less the air's is singular",
+            )
+        })?;
+        let mut accelerations = a.rows_mut(nq, nq);
+        accelerations += &retained * &dynamic_response + &rates.retained * &rate;
+        let mut lag_rates = a.rows_mut(2 * nq, na);
+        lag_rates += &lags * &dynamic_response + &rates.lags * &rate;
+        Ok(())
+    }
+}
+
 /// Three rows on the entries where any of them is nonzero: each entry's three values.
 struct Gathered {
     entries: Vec<usize>,
@@ -310,6 +402,7 @@ struct StationGroup {
     left_rate: Vec<f64>,
     left_values: Vec<f64>,
     rows_position: Vec<f64>,
+    rows_rate: Vec<f64>,
     rows_values: Vec<f64>,
 }
 
@@ -322,12 +415,14 @@ impl StationGroup {
             left_rate: Vec::new(),
             left_values: Vec::new(),
             rows_position: Vec::new(),
+            rows_rate: Vec::new(),
             rows_values: Vec::new(),
         }
     }
 
-    /// `L D_position`, `L D_rate`, `L`, `R D_position`, `R`, each entries × (3 × stations).
-    fn matrices(&self) -> [DMatrix<f64>; 5] {
+    /// `L D_position`, `L D_rate`, `L`, `R D_position`, `R D_rate`, `R`, each entries × (3 ×
+    /// stations).
+    fn matrices(&self) -> [DMatrix<f64>; 6] {
         let (nl, nr) = (self.left.len(), self.rows.len());
         let on = |entries: usize, values: &[f64]| {
             DMatrix::from_column_slice(entries, values.len() / entries.max(1), values)
@@ -337,6 +432,7 @@ impl StationGroup {
             on(nl, &self.left_rate),
             on(nl, &self.left_values),
             on(nr, &self.rows_position),
+            on(nr, &self.rows_rate),
             on(nr, &self.rows_values),
         ]
     }

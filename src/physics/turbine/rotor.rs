@@ -86,15 +86,9 @@ impl Rotor {
                 q_eq.len()
             )));
         }
-        let left_out = blade.left_out().map(|rest| {
-            let (stiffness, load) = (rest.stiffness(), rest.static_load());
-            Box::new(Rotor::left_out_of(
-                Arc::clone(&blade),
-                blades,
-                stiffness,
-                load,
-            ))
-        });
+        let left_out = blade
+            .left_out()
+            .map(|rest| Box::new(Rotor::left_out_of(Arc::clone(&blade), blades, rest)));
         let drivetrain = inputs.drivetrain.clone();
         let fixed = drivetrain.as_ref().map_or(0, Drivetrain::coordinates);
         let on_tower = inputs.support.as_ref().map_or(0, |s| s.tower.coordinates());
@@ -214,21 +208,20 @@ impl Rotor {
         })
     }
 
-    /// The left-out modes of `blades` copies of `blade` (their `stiffness` and own static
-    /// `load`, per blade): stiffness, rows and static load, all the static correction reads.
-    fn left_out_of(
-        blade: Arc<dyn Structure>,
-        blades: usize,
-        stiffness: DMatrix<f64>,
-        load: DVector<f64>,
-    ) -> Rotor {
+    /// The left-out modes of `blades` copies of `blade` (`rest`, per blade): stiffness,
+    /// damping, rows and static load, all the left-out modes' correction reads.
+    fn left_out_of(blade: Arc<dyn Structure>, blades: usize, rest: &dyn Structure) -> Rotor {
+        let (stiffness, load) = (rest.stiffness(), rest.static_load());
         let count = load.len();
         let n = blades * count;
         let mut k = DMatrix::zeros(n, n);
+        let mut c = DMatrix::zeros(n, n);
         let mut static_load = DVector::zeros(n);
         for b in 0..blades {
             let at = b * count;
             k.view_mut((at, at), (count, count)).copy_from(&stiffness);
+            c.view_mut((at, at), (count, count))
+                .copy_from(rest.damping());
             static_load.rows_mut(at, count).copy_from(&load);
         }
         Rotor {
@@ -241,7 +234,7 @@ impl Rotor {
             azimuth: 0.0,
             mass: DMatrix::identity(n, n),
             stiffness: k,
-            damping: DMatrix::zeros(n, n),
+            damping: c,
             gyroscopic: DMatrix::zeros(n, n),
             static_load,
             family_energy: [(); 3].map(|_| DMatrix::zeros(count, count)),
@@ -415,6 +408,11 @@ impl Structure for Rotor {
     }
     fn left_out(&self) -> Option<&dyn Structure> {
         self.left_out.as_deref().map(|r| r as &dyn Structure)
+    }
+    /// On a rigid support nothing depends on the azimuth; on a tower the blades' coupling with
+    /// it turns with them.
+    fn time_invariant(&self) -> bool {
+        self.tower.is_none()
     }
 }
 
