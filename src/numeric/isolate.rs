@@ -9,6 +9,7 @@
 //! permutation, found in O(n²), leaves the QR iteration only the active block B, which has none
 //! of that structure; when nothing isolates, B is the matrix itself.
 
+use super::lu::Lu;
 use super::roots::Roots;
 use nalgebra::{Complex, DMatrix, DVector};
 use std::ops::Range;
@@ -163,42 +164,6 @@ impl Isolation {
     }
 }
 
-/// LU factors P(B − λI) = LU for one isolated λ: faer's partial pivoting (blocked: on the
-/// turbine's 263-state active block a quarter of the time of nalgebra's unblocked one), on this
-/// thread. faer's `partial_piv_lu` runs on its global parallelism, rayon's whole pool, and so
-/// took 2.3 ms against about 0.6 ms for the turbine's block on a loaded 2-core machine.
-struct Factors {
-    /// L below the diagonal (unit diagonal implied), U on and above it.
-    lu: faer::Mat<f64>,
-    /// Row i of P(B − λI) is row `from[i]` of B − λI.
-    from: Vec<usize>,
-}
-
-impl Factors {
-    fn of(mut lu: faer::Mat<f64>) -> Factors {
-        use faer::dyn_stack::{MemBuffer, MemStack};
-        use faer::linalg::lu::partial_pivoting::factor::{lu_in_place, lu_in_place_scratch};
-        let m = lu.nrows();
-        let (mut from, mut to) = (vec![0usize; m], vec![0usize; m]);
-        let par = faer::Par::Seq;
-        let mut scratch = MemBuffer::new(lu_in_place_scratch::<usize, f64>(
-            m,
-            m,
-            par,
-            Default::default(),
-        ));
-        lu_in_place(
-            lu.as_mut(),
-            &mut from,
-            &mut to,
-            par,
-            MemStack::new(&mut scratch),
-            Default::default(),
-        );
-        Factors { lu, from }
-    }
-}
-
 /// The triangular and LU solves of [`Isolation::roots`] on the permuted matrix C = PᵀAP, in
 /// place on a full permuted vector x (right: (C − λI)x = 0 row by row) or w (left:
 /// wᵀ(C − λI) = 0 column by column).
@@ -206,8 +171,8 @@ struct Substitution<'a> {
     c: &'a DMatrix<f64>,
     lo: usize,
     hi: usize,
-    /// One factorisation per distinct isolated λ that needs one (still air: only λ = 0).
-    lu: Vec<(f64, Factors)>,
+    /// `P(B − λI) = LU`, one per distinct isolated λ that needs one (still air: only λ = 0).
+    lu: Vec<(f64, Lu)>,
 }
 
 impl Substitution<'_> {
@@ -292,7 +257,7 @@ impl Substitution<'_> {
                 let b = faer::Mat::<f64>::from_fn(m, m, |i, j| {
                     self.c[(lo + i, lo + j)] - if i == j { lambda } else { 0.0 }
                 });
-                self.lu.push((lambda, Factors::of(b)));
+                self.lu.push((lambda, Lu::of(b)));
                 self.lu.len() - 1
             }
         };

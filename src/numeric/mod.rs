@@ -5,7 +5,8 @@
 //! propagators of the time response ([`phi_functions`]), faer's general eigendecomposition (also
 //! used for the strong-form natural modes), banded symmetric matrices and the lowest eigenpairs
 //! of a banded pencil by shift-invert block Lanczos (the tabulated blade's modes), the
-//! multi-blade coordinate transform of a rotor's states ([`mbc`]), and the optimal assignment
+//! multi-blade coordinate transform of a rotor's states ([`mbc`]), LU factors that serve many
+//! right-hand sides (`lu.rs`), and the optimal assignment
 //! that mode labelling and tracking share ([`hungarian`]), and the running of a solve's two
 //! independent pieces on two cores (`alongside.rs`). Nothing here depends on the rest of the
 //! crate but its error type.
@@ -23,6 +24,7 @@ mod hessenberg_reduction;
 mod inverse_iteration;
 mod isolate;
 pub mod lanczos;
+pub(crate) mod lu;
 pub mod mbc;
 pub mod phi_functions;
 pub mod products;

@@ -2,6 +2,7 @@
 
 use super::{check_finite, StripScratch, System};
 use crate::error::{Error, Result};
+use crate::numeric::lu::Lu;
 use crate::physics::aero::{LOADS, RATES};
 use crate::physics::structure::Structure;
 use nalgebra::{DMatrix, DVector};
@@ -200,6 +201,7 @@ impl System {
         let inertial = &self.mass_inv * &qk_p;
         let dynamic = self.structure.time_invariant();
         let mut quasi_static = DMatrix::zeros(if dynamic { m } else { 0 }, inputs);
+        let mut factors = Vec::new();
         for block in blocks.members() {
             let inputs_felt: Vec<usize> = (0..inputs)
                 .filter(|&c| block.iter().any(|&r| qr[(r, c)] != 0.0))
@@ -209,17 +211,8 @@ impl System {
                 .collect();
             let b = block.len();
             let rhs = DMatrix::from_fn(b, inputs_felt.len(), |i, k| qr[(block[i], inputs_felt[k])]);
-            let response = qr_p
-                .select_rows(&block)
-                .select_columns(&block)
-                .lu()
-                .solve(&rhs)
-                .ok_or_else(|| {
-                    Error::numerical(
-                        "the left-out modes' quasi-static response: their stiffness less the \
-                         air's is singular",
-                    )
-                })?;
+            let lu = Lu::of_matrix(&qr_p.select_rows(&block).select_columns(&block));
+            let response = lu.solve(&rhs).ok_or_else(singular)?;
             let moves =
                 DMatrix::from_fn(nq + lags_moved.len(), b, |i, j| match i.checked_sub(nq) {
                     None => inertial[(i, block[j])],
@@ -232,6 +225,7 @@ impl System {
                         quasi_static[(r, c)] = response[(i, k)];
                     }
                 }
+                factors.push((block, lu));
             }
             for (k, &c) in inputs_felt.iter().enumerate() {
                 for i in 0..nq {
@@ -245,7 +239,7 @@ impl System {
         if dynamic {
             rates.retained = &self.mass_inv * &rates.retained;
             let moves = LeftOutMoves {
-                stiffness_less_air: qr_p,
+                stiffness_less_air: factors,
                 retained: inertial,
                 lags: g_p,
                 rates,
@@ -310,6 +304,11 @@ impl LinearSystem {
     }
 }
 
+/// The left-out modes' stiffness less the air's, singular: no response to the strip loads.
+fn singular() -> Error {
+    Error::numerical("the left-out modes' response: their stiffness less the air's is singular")
+}
+
 /// What the left-out modes' own rates move, per unit of each.
 struct LeftOutRates {
     /// Their generalised loads, `∂Q_R/∂ṗ − C_R` (the air's damping less the structure's).
@@ -322,8 +321,8 @@ struct LeftOutRates {
 
 /// The left-out modes' terms in the state matrix.
 struct LeftOutMoves {
-    /// `Λ − ∂Q_R/∂p`.
-    stiffness_less_air: DMatrix<f64>,
+    /// `Λ − ∂Q_R/∂p`, factored block by block (each block's modes in order).
+    stiffness_less_air: Vec<(Vec<usize>, Lu)>,
     /// The retained accelerations per unit of their coordinates, `M⁻¹ ∂Q/∂p`.
     retained: DMatrix<f64>,
     /// The lag states' rates per unit of their coordinates, `∂G/∂p`.
@@ -355,11 +354,13 @@ impl LeftOutMoves {
         let na = a.nrows() - 2 * nq;
         let rate = quasi_static * &*a;
         let load = &rates.own * &rate - &rate * &*a;
-        let dynamic_response = stiffness_less_air.lu().solve(&load).ok_or_else(|| {
-            Error::numerical(
-                "the left-out modes' dynamic response: their stiffness less the air's is singular",
-            )
-        })?;
+        let mut dynamic_response = DMatrix::zeros(load.nrows(), load.ncols());
+        for (block, lu) in &stiffness_less_air {
+            let solved = lu.solve(&load.select_rows(block)).ok_or_else(singular)?;
+            for (i, &r) in block.iter().enumerate() {
+                dynamic_response.row_mut(r).copy_from(&solved.row(i));
+            }
+        }
         let mut accelerations = a.rows_mut(nq, nq);
         accelerations += &retained * &dynamic_response + &rates.retained * &rate;
         let mut lag_rates = a.rows_mut(2 * nq, na);
