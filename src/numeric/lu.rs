@@ -87,6 +87,14 @@ mod tests {
     }
 
     #[test]
+    fn a_matrix_with_nan_does_not_panic() {
+        let a = DMatrix::from_row_slice(2, 2, &[f64::NAN, 1.0, 1.0, 2.0]);
+        if let Some(x) = Lu::of_matrix(&a).solve(&DMatrix::identity(2, 2)) {
+            assert!(x.iter().any(|v| !v.is_finite()), "{x}");
+        }
+    }
+
+    #[test]
     fn a_singular_matrix_has_no_solution() {
         let a = DMatrix::from_row_slice(2, 2, &[1.0, 2.0, 2.0, 4.0]);
         assert!(Lu::of_matrix(&a).solve(&DMatrix::identity(2, 2)).is_none());
