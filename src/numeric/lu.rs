@@ -8,6 +8,7 @@
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::lu::partial_pivoting::{factor, solve};
 use faer::perm::PermRef;
+use faer::{MatMut, MatRef};
 use nalgebra::DMatrix;
 
 pub(crate) struct Lu {
@@ -44,7 +45,7 @@ impl Lu {
 
     /// The factors of `a`.
     pub(crate) fn of_matrix(a: &DMatrix<f64>) -> Lu {
-        Lu::of(faer::Mat::from_fn(a.nrows(), a.ncols(), |i, j| a[(i, j)]))
+        Lu::of(MatRef::from_column_major_slice(a.as_slice(), a.nrows(), a.ncols()).to_owned())
     }
 
     /// `A⁻¹ b` for every column of `b`; none where A is singular (a zero pivot).
@@ -53,7 +54,7 @@ impl Lu {
         if (0..m).any(|i| self.lu[(i, i)] == 0.0) {
             return None;
         }
-        let mut x = faer::Mat::from_fn(m, b.ncols(), |i, j| b[(i, j)]);
+        let mut x = b.clone();
         let par = faer::Par::Seq;
         let mut scratch = MemBuffer::new(solve::solve_in_place_scratch::<usize, f64>(
             m,
@@ -65,11 +66,11 @@ impl Lu {
             self.lu.as_ref(),
             self.lu.as_ref(),
             perm,
-            x.as_mut(),
+            MatMut::from_column_major_slice_mut(x.as_mut_slice(), m, b.ncols()),
             par,
             MemStack::new(&mut scratch),
         );
-        Some(DMatrix::from_fn(m, b.ncols(), |i, j| x[(i, j)]))
+        Some(x)
     }
 }
 

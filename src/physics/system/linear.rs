@@ -112,12 +112,14 @@ impl System {
         let mut qr_p = DMatrix::from_diagonal(left_out.stiffness());
         let mut qk_p = DMatrix::zeros(nq, m);
         let mut g_p = DMatrix::zeros(na, m);
-        // The same per unit of the left-out modes' rates, for their dynamics.
-        let mut rates = LeftOutRates {
+        // The same per unit of the left-out modes' rates, for their dynamics, where they are
+        // taken.
+        let dynamic = self.structure.time_invariant();
+        let mut rates = dynamic.then(|| LeftOutRates {
             own: -left_out.damping(),
             retained: DMatrix::zeros(nq, m),
             lags: DMatrix::zeros(na, m),
-        };
+        });
         let mut blocks = Blocks::new(m);
         let mut groups: Vec<StationGroup> = Vec::new();
         let (q, v, z) = self.split(x);
@@ -156,19 +158,25 @@ impl System {
                 g.left_values.extend(left.values.iter().map(|v| v[j]));
                 g.rows_position
                     .extend(rows.values.iter().map(|v| lp(v, &position, j)));
-                g.rows_rate
-                    .extend(rows.values.iter().map(|v| lp(v, &rate, j)));
+                if dynamic {
+                    g.rows_rate
+                        .extend(rows.values.iter().map(|v| lp(v, &rate, j)));
+                }
                 g.rows_values.extend(rows.values.iter().map(|v| v[j]));
             }
             for lag in 0..ns {
                 let dz: [f64; LOADS] = std::array::from_fn(|l| w * eval.dloads_dz[l][lag]);
                 let dzdot: [f64; RATES] = std::array::from_fn(|j| eval.dzdot_dk[lag][j]);
-                let dzdot_rate: [f64; RATES] =
-                    std::array::from_fn(|j| eval.dzdot_dk[lag][j + RATES]);
                 for (i, &r) in left.entries.iter().enumerate() {
                     qr[(r, 2 * nq + si * ns + lag)] += dot3(&left.values[i], &dz);
                     g_p[(si * ns + lag, r)] += dot3(&left.values[i], &dzdot);
-                    rates.lags[(si * ns + lag, r)] += dot3(&left.values[i], &dzdot_rate);
+                }
+                if let Some(rates) = rates.as_mut() {
+                    let dzdot_rate: [f64; RATES] =
+                        std::array::from_fn(|j| eval.dzdot_dk[lag][j + RATES]);
+                    for (i, &r) in left.entries.iter().enumerate() {
+                        rates.lags[(si * ns + lag, r)] += dot3(&left.values[i], &dzdot_rate);
+                    }
                 }
             }
         }
@@ -178,20 +186,30 @@ impl System {
             let by_rows = |l: &DMatrix<f64>| l * rows_values.transpose();
             let (position_terms, rate_terms) = (by_rows(&left_position), by_rows(&left_rate));
             let by_left = |l: &DMatrix<f64>| l * left_values.transpose();
-            let (hub_terms, hub_rate_terms) = (by_left(&rows_position), by_left(&rows_rate));
-            let (own_terms, own_rate_terms) = (by_left(&left_position), by_left(&left_rate));
+            let (hub_terms, own_terms) = (by_left(&rows_position), by_left(&left_position));
             for (k, &c) in g.rows.iter().enumerate() {
                 for (i, &r) in g.left.iter().enumerate() {
                     qr[(r, c)] += position_terms[(i, k)];
                     qr[(r, nq + c)] += rate_terms[(i, k)];
                     qk_p[(c, r)] += hub_terms[(k, i)];
-                    rates.retained[(c, r)] += hub_rate_terms[(k, i)];
                 }
             }
             for (k, &c) in g.left.iter().enumerate() {
                 for (i, &r) in g.left.iter().enumerate() {
                     qr_p[(r, c)] -= own_terms[(i, k)];
-                    rates.own[(r, c)] += own_rate_terms[(i, k)];
+                }
+            }
+            if let Some(rates) = rates.as_mut() {
+                let (hub_rate_terms, own_rate_terms) = (by_left(&rows_rate), by_left(&left_rate));
+                for (k, &c) in g.rows.iter().enumerate() {
+                    for (i, &r) in g.left.iter().enumerate() {
+                        rates.retained[(c, r)] += hub_rate_terms[(k, i)];
+                    }
+                }
+                for (k, &c) in g.left.iter().enumerate() {
+                    for (i, &r) in g.left.iter().enumerate() {
+                        rates.own[(r, c)] += own_rate_terms[(i, k)];
+                    }
                 }
             }
         }
@@ -199,7 +217,6 @@ impl System {
         // states and the hub's) and moves only the accelerations and its blade's lag rates:
         // solved and multiplied on those alone (a turbine's three blocks touch a third each).
         let inertial = &self.mass_inv * &qk_p;
-        let dynamic = self.structure.time_invariant();
         let mut quasi_static = DMatrix::zeros(if dynamic { m } else { 0 }, inputs);
         let mut factors = Vec::new();
         for block in blocks.members() {
@@ -236,7 +253,7 @@ impl System {
                 }
             }
         }
-        if dynamic {
+        if let Some(mut rates) = rates {
             rates.retained = &self.mass_inv * &rates.retained;
             let moves = LeftOutMoves {
                 stiffness_less_air: factors,
