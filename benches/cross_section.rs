@@ -70,7 +70,7 @@ fn iea15mw_blade_from_its_layup(b: divan::Bencher) {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("presets/blades/iea15mw-windio/IEA-15-240-RWT.yaml");
     let w = std::sync::Arc::new(flutterscope::formats::windio::read(&path).unwrap());
-    b.bench(|| LayupBlade::new(w.clone(), None, None).unwrap());
+    b.bench(|| LayupBlade::new(w.clone(), None, None, None).unwrap());
 }
 
 /// The spar caps of the IEA 15MW turned a degree further over r/R 0.6–1.0, from the blade
@@ -87,10 +87,10 @@ fn iea15mw_spar_caps_turned_a_degree(b: divan::Bencher) {
         layers: PlyTurn::spar_caps(&w),
         span: [0.6, 1.0],
     };
-    let held = LayupBlade::new(w.clone(), Some(turn(8.0)), None).unwrap();
+    let held = LayupBlade::new(w.clone(), Some(turn(8.0)), None, None).unwrap();
     let mut angle = 8.0;
     b.bench_local(|| {
         angle += 1.0;
-        LayupBlade::new(w.clone(), Some(turn(angle)), Some(&held)).unwrap()
+        LayupBlade::new(w.clone(), Some(turn(angle)), None, Some(&held)).unwrap()
     });
 }

@@ -291,6 +291,8 @@ struct LayupStationReport<'a> {
     /// The fibre angle the preset's ply turn gives here (deg), `None`: the ontology's own.
     ply_angle_deg: Option<f64>,
     turned_layers: Vec<String>,
+    /// The trailing-edge fill laid here: its material and its length along the chord (m).
+    trailing_edge_fill: Option<(String, f64)>,
     /// Elements of the section mesh and the mass the mesher cut where the walls meet (kg/m).
     elements: usize,
     clipped_mass: f64,
@@ -327,7 +329,8 @@ pub fn run_at(p: &ValidPreset, eta: f64, json: bool, plot: Option<&Path>) -> Res
         crate::plot::format_for(path)?;
     }
     let turn = layup.turn.as_ref().filter(|t| t.acts_at(eta));
-    let s = layup_station(&layup.windio, eta, turn, None)?;
+    let fill = layup.fill.as_ref().filter(|f| f.acts_at(eta));
+    let s = layup_station(&layup.windio, eta, turn, fill, None)?;
     let props = s.properties;
     let report = LayupStationReport {
         preset: p.display_name(),
@@ -335,6 +338,7 @@ pub fn run_at(p: &ValidPreset, eta: f64, json: bool, plot: Option<&Path>) -> Res
         eta,
         ply_angle_deg: turn.map(|t| t.angle.to_degrees()),
         turned_layers: turn.map(|t| t.layers.clone()).unwrap_or_default(),
+        trailing_edge_fill: fill.map(|f| (f.material.clone(), f.length)),
         elements: s.mesh.mesh.elements.len(),
         clipped_mass: s.mesh.clipped_mass,
         stiffness: s.matrices.stiffness,
@@ -378,6 +382,9 @@ fn station_text(r: &LayupStationReport) -> String {
             )
         }
         None => out += "  the ontology's own fibre angles\n",
+    }
+    if let Some((material, length)) = &r.trailing_edge_fill {
+        out += &format!("  trailing edge filled with {material} over its last {length} m\n");
     }
     out += &format!(
         "  mesh: {} elements; mass cut where the walls meet {:.3} kg/m\n\n",

@@ -25,8 +25,10 @@ use crate::formats::htc_turbine;
 use crate::formats::text_file::{ModelRoot, TextFile};
 use crate::formats::windio::{self, WindIo};
 use crate::physics::blade::source::{
-    read_twist, BeamDynFiles, BladeFiles, Hawc2Files, TabulatedBlade, TurnRequest, WindIoFiles,
+    read_twist, BeamDynFiles, BladeFiles, Hawc2Files, LayupRequest, TabulatedBlade, TurnRequest,
+    WindIoFiles,
 };
+use crate::physics::blade::windio::TrailingEdgeFill;
 use crate::physics::rotor::bem::AeroStation;
 use crate::physics::rotor::files::{
     read_aerodyn, read_hawc2, read_htc_aero, read_prebend, windio_aero, AePc,
@@ -79,7 +81,7 @@ impl ReadFiles {
     /// a key it was read from changed.
     pub fn reads_blade_again(&self, p: &Preset) -> bool {
         match &self.tabulated {
-            Some(t) => !t.read_from(&p.blade, &ply_turn(p)),
+            Some(t) => !t.read_from(&p.blade, &layup_request(p)),
             None => p.blade.source.is_tabulated(),
         }
     }
@@ -147,9 +149,9 @@ struct BladeKeys {
     st_subset: usize,
     /// `htc_file`, `htc_body`, `htc_root`.
     htc: [String; 3],
-    /// A WindIO blade's ply turn (`section.ply_angle`, `section.rotate_layers`,
-    /// `section.rotate_span`).
-    turn: Option<TurnRequest>,
+    /// A WindIO blade's ply turn and trailing-edge fill (`section.ply_angle`,
+    /// `section.rotate_layers`, `section.rotate_span`, `section.trailing_edge_fill*`).
+    turn: LayupRequest,
 }
 
 impl Tabulated {
@@ -169,7 +171,7 @@ impl Tabulated {
     }
 
     /// Whether this was read from what `blade` now names, turned by `turn`.
-    fn read_from(&self, blade: &Blade, turn: &Option<TurnRequest>) -> bool {
+    fn read_from(&self, blade: &Blade, turn: &LayupRequest) -> bool {
         let k = &self.keys;
         k.source == blade.source
             && k.file == blade.file
@@ -234,7 +236,7 @@ pub fn read_tabulated(p: &Preset, held: Option<&Tabulated>) -> Result<Option<Tab
     if !b.source.is_tabulated() {
         return Ok(None);
     }
-    let turn = ply_turn(p);
+    let turn = layup_request(p);
     if let Some(t) = held.filter(|t| t.read_from(b, &turn)) {
         return Ok(Some(t.clone()));
     }
@@ -287,7 +289,7 @@ pub fn read_tabulated(p: &Preset, held: Option<&Tabulated>) -> Result<Option<Tab
     }))
 }
 
-fn blade_keys(b: &Blade, turn: Option<TurnRequest>) -> BladeKeys {
+fn blade_keys(b: &Blade, turn: LayupRequest) -> BladeKeys {
     BladeKeys {
         source: b.source,
         file: b.file.clone(),
@@ -306,7 +308,7 @@ static WINDIO_FILES: Kept<(String, u64), WindIo> = Kept::new();
 /// WindIO blades as analysed, by file name, text hash and ply turn: the analysis of 50 layup
 /// sections is the cost of loading such a blade (docs/model.md §11.12), and the same blade is
 /// asked for again by every preset that names it.
-static LAYUP_BLADES: Kept<(String, u64, Option<TurnRequest>), TabulatedBlade> = Kept::new();
+static LAYUP_BLADES: Kept<(String, u64, LayupRequest), TabulatedBlade> = Kept::new();
 
 /// The WindIO file as parsed: kept from before (by its name and text), or parsed now. The
 /// structure and the aerodynamic description of a WindIO blade share one parse.
@@ -333,7 +335,7 @@ fn parsed(name: &str, hash: u64, text: &str) -> Result<Arc<WindIo>> {
 /// the same file.
 fn windio_blade(
     file: &BladeFile,
-    turn: &Option<TurnRequest>,
+    turn: &LayupRequest,
     held: Option<&Tabulated>,
 ) -> Result<Arc<TabulatedBlade>> {
     let (name, hash, text) = windio_text(file)?;
@@ -358,17 +360,25 @@ fn windio_blade(
     })
 }
 
-/// A WindIO blade's ply turn as the preset asks for it: `section.ply_angle` when set (unset, the
-/// ontology's angles stand).
-fn ply_turn(p: &Preset) -> Option<TurnRequest> {
+/// What the preset asks of a WindIO blade's layup beyond its file: the ply turn when
+/// `section.ply_angle` is set (unset, the ontology's angles stand) and the trailing-edge fill
+/// when `section.trailing_edge_fill` names a material.
+fn layup_request(p: &Preset) -> LayupRequest {
     let s = &p.section;
-    match (p.blade.source, s.ply_angle) {
-        (BladeSource::Windio, Some(angle_deg)) => Some(TurnRequest {
+    if p.blade.source != BladeSource::Windio {
+        return LayupRequest::default();
+    }
+    LayupRequest {
+        turn: s.ply_angle.map(|angle_deg| TurnRequest {
             angle_deg,
             layers: s.rotate_layers.clone(),
             span: s.rotate_span,
         }),
-        _ => None,
+        fill: (!s.trailing_edge_fill.trim().is_empty()).then(|| TrailingEdgeFill {
+            material: s.trailing_edge_fill.trim().to_string(),
+            length: s.trailing_edge_fill_length,
+            span: s.trailing_edge_fill_span,
+        }),
     }
 }
 

@@ -150,6 +150,7 @@ pub static KEYS: &[KeySpec] = &[
         set: |p, v| p.section.ply_angle = Some(v),
         unset: |p| p.section.ply_angle.is_none(),
     },
+    real!("section.trailing_edge_fill_length", "m", 0.0, 50.0, open = true, section.trailing_edge_fill_length),
     real!("section.mass_per_length", "kg/m", 0.0, 1e5, open = true, section.mass_per_length),
     real!("section.polar_inertia", "kg·m", 0.0, 1e5, open = true, section.polar_inertia),
     real!("section.ka2", "m²", 0.0, 100.0, open = false, section.ka2),

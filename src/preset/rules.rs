@@ -38,6 +38,26 @@ pub fn check_blade_keys(p: &Preset) -> Result<()> {
         (BladeSource::Windio, true) => "blade.source = \"windio\" needs blade.file: the WindIO \
              ontology file (.yaml) of the turbine, relative to the preset file"
             .to_string(),
+        (source, _) if source != BladeSource::Windio && fill_keys_given(p) => format!(
+            "section.trailing_edge_fill, section.trailing_edge_fill_length and \
+             section.trailing_edge_fill_span fill the trailing edge of a WindIO blade's layup \
+             (blade.source = \"windio\"); blade.source = \"{}\" has no layup",
+            source.name()
+        ),
+        (BladeSource::Windio, false)
+            if !p
+                .section
+                .trailing_edge_fill_span
+                .iter()
+                .all(|s| (0.0..=1.0).contains(s))
+                || p.section.trailing_edge_fill_span[0] > p.section.trailing_edge_fill_span[1] =>
+        {
+            format!(
+                "section.trailing_edge_fill_span = [{}, {}]: expected span fractions \
+                 [from, to] with 0 ≤ from ≤ to ≤ 1",
+                p.section.trailing_edge_fill_span[0], p.section.trailing_edge_fill_span[1]
+            )
+        }
         (source, _) if source != BladeSource::Windio && turn_keys_given(p) => format!(
             "section.rotate_layers and section.rotate_span turn the layers of a WindIO blade's \
              layup (blade.source = \"windio\"); blade.source = \"{}\" has no layup",
@@ -93,6 +113,14 @@ pub fn check_blade_keys(p: &Preset) -> Result<()> {
         origin: p.origin.clone(),
         message,
     })
+}
+
+/// Whether the preset sets any of the trailing-edge fill's keys.
+fn fill_keys_given(p: &Preset) -> bool {
+    let d = crate::preset::schema::Section::default();
+    !p.section.trailing_edge_fill.trim().is_empty()
+        || p.section.trailing_edge_fill_length != d.trailing_edge_fill_length
+        || p.section.trailing_edge_fill_span != d.trailing_edge_fill_span
 }
 
 /// Whether the preset turns layers other than by the defaults (spar caps, whole span).

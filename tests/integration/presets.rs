@@ -347,11 +347,12 @@ fn every_key_can_be_overridden_with_set() {
         } else {
             format!("{}={v:?}", spec.key)
         };
-        // The coupling knob applies to tabulated blades only (the uniform blade refuses it).
-        let on = if spec.key == "blade.bend_twist_coupling" {
-            "nrel5mw"
-        } else {
-            "liu2017"
+        // The coupling knob applies to tabulated blades only (the uniform blade refuses it), the
+        // trailing-edge fill to a WindIO blade's layup.
+        let on = match spec.key {
+            "blade.bend_twist_coupling" => "nrel5mw",
+            "section.trailing_edge_fill_length" => "iea15mw-windio",
+            _ => "liu2017",
         };
         let p = Preset::load(on, std::slice::from_ref(&text))
             .unwrap_or_else(|e| panic!("--set {text}: {e}"));

@@ -145,6 +145,15 @@ impl Contour {
         self.leading_edge
     }
 
+    /// Where the line across the chord at `x` (m, chord frame) meets the suction side and the
+    /// pressure side (non-dimensional arcs), if it meets both.
+    pub fn across_chord(&self, x: f64) -> Option<(f64, f64)> {
+        let le = self.leading_edge;
+        let suction = self.crossing([x, 0.0], [1.0, 0.0], 0.0, le)?;
+        let pressure = self.crossing([x, 0.0], [1.0, 0.0], le, 1.0)?;
+        Some((suction, pressure))
+    }
+
     /// The non-dimensional arc where the line through `point` perpendicular to `axis` (a unit
     /// vector) first crosses the contour between s = `from` and s = `to`.
     fn crossing(&self, point: [f64; 2], axis: [f64; 2], from: f64, to: f64) -> Option<f64> {

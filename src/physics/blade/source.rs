@@ -17,7 +17,7 @@ use super::fem::Mesh;
 use super::hawc2::{from_hawc2_st, C2Line, ChordTwist};
 use super::modal::{BladeMode, ModalBlade, StiffnessFactors};
 use super::pitch_range::{snapshot_pitches, PitchRangeBlade};
-use super::windio::{LayupBlade, PlyTurn};
+use super::windio::{LayupBlade, PlyTurn, TrailingEdgeFill};
 use super::BladeTable;
 use crate::error::{Error, Result};
 use crate::formats::htc::{self, HtcBlade, HtcDamping, Named};
@@ -293,8 +293,16 @@ pub fn read_hawc2(
 /// the stations the turn leaves as they were. The file states no damping.
 pub struct WindIoFiles<'a> {
     pub windio: Arc<WindIo>,
-    pub turn: Option<TurnRequest>,
+    pub turn: LayupRequest,
     pub held: Option<&'a LayupBlade>,
+}
+
+/// What a preset asks of a WindIO blade's layup beyond its file: a ply turn and a
+/// trailing-edge fill.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct LayupRequest {
+    pub turn: Option<TurnRequest>,
+    pub fill: Option<TrailingEdgeFill>,
 }
 
 /// A preset's ply turn: the angle (deg) for the layers named (empty: the spar caps) over the span
@@ -310,7 +318,7 @@ impl BladeFiles for WindIoFiles<'_> {
     fn read(&self) -> Result<TabulatedBlade> {
         let windio = self.windio.clone();
         let name = windio.path.clone();
-        let turn = self.turn.as_ref().map(|t| PlyTurn {
+        let turn = self.turn.turn.as_ref().map(|t| PlyTurn {
             angle: t.angle_deg.to_radians(),
             layers: if t.layers.is_empty() {
                 PlyTurn::spar_caps(&windio)
@@ -319,7 +327,7 @@ impl BladeFiles for WindIoFiles<'_> {
             },
             span: t.span,
         });
-        let layup = LayupBlade::new(windio, turn, self.held)?;
+        let layup = LayupBlade::new(windio, turn, self.turn.fill.clone(), self.held)?;
         Ok(TabulatedBlade {
             format: BladeFormat::Windio,
             table: layup.table()?,

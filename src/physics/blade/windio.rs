@@ -49,6 +49,25 @@ impl PlyTurn {
     }
 }
 
+/// A trailing-edge fill: at the stations within `span` (fractions of the span, inclusive) the
+/// cavity between the skins' inner faces over the last `length` (m, along the chord from the
+/// trailing edge) is filled with `material` (a name in the file's `materials`): the bond line
+/// where the two shells are glued, which an ontology's layers do not describe, or the filler a
+/// section code closes the trailing edge with (docs/model.md §11.12).
+#[derive(Debug, Clone, PartialEq)]
+pub struct TrailingEdgeFill {
+    pub material: String,
+    pub length: f64,
+    pub span: [f64; 2],
+}
+
+impl TrailingEdgeFill {
+    /// Whether the fill is laid at span fraction `eta`.
+    pub fn acts_at(&self, eta: f64) -> bool {
+        (self.span[0]..=self.span[1]).contains(&eta)
+    }
+}
+
 /// One station's section from the layup.
 #[derive(Debug, Clone, PartialEq)]
 pub struct LayupSection {
@@ -107,9 +126,15 @@ pub fn orthotropic(m: &Material) -> Orthotropic {
 }
 
 /// The station's layup at span fraction `eta`: its contour in the chord frame about the pitch
-/// axis, the shell's layers with their arcs, the webs present there (a web whose layers all
-/// have zero thickness is absent) and the materials in the file's order.
-pub fn station_layup(w: &WindIo, eta: f64, turn: Option<&PlyTurn>) -> Result<Layup> {
+/// axis, the shell's layers with their arcs (and `fill`'s, innermost, where it is laid), the
+/// webs present there (a web whose layers all have zero thickness is absent) and the materials
+/// in the file's order.
+pub fn station_layup(
+    w: &WindIo,
+    eta: f64,
+    turn: Option<&PlyTurn>,
+    fill: Option<&TrailingEdgeFill>,
+) -> Result<Layup> {
     let file = w.path.as_str();
     let shape = &w.blade.outer_shape;
     let (x, y) = w.station_shape(eta, file)?;
@@ -139,7 +164,7 @@ pub fn station_layup(w: &WindIo, eta: f64, turn: Option<&PlyTurn>) -> Result<Lay
         }
     };
     let arcs = place_layers(&structure.layers, &at, file)?;
-    let shell = structure
+    let mut shell: Vec<ShellLayer> = structure
         .layers
         .iter()
         .zip(&arcs)
@@ -150,9 +175,33 @@ pub fn station_layup(w: &WindIo, eta: f64, turn: Option<&PlyTurn>) -> Result<Lay
                 fibre_angle: fibre(l),
                 start,
                 end,
+                fills: false,
             })
         })
         .collect();
+    if let Some(f) = fill.filter(|f| f.acts_at(eta)) {
+        let edge = contour.points()[0][0];
+        let (suction, pressure) =
+            contour
+                .across_chord(edge - f.length)
+                .ok_or_else(|| Error::Invalid {
+                    origin: format!("{file}: the section at span {eta}"),
+                    message: format!(
+                        "section.trailing_edge_fill_length = {} m: the fill would reach past the \
+                     leading edge of a {:.3} m chord",
+                        f.length,
+                        shape.chord.linear(eta)
+                    ),
+                })?;
+        shell.push(ShellLayer {
+            material: material_index(&f.material),
+            thickness: 0.0,
+            fibre_angle: 0.0,
+            start: pressure,
+            end: suction,
+            fills: true,
+        });
+    }
     let mut webs = Vec::new();
     for web in &structure.webs {
         let layers: Vec<WebLayer> = structure
@@ -186,9 +235,10 @@ pub fn layup_section(
     w: &WindIo,
     eta: f64,
     turn: Option<&PlyTurn>,
+    fill: Option<&TrailingEdgeFill>,
     meshing: Option<Meshing>,
 ) -> Result<LayupSection> {
-    meshed_section(w, eta, station_layup(w, eta, turn)?, meshing)
+    meshed_section(w, eta, station_layup(w, eta, turn, fill)?, meshing)
 }
 
 /// The section of `layup`, the layup at `eta`, meshed and analysed.
@@ -211,9 +261,14 @@ fn meshed_section(
 /// The section at `held`'s station with its fibres turned by `turn`: `held`'s mesh with the new
 /// fibre angles, analysed on its factorisation's pattern (the same as a new mesh would give,
 /// at the cost of the analysis alone). Meshed anew if the layup differs in more than angles.
-fn turned_section(w: &WindIo, held: &LayupSection, turn: Option<&PlyTurn>) -> Result<LayupSection> {
+fn turned_section(
+    w: &WindIo,
+    held: &LayupSection,
+    turn: Option<&PlyTurn>,
+    fill: Option<&TrailingEdgeFill>,
+) -> Result<LayupSection> {
     let eta = held.eta;
-    let layup = station_layup(w, eta, turn)?;
+    let layup = station_layup(w, eta, turn, fill)?;
     match held.mesh.turned(&held.layup, &layup) {
         Some(mesh) => analysed(w, eta, layup, mesh, Some(&held.factorisation)),
         None => meshed_section(w, eta, layup, None),
@@ -247,12 +302,13 @@ fn at_station(w: &WindIo, eta: f64, e: Error) -> Error {
     }
 }
 
-/// A WindIO blade's layup as analysed: the file, the ply turn and each station's section, at the
-/// stations of the structure's reference axis.
+/// A WindIO blade's layup as analysed: the file, the ply turn, the trailing-edge fill and each
+/// station's section, at the stations of the structure's reference axis.
 #[derive(Debug, Clone, PartialEq)]
 pub struct LayupBlade {
     pub windio: Arc<WindIo>,
     pub turn: Option<PlyTurn>,
+    pub fill: Option<TrailingEdgeFill>,
     pub sections: Vec<Arc<LayupSection>>,
 }
 
@@ -275,14 +331,19 @@ impl LayupBlade {
     pub fn new(
         windio: Arc<WindIo>,
         turn: Option<PlyTurn>,
+        fill: Option<TrailingEdgeFill>,
         held: Option<&LayupBlade>,
     ) -> Result<LayupBlade> {
         if let Some(t) = &turn {
             check_turn(&windio, t)?;
         }
+        if let Some(f) = &fill {
+            check_fill(&windio, f)?;
+        }
         let etas = &windio.blade.structure.reference_axis.z.grid;
-        let held =
-            held.filter(|h| Arc::ptr_eq(&h.windio, &windio) && h.sections.len() == etas.len());
+        let held = held.filter(|h| {
+            Arc::ptr_eq(&h.windio, &windio) && h.fill == fill && h.sections.len() == etas.len()
+        });
         let sections = etas
             .par_iter()
             .enumerate()
@@ -290,14 +351,17 @@ impl LayupBlade {
                 let here = turn_at(turn.as_ref(), eta);
                 match held {
                     Some(h) if turn_at(h.turn.as_ref(), eta) == here => Ok(h.sections[k].clone()),
-                    Some(h) => turned_section(&windio, &h.sections[k], here).map(Arc::new),
-                    None => layup_section(&windio, eta, here, None).map(Arc::new),
+                    Some(h) => {
+                        turned_section(&windio, &h.sections[k], here, fill.as_ref()).map(Arc::new)
+                    }
+                    None => layup_section(&windio, eta, here, fill.as_ref(), None).map(Arc::new),
                 }
             })
             .collect::<Result<Vec<_>>>()?;
         Ok(LayupBlade {
             windio,
             turn,
+            fill,
             sections,
         })
     }
@@ -349,6 +413,40 @@ impl LayupBlade {
             .min_by(|a, b| (a.eta - eta).abs().total_cmp(&(b.eta - eta).abs()))
             .expect("a blade has stations")
     }
+}
+
+/// A fill names a material the file has, a length > 0 and a span within the blade.
+fn check_fill(w: &WindIo, f: &TrailingEdgeFill) -> Result<()> {
+    let fail = |message: String| {
+        Err(Error::Invalid {
+            origin: w.path.clone(),
+            message,
+        })
+    };
+    let [from, to] = f.span;
+    if !(0.0..=1.0).contains(&from) || !(0.0..=1.0).contains(&to) || from > to {
+        return fail(format!(
+            "section.trailing_edge_fill_span = [{from}, {to}]: expected span fractions \
+             0 ≤ from ≤ to ≤ 1"
+        ));
+    }
+    if !(f.length.is_finite() && f.length > 0.0) {
+        return fail(format!(
+            "section.trailing_edge_fill_length = {}: expected a length > 0 (m, along the chord \
+             from the trailing edge)",
+            f.length
+        ));
+    }
+    if !w.materials.iter().any(|m| m.name == f.material) {
+        let names: Vec<&str> = w.materials.iter().map(|m| m.name.as_str()).collect();
+        return fail(format!(
+            "section.trailing_edge_fill = \"{}\" is no material of the file's materials; they \
+             are: {}",
+            f.material,
+            names.join(", ")
+        ));
+    }
+    Ok(())
 }
 
 /// A turn names layers the file has, on the shell, and a span within the blade.

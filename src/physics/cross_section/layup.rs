@@ -46,6 +46,10 @@ pub struct ShellLayer {
     pub fibre_angle: f64,
     pub start: f64,
     pub end: f64,
+    /// A fill: the layer takes whatever depth the other layers leave to the opposite wall
+    /// (`thickness` is then unused), as a trailing edge's bond or filler closes the cavity
+    /// between the skins.
+    pub fills: bool,
 }
 
 /// One layer of a shear web.
@@ -611,14 +615,26 @@ pub fn mesh_layup(layup: &Layup, meshing: Meshing) -> Result<LayupMesh> {
     let outline = Outline::new(&layup.contour)?;
     let (h, rows) = (meshing.element_length, meshing.rows_per_layer);
     let le = layup.leading_edge;
-    let shell: Vec<&ShellLayer> = layup
+    let scale = layup
+        .contour
+        .iter()
+        .map(|p| p[0].abs().max(p[1].abs()))
+        .fold(0.0, f64::max);
+    // A fill is laid as deep as the section is wide; the walls' clipping leaves it the depth
+    // the other layers do not take.
+    let laid: Vec<ShellLayer> = layup
         .shell
         .iter()
-        .filter(|l| l.thickness >= THINNEST)
+        .map(|l| ShellLayer {
+            thickness: if l.fills { 2.0 * scale } else { l.thickness },
+            ..*l
+        })
         .collect();
-    let shell_index: Vec<usize> = (0..layup.shell.len())
-        .filter(|&i| layup.shell[i].thickness >= THINNEST)
+    let shell: Vec<&ShellLayer> = laid.iter().filter(|l| l.thickness >= THINNEST).collect();
+    let shell_index: Vec<usize> = (0..laid.len())
+        .filter(|&i| laid[i].thickness >= THINNEST)
         .collect();
+    let fills: Vec<bool> = shell.iter().map(|l| l.fills).collect();
 
     let webs = layup
         .webs
@@ -668,11 +684,36 @@ pub fn mesh_layup(layup: &Layup, meshing: Meshing) -> Result<LayupMesh> {
         }
         points.push(outline.point(cols[k]));
     }
+    // A stack deeper than `depth` is scaled down to it, a fill first: what it gives up is not
+    // cut (it only ever takes the room left), what the other layers give up is.
     let clip = |thick: &mut Vec<Vec<f64>>, cut: &mut Vec<Vec<f64>>, k: usize, depth: f64| {
-        let total: f64 = thick[k].iter().sum();
-        if total > depth {
-            let c = depth / total;
-            for i in 0..thick[k].len() {
+        let (filled, laid): (f64, f64) =
+            thick[k]
+                .iter()
+                .zip(&fills)
+                .fold(
+                    (0.0, 0.0),
+                    |(f, o), (&t, &fill)| {
+                        if fill {
+                            (f + t, o)
+                        } else {
+                            (f, o + t)
+                        }
+                    },
+                );
+        if filled + laid <= depth {
+            return;
+        }
+        let room = (depth - laid).max(0.0);
+        let c = if laid > depth { depth / laid } else { 1.0 };
+        for i in 0..thick[k].len() {
+            if fills[i] {
+                thick[k][i] = if filled > 0.0 {
+                    thick[k][i] * room / filled
+                } else {
+                    0.0
+                };
+            } else {
                 cut[k][i] += thick[k][i] * (1.0 - c);
                 thick[k][i] *= c;
             }
@@ -728,14 +769,19 @@ pub fn mesh_layup(layup: &Layup, meshing: Meshing) -> Result<LayupMesh> {
     // flatback's corners the rows fan out instead of folding. Where a row still folds (a stack
     // in the last millimetres of a sharp trailing edge), both its columns' stacks are thinned
     // until none does; what that takes away is clipped mass like the rest.
-    let scale = layup
-        .contour
-        .iter()
-        .map(|p| p[0].abs().max(p[1].abs()))
-        .fold(0.0, f64::max);
     let mut normals = Vec::new();
     for _ in 0..60 {
-        let depth: Vec<f64> = thick.iter().map(|t| t.iter().sum()).collect();
+        // A fill's depth is the cavity's, not a wall's: it does not widen the window.
+        let depth: Vec<f64> = thick
+            .iter()
+            .map(|t| {
+                t.iter()
+                    .zip(&fills)
+                    .filter(|(_, f)| !**f)
+                    .map(|(t, _)| t)
+                    .sum()
+            })
+            .collect();
         normals = (0..n)
             .map(|k| {
                 direction[k].unwrap_or_else(|| {
@@ -765,7 +811,9 @@ pub fn mesh_layup(layup: &Layup, meshing: Meshing) -> Result<LayupMesh> {
                 .filter(|&c| weld[c].is_none() && direction[c].is_none())
             {
                 for i in 0..shell.len() {
-                    cut[c][i] += 0.3 * thick[c][i];
+                    if !fills[i] {
+                        cut[c][i] += 0.3 * thick[c][i];
+                    }
                     thick[c][i] *= 0.7;
                 }
             }
@@ -968,7 +1016,7 @@ impl LayupMesh {
 
 /// Whether two layups are the same but for their layers' fibre angles.
 fn same_but_angles(a: &Layup, b: &Layup) -> bool {
-    let shell = |l: &ShellLayer| (l.material, l.thickness, l.start, l.end);
+    let shell = |l: &ShellLayer| (l.material, l.thickness, l.start, l.end, l.fills);
     let web = |l: &WebLayer| (l.material, l.thickness);
     a.contour == b.contour
         && a.leading_edge == b.leading_edge
@@ -1117,6 +1165,7 @@ mod tests {
                 fibre_angle: 0.0,
                 start: 0.0,
                 end: 1.0,
+                fills: false,
             }],
             webs: vec![WebLayup {
                 start: 0.3,
@@ -1158,6 +1207,46 @@ mod tests {
             shell + web
         );
         assert_eq!(m.clipped_mass, 0.0);
+    }
+
+    /// A fill takes the depth the skin leaves to the middle of the section and no more; the
+    /// skin keeps its thickness and nothing counts as cut.
+    #[test]
+    fn a_fill_takes_the_room_the_other_layers_leave() {
+        let area_of = |m: &LayupMesh, which: usize| -> f64 {
+            m.mesh
+                .elements
+                .iter()
+                .zip(&m.layers)
+                .filter(|(_, l)| **l == LayerOf::Shell(which))
+                .map(|(e, _)| {
+                    let c = m.mesh.corners(e);
+                    (0..4).map(|i| cross(c[i], c[(i + 1) % 4])).sum::<f64>() / 2.0
+                })
+                .sum()
+        };
+        let plain = mesh_layup(&square_layup(), MESHING).unwrap();
+        let mut filled = square_layup();
+        // Across the right-hand wall from y = −0.2 to 0.2 (the contour starts at its middle).
+        filled.shell.push(ShellLayer {
+            material: 0,
+            thickness: 0.0,
+            fibre_angle: 0.0,
+            start: 0.95,
+            end: 0.05,
+            fills: true,
+        });
+        let m = mesh_layup(&filled, MESHING).unwrap();
+        m.mesh.validate().unwrap();
+        assert_eq!(m.clipped_mass, 0.0);
+        assert!((area_of(&m, 0) - area_of(&plain, 0)).abs() < 1e-12);
+        // Half the width less the skin, over the 0.4 m it covers and the triangles at its ends.
+        let depth = 0.5 - 0.01;
+        let fill = area_of(&m, 1);
+        assert!(
+            fill > 0.4 * depth && fill < (0.4 + 2.0 * MESHING.element_length) * depth,
+            "{fill}"
+        );
     }
 
     /// Bad layups are errors that say what is wrong, never a panic or a broken mesh.

@@ -36,6 +36,15 @@ pub struct Section {
     pub rotate_layers: Vec<String>,
     /// The span fractions `[from, to]` over which `ply_angle` turns them (inclusive).
     pub rotate_span: [f64; 2],
+    /// A WindIO blade's trailing-edge fill: the material (a name in the file's `materials`;
+    /// empty: none) that fills the cavity between the skins over the last
+    /// `trailing_edge_fill_length` m of the chord, at the stations within
+    /// `trailing_edge_fill_span` (docs/model.md §11.12).
+    pub trailing_edge_fill: String,
+    /// m, along the chord from the trailing edge.
+    pub trailing_edge_fill_length: f64,
+    /// Span fractions `[from, to]` (inclusive).
+    pub trailing_edge_fill_span: [f64; 2],
     /// m (kg/m). Ignored by the layup source, which computes it from the contour.
     pub mass_per_length: f64,
     /// I (kg·m), polar mass moment about the elastic axis per length.
@@ -121,6 +130,9 @@ impl Default for Section {
             ply_angle: None,
             rotate_layers: Vec::new(),
             rotate_span: [0.0, 1.0],
+            trailing_edge_fill: String::new(),
+            trailing_edge_fill_length: 0.2,
+            trailing_edge_fill_span: [0.0, 1.0],
             mass_per_length: 0.06377,
             polar_inertia: 2.3e-6,
             ka2: 3.6e-5,
