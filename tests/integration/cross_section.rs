@@ -621,7 +621,7 @@ fn whole_shell(contour: Vec<[f64; 2]>, material: Orthotropic, thickness: f64, fi
             fibre_angle: fibre,
             start: 0.0,
             end: 1.0,
-            fills: false,
+            fill_to: None,
         }],
         webs: Vec::new(),
         materials: vec![material],

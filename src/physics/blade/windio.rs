@@ -175,7 +175,7 @@ pub fn station_layup(
                 fibre_angle: fibre(l),
                 start,
                 end,
-                fills: false,
+                fill_to: None,
             })
         })
         .collect();
@@ -199,7 +199,7 @@ pub fn station_layup(
             fibre_angle: 0.0,
             start: pressure,
             end: suction,
-            fills: true,
+            fill_to: Some(edge - f.length),
         });
     }
     let mut webs = Vec::new();

@@ -46,10 +46,11 @@ pub struct ShellLayer {
     pub fibre_angle: f64,
     pub start: f64,
     pub end: f64,
-    /// A fill: the layer takes whatever depth the other layers leave to the opposite wall
-    /// (`thickness` is then unused), as a trailing edge's bond or filler closes the cavity
-    /// between the skins.
-    pub fills: bool,
+    /// A fill up to the line across the chord at this `X` (chord frame, m): the layer takes
+    /// whatever depth the other layers leave, to that line or to the opposite wall, whichever
+    /// is nearer (`thickness` is then unused), as a trailing edge's bond or filler closes the
+    /// cavity between the skins behind a line.
+    pub fill_to: Option<f64>,
 }
 
 /// One layer of a shear web.
@@ -210,6 +211,14 @@ impl Outline {
             .iter()
             .map(|p| p[0])
             .fold(f64::NEG_INFINITY, f64::max)
+    }
+
+    /// Whether the trailing edge is sharp: the contour closes there in one point, its skins
+    /// meeting at under a right angle (a round tube's is no edge at all, a flatback's is open).
+    fn sharp_trailing_edge(&self, le: f64) -> bool {
+        let m = self.points.len() - 1;
+        let (out, back) = (self.tangent(0), self.tangent(m - 1));
+        self.trailing_edge_corners(le) == (0.0, 1.0) && out[0] * back[0] + out[1] * back[1] < 0.0
     }
 
     /// The trailing edge's corners: the last suction-side and the first pressure-side point of
@@ -512,15 +521,9 @@ fn trailing_edge_pairs(
         let across = |n: [f64; 2], sign: f64| (sign * (n[0] * u[0] + n[1] * u[1])).max(0.0);
         stack(ss) * across(n_ss, 1.0) + stack(ps) * across(n_ps, -1.0) >= gap
     };
-    // A sharp edge (its skins meeting at under a right angle) is closed by its stacks; a
-    // smooth one (a round tube's) is not an edge at all.
-    let sharp = || {
-        let m = outline.points.len() - 1;
-        let (out, back) = (outline.tangent(0), outline.tangent(m - 1));
-        out[0] * back[0] + out[1] * back[1] < 0.0
-    };
+    // A sharp edge is closed by its stacks; a smooth one (a round tube's) is not an edge at all.
     let closes = if corner_ss == 0.0 && corner_ps == 1.0 {
-        sharp()
+        outline.sharp_trailing_edge(le)
     } else {
         fills((corner_ss, corner_ps))
     };
@@ -620,21 +623,31 @@ pub fn mesh_layup(layup: &Layup, meshing: Meshing) -> Result<LayupMesh> {
         .iter()
         .map(|p| p[0].abs().max(p[1].abs()))
         .fold(0.0, f64::max);
-    // A fill is laid as deep as the section is wide; the walls' clipping leaves it the depth
-    // the other layers do not take.
+    // A fill is laid as deep as the section is wide, then cut back to its line and to what the
+    // other layers and the walls' clipping leave it.
     let laid: Vec<ShellLayer> = layup
         .shell
         .iter()
         .map(|l| ShellLayer {
-            thickness: if l.fills { 2.0 * scale } else { l.thickness },
+            thickness: if l.fill_to.is_some() {
+                2.0 * scale
+            } else {
+                l.thickness
+            },
             ..*l
         })
         .collect();
-    let shell: Vec<&ShellLayer> = laid.iter().filter(|l| l.thickness >= THINNEST).collect();
-    let shell_index: Vec<usize> = (0..laid.len())
-        .filter(|&i| laid[i].thickness >= THINNEST)
+    // A fill closes a trailing edge that the other layers close (a sharp one, or an open one
+    // whose stacks fill its face); a thick flatback's or a round one it leaves as it is.
+    let real: Vec<&ShellLayer> = laid
+        .iter()
+        .filter(|l| l.thickness >= THINNEST && l.fill_to.is_none())
         .collect();
-    let fills: Vec<bool> = shell.iter().map(|l| l.fills).collect();
+    let _ = &real;
+    let present = |l: &ShellLayer| l.thickness >= THINNEST;
+    let shell: Vec<&ShellLayer> = laid.iter().filter(|l| present(l)).collect();
+    let shell_index: Vec<usize> = (0..laid.len()).filter(|&i| present(&laid[i])).collect();
+    let fills: Vec<bool> = shell.iter().map(|l| l.fill_to.is_some()).collect();
 
     let webs = layup
         .webs
@@ -657,6 +670,11 @@ pub fn mesh_layup(layup: &Layup, meshing: Meshing) -> Result<LayupMesh> {
         Some(&(ss, ps)) => [ss, ps],
         None => [0.0, 1.0],
     };
+    if !pairs.is_empty() {
+        // The corners' stacks meet at the open face's middle and lie along it: a column
+        // between them (a layer's edge on the face) would carry nothing.
+        breaks.retain(|&b| !((0.0 < b && b < corner_ss) || (corner_ps < b && b < 1.0)));
+    }
     let cols = columns(&outline, &breaks, h, frozen);
     let n = cols.len();
     let at = |k: usize| if k == n { 1.0 } else { cols[k] };
@@ -682,7 +700,24 @@ pub fn mesh_layup(layup: &Layup, meshing: Meshing) -> Result<LayupMesh> {
             };
             thick[k][i] = f * l.thickness;
         }
-        points.push(outline.point(cols[k]));
+        let point = outline.point(cols[k]);
+        let laid: f64 = (0..shell.len())
+            .filter(|&i| !fills[i])
+            .map(|i| thick[k][i])
+            .sum();
+        for (i, l) in shell.iter().enumerate() {
+            if let (Some(x), true) = (l.fill_to, thick[k][i] > 0.0) {
+                // Along the inward normal to the fill's line, less the layers outside it.
+                let n = outline.inward_normal(cols[k]);
+                let to_line = if n[0] < 0.0 {
+                    ((x - point[0]) / n[0]).max(0.0)
+                } else {
+                    thick[k][i]
+                };
+                thick[k][i] = (to_line.min(thick[k][i]) - laid).max(0.0);
+            }
+        }
+        points.push(point);
     }
     // A stack deeper than `depth` is scaled down to it, a fill first: what it gives up is not
     // cut (it only ever takes the room left), what the other layers give up is.
@@ -749,9 +784,23 @@ pub fn mesh_layup(layup: &Layup, meshing: Meshing) -> Result<LayupMesh> {
             weld[a] = Some(0);
             weld[b] = Some(0);
         } else if da + db >= gap {
-            let c = gap / (da + db);
-            clip(&mut thick, &mut cut, a, c * da);
-            clip(&mut thick, &mut cut, b, c * db);
+            // The gap is shared by the layers' depths, a fill giving way first.
+            let fixed = |k: usize| -> f64 {
+                (0..fills.len())
+                    .filter(|&i| !fills[i])
+                    .map(|i| thick[k][i])
+                    .sum()
+            };
+            let (fa, fb) = (fixed(a), fixed(b));
+            let (ta, tb) = if fa + fb >= gap {
+                (gap * fa / (fa + fb), gap * fb / (fa + fb))
+            } else {
+                let (ga, gb) = (da - fa, db - fb);
+                let room = gap - fa - fb;
+                (fa + room * ga / (ga + gb), fb + room * gb / (ga + gb))
+            };
+            clip(&mut thick, &mut cut, a, ta);
+            clip(&mut thick, &mut cut, b, tb);
             weld[b] = Some(a);
         } else {
             continue;
@@ -1016,7 +1065,7 @@ impl LayupMesh {
 
 /// Whether two layups are the same but for their layers' fibre angles.
 fn same_but_angles(a: &Layup, b: &Layup) -> bool {
-    let shell = |l: &ShellLayer| (l.material, l.thickness, l.start, l.end, l.fills);
+    let shell = |l: &ShellLayer| (l.material, l.thickness, l.start, l.end, l.fill_to);
     let web = |l: &WebLayer| (l.material, l.thickness);
     a.contour == b.contour
         && a.leading_edge == b.leading_edge
@@ -1165,7 +1214,7 @@ mod tests {
                 fibre_angle: 0.0,
                 start: 0.0,
                 end: 1.0,
-                fills: false,
+                fill_to: None,
             }],
             webs: vec![WebLayup {
                 start: 0.3,
@@ -1234,7 +1283,7 @@ mod tests {
             fibre_angle: 0.0,
             start: 0.95,
             end: 0.05,
-            fills: true,
+            fill_to: Some(-1.0),
         });
         let m = mesh_layup(&filled, MESHING).unwrap();
         m.mesh.validate().unwrap();
@@ -1242,6 +1291,16 @@ mod tests {
         assert!((area_of(&m, 0) - area_of(&plain, 0)).abs() < 1e-12);
         // Half the width less the skin, over the 0.4 m it covers and the triangles at its ends.
         let depth = 0.5 - 0.01;
+        let fill = area_of(&m, 1);
+        assert!(
+            fill > 0.4 * depth && fill < (0.4 + 2.0 * MESHING.element_length) * depth,
+            "{fill}"
+        );
+        // Up to a line across the chord 0.2 m in from the wall, it stops there.
+        filled.shell[1].fill_to = Some(0.3);
+        let m = mesh_layup(&filled, MESHING).unwrap();
+        m.mesh.validate().unwrap();
+        let depth = 0.2 - 0.01;
         let fill = area_of(&m, 1);
         assert!(
             fill > 0.4 * depth && fill < (0.4 + 2.0 * MESHING.element_length) * depth,
