@@ -213,14 +213,6 @@ impl Outline {
             .fold(f64::NEG_INFINITY, f64::max)
     }
 
-    /// Whether the trailing edge is sharp: the contour closes there in one point, its skins
-    /// meeting at under a right angle (a round tube's is no edge at all, a flatback's is open).
-    fn sharp_trailing_edge(&self, le: f64) -> bool {
-        let m = self.points.len() - 1;
-        let (out, back) = (self.tangent(0), self.tangent(m - 1));
-        self.trailing_edge_corners(le) == (0.0, 1.0) && out[0] * back[0] + out[1] * back[1] < 0.0
-    }
-
     /// The trailing edge's corners: the last suction-side and the first pressure-side point of
     /// greatest X (arcs 0 and 1, one point, for a sharp edge; the ends of the face of an open
     /// one).
@@ -521,9 +513,15 @@ fn trailing_edge_pairs(
         let across = |n: [f64; 2], sign: f64| (sign * (n[0] * u[0] + n[1] * u[1])).max(0.0);
         stack(ss) * across(n_ss, 1.0) + stack(ps) * across(n_ps, -1.0) >= gap
     };
-    // A sharp edge is closed by its stacks; a smooth one (a round tube's) is not an edge at all.
+    // A sharp edge (its skins meeting at under a right angle) is closed by its stacks; a
+    // smooth one (a round tube's) is not an edge at all.
+    let sharp = || {
+        let m = outline.points.len() - 1;
+        let (out, back) = (outline.tangent(0), outline.tangent(m - 1));
+        out[0] * back[0] + out[1] * back[1] < 0.0
+    };
     let closes = if corner_ss == 0.0 && corner_ps == 1.0 {
-        outline.sharp_trailing_edge(le)
+        sharp()
     } else {
         fills((corner_ss, corner_ps))
     };
@@ -637,16 +635,10 @@ pub fn mesh_layup(layup: &Layup, meshing: Meshing) -> Result<LayupMesh> {
             ..*l
         })
         .collect();
-    // A fill closes a trailing edge that the other layers close (a sharp one, or an open one
-    // whose stacks fill its face); a thick flatback's or a round one it leaves as it is.
-    let real: Vec<&ShellLayer> = laid
-        .iter()
-        .filter(|l| l.thickness >= THINNEST && l.fill_to.is_none())
+    let shell: Vec<&ShellLayer> = laid.iter().filter(|l| l.thickness >= THINNEST).collect();
+    let shell_index: Vec<usize> = (0..laid.len())
+        .filter(|&i| laid[i].thickness >= THINNEST)
         .collect();
-    let _ = &real;
-    let present = |l: &ShellLayer| l.thickness >= THINNEST;
-    let shell: Vec<&ShellLayer> = laid.iter().filter(|l| present(l)).collect();
-    let shell_index: Vec<usize> = (0..laid.len()).filter(|&i| present(&laid[i])).collect();
     let fills: Vec<bool> = shell.iter().map(|l| l.fill_to.is_some()).collect();
 
     let webs = layup
