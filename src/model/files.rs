@@ -151,7 +151,7 @@ struct BladeKeys {
     htc: [String; 3],
     /// A WindIO blade's ply turn and trailing-edge fill (`section.ply_angle`,
     /// `section.rotate_layers`, `section.rotate_span`, `section.trailing_edge_fill*`).
-    turn: LayupRequest,
+    layup: LayupRequest,
 }
 
 impl Tabulated {
@@ -170,8 +170,8 @@ impl Tabulated {
         &self.keys.file
     }
 
-    /// Whether this was read from what `blade` now names, turned by `turn`.
-    fn read_from(&self, blade: &Blade, turn: &LayupRequest) -> bool {
+    /// Whether this was read from what `blade` now names, its layup as `layup` asks.
+    fn read_from(&self, blade: &Blade, layup: &LayupRequest) -> bool {
         let k = &self.keys;
         k.source == blade.source
             && k.file == blade.file
@@ -179,7 +179,7 @@ impl Tabulated {
             && (k.source != BladeSource::Hawc2
                 || (k.st_set, k.st_subset, &k.twist_file)
                     == (blade.st_set, blade.st_subset, &blade.twist_file))
-            && &k.turn == turn
+            && &k.layup == layup
     }
 }
 
@@ -236,8 +236,8 @@ pub fn read_tabulated(p: &Preset, held: Option<&Tabulated>) -> Result<Option<Tab
     if !b.source.is_tabulated() {
         return Ok(None);
     }
-    let turn = layup_request(p);
-    if let Some(t) = held.filter(|t| t.read_from(b, &turn)) {
+    let request = layup_request(p);
+    if let Some(t) = held.filter(|t| t.read_from(b, &request)) {
         return Ok(Some(t.clone()));
     }
     let file = base.resolve(&b.file);
@@ -258,9 +258,9 @@ pub fn read_tabulated(p: &Preset, held: Option<&Tabulated>) -> Result<Option<Tab
     };
     if b.source == BladeSource::Windio {
         let keys = format!("blade.file = \"{}\"", b.file);
-        let blade = windio_blade(&file, &turn, held).map_err(|e| file_error(p, &keys, e))?;
+        let blade = windio_blade(&file, &request, held).map_err(|e| file_error(p, &keys, e))?;
         return Ok(Some(Tabulated {
-            keys: blade_keys(b, turn),
+            keys: blade_keys(b, request),
             blade,
         }));
     }
@@ -284,12 +284,12 @@ pub fn read_tabulated(p: &Preset, held: Option<&Tabulated>) -> Result<Option<Tab
     };
     let blade = files.read().map_err(|e| file_error(p, &keys, e))?;
     Ok(Some(Tabulated {
-        keys: blade_keys(b, turn),
+        keys: blade_keys(b, request),
         blade: Arc::new(blade),
     }))
 }
 
-fn blade_keys(b: &Blade, turn: LayupRequest) -> BladeKeys {
+fn blade_keys(b: &Blade, layup: LayupRequest) -> BladeKeys {
     BladeKeys {
         source: b.source,
         file: b.file.clone(),
@@ -297,7 +297,7 @@ fn blade_keys(b: &Blade, turn: LayupRequest) -> BladeKeys {
         st_set: b.st_set,
         st_subset: b.st_subset,
         htc: b.htc_keys(),
-        turn,
+        layup,
     }
 }
 
@@ -305,7 +305,7 @@ fn blade_keys(b: &Blade, turn: LayupRequest) -> BladeKeys {
 /// points, a `--set`, the explorer's presets) parses its file once.
 static WINDIO_FILES: Kept<(String, u64), WindIo> = Kept::new();
 
-/// WindIO blades as analysed, by file name, text hash and ply turn: the analysis of 50 layup
+/// WindIO blades as analysed, by file name, text hash and layup request: the analysis of 50 layup
 /// sections is the cost of loading such a blade (docs/model.md §11.12), and the same blade is
 /// asked for again by every preset that names it.
 static LAYUP_BLADES: Kept<(String, u64, LayupRequest), TabulatedBlade> = Kept::new();
@@ -330,16 +330,16 @@ fn parsed(name: &str, hash: u64, text: &str) -> Result<Arc<WindIo>> {
     WINDIO_FILES.get_or_build((name.to_string(), hash), 2, || windio::parse(text, name))
 }
 
-/// The WindIO blade of `file` turned by `turn`: kept from before, or analysed now, its
+/// The WindIO blade of `file` as `request` asks: kept from before, or analysed now, its
 /// unturned stations lent by `held` (the blade the preset had) or by the newest kept blade of
 /// the same file.
 fn windio_blade(
     file: &BladeFile,
-    turn: &LayupRequest,
+    request: &LayupRequest,
     held: Option<&Tabulated>,
 ) -> Result<Arc<TabulatedBlade>> {
     let (name, hash, text) = windio_text(file)?;
-    LAYUP_BLADES.get_or_build((name.clone(), hash, turn.clone()), 8, || {
+    LAYUP_BLADES.get_or_build((name.clone(), hash, request.clone()), 8, || {
         let windio = parsed(&name, hash, &text)?;
         let kept = LAYUP_BLADES.newest(|k| k.0 == name && k.1 == hash);
         let lender = held
@@ -353,7 +353,7 @@ fn windio_blade(
             });
         WindIoFiles {
             windio,
-            turn: turn.clone(),
+            layup: request.clone(),
             held: lender.as_ref().and_then(|b| b.layup.as_deref()),
         }
         .read()

@@ -21,6 +21,7 @@ pub const MAX_SAMPLES: f64 = 2e6;
 pub fn check_blade_keys(p: &Preset) -> Result<()> {
     let b = &p.blade;
     let clash = htc_keys_clash(p);
+    let span = bad_span(p);
     let message = match (b.source, b.file.trim().is_empty()) {
         _ if clash.is_some() => clash.unwrap_or_default(),
         (BladeSource::Hawc2, true) if b.from_htc() => return Ok(()),
@@ -44,39 +45,12 @@ pub fn check_blade_keys(p: &Preset) -> Result<()> {
              (blade.source = \"windio\"); blade.source = \"{}\" has no layup",
             source.name()
         ),
-        (BladeSource::Windio, false)
-            if !p
-                .section
-                .trailing_edge_fill_span
-                .iter()
-                .all(|s| (0.0..=1.0).contains(s))
-                || p.section.trailing_edge_fill_span[0] > p.section.trailing_edge_fill_span[1] =>
-        {
-            format!(
-                "section.trailing_edge_fill_span = [{}, {}]: expected span fractions \
-                 [from, to] with 0 ≤ from ≤ to ≤ 1",
-                p.section.trailing_edge_fill_span[0], p.section.trailing_edge_fill_span[1]
-            )
-        }
         (source, _) if source != BladeSource::Windio && turn_keys_given(p) => format!(
             "section.rotate_layers and section.rotate_span turn the layers of a WindIO blade's \
              layup (blade.source = \"windio\"); blade.source = \"{}\" has no layup",
             source.name()
         ),
-        (BladeSource::Windio, false)
-            if !p
-                .section
-                .rotate_span
-                .iter()
-                .all(|s| (0.0..=1.0).contains(s))
-                || p.section.rotate_span[0] > p.section.rotate_span[1] =>
-        {
-            format!(
-                "section.rotate_span = [{}, {}]: expected span fractions [from, to] with \
-             0 ≤ from ≤ to ≤ 1",
-                p.section.rotate_span[0], p.section.rotate_span[1]
-            )
-        }
+        (BladeSource::Windio, false) if span.is_some() => span.unwrap_or_default(),
         (BladeSource::Uniform, _) if !(0.0..=90.0).contains(&p.section.paper_ply_angle()) => {
             format!(
                 "section.ply_angle = {}: the paper's blade takes a ply angle in [0, 90] deg (its \
@@ -112,6 +86,20 @@ pub fn check_blade_keys(p: &Preset) -> Result<()> {
     Err(Error::Invalid {
         origin: p.origin.clone(),
         message,
+    })
+}
+
+/// The first of a WindIO blade's span keys that is no span `[from, to]` within the blade.
+fn bad_span(p: &Preset) -> Option<String> {
+    let s = &p.section;
+    [
+        ("section.trailing_edge_fill_span", s.trailing_edge_fill_span),
+        ("section.rotate_span", s.rotate_span),
+    ]
+    .into_iter()
+    .find(|(_, [from, to])| !((0.0..=1.0).contains(from) && (0.0..=1.0).contains(to) && from <= to))
+    .map(|(key, [from, to])| {
+        format!("{key} = [{from}, {to}]: expected span fractions [from, to] with 0 ≤ from ≤ to ≤ 1")
     })
 }
 

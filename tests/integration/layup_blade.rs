@@ -36,6 +36,14 @@ fn hawc2_st(rel: &str) -> TabulatedBlade {
     read_hawc2(&DiskFile(presets_file(rel)), &twist, 1, 1).unwrap()
 }
 
+/// The IEA 15MW BeamDyn-file blade.
+fn beamdyn_blade() -> TabulatedBlade {
+    read_beamdyn(&DiskFile(presets_file(
+        "blades/iea15mw/IEA-15-240-RWT_BeamDyn.dat",
+    )))
+    .unwrap()
+}
+
 /// Per property, the worst `ours/reference − 1` over the reference's stations within `span`
 /// (fractions), compared at the same fraction of each blade's length.
 fn worst(ours: &BladeTable, reference: &BladeTable, span: (f64, f64)) -> [f64; 5] {
@@ -92,10 +100,7 @@ fn the_2019_layup_gives_the_baseline_st_files_sections() {
 #[test]
 fn the_current_layup_is_close_to_the_beamdyn_file() {
     let ours = layup_table(&preset("iea15mw-windio", &[]));
-    let bd = read_beamdyn(&DiskFile(presets_file(
-        "blades/iea15mw/IEA-15-240-RWT_BeamDyn.dat",
-    )))
-    .unwrap();
+    let bd = beamdyn_blade();
     let w = worst(&ours, &bd.table, (0.1, 0.95));
     eprintln!("current worst over 0.1–0.95: {w:+.3?}");
     assert!(w[0].abs() < 0.12 && w[1].abs() < 0.10, "{w:?}");
@@ -146,6 +151,19 @@ fn modes_json(name: &str, set: &[&str]) -> Vec<serde_json::Value> {
     let out = crate::flutterscope_ok(&args);
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     v["modes"].as_array().unwrap().clone()
+}
+
+/// Each natural mode's name and frequency (Hz) of preset `name`, without aerodynamics.
+fn frequencies(name: &str) -> Vec<(String, f64)> {
+    modes_json(name, &["aero.model=none"])
+        .iter()
+        .map(|m| {
+            (
+                m["label"].as_str().unwrap().to_string(),
+                m["frequency_hz"].as_f64().unwrap(),
+            )
+        })
+        .collect()
 }
 
 /// The first flap mode's tip twist per metre of tip flap (toward feather), curvature left out
@@ -237,18 +255,7 @@ fn a_turned_station_is_the_section_of_its_turned_layup_meshed_anew() {
 /// data): bending within 3 %; the first torsion mode 5.3 % low, as the layup's outboard GJ is.
 #[test]
 fn the_layup_blades_modes_are_the_tabulated_blades() {
-    let modes = |name: &str| -> Vec<(String, f64)> {
-        modes_json(name, &["aero.model=none"])
-            .iter()
-            .map(|m| {
-                (
-                    m["label"].as_str().unwrap().to_string(),
-                    m["frequency_hz"].as_f64().unwrap(),
-                )
-            })
-            .collect()
-    };
-    let (ours, file) = (modes("iea15mw-windio"), modes("iea15mw"));
+    let (ours, file) = (frequencies("iea15mw-windio"), frequencies("iea15mw"));
     for ((name, f), (file_name, g)) in ours.iter().zip(&file).take(8) {
         eprintln!(
             "{name:<10} {f:.4} Hz, file {file_name:<10} {g:.4} Hz, {:+.2} %",
@@ -361,8 +368,8 @@ fn the_layups_axial_stiffness_is_the_files() {
 }
 
 /// A preset file in a scratch folder: the built-in `name` with its files named by absolute path,
-/// each of `drop` (key prefixes) left out and `add` after the line `after`.
-fn edited_preset(name: &str, drop: &[&str], after: &str, add: &str) -> String {
+/// the lines starting with any of `drop` left out and each `(from, to)` of `replace` made once.
+fn edited_preset(name: &str, drop: &[&str], replace: &[(&str, &str)]) -> String {
     let text = std::fs::read_to_string(presets_file(&format!("{name}.toml"))).unwrap();
     let blades = presets_file("blades");
     let mut out = String::new();
@@ -372,9 +379,10 @@ fn edited_preset(name: &str, drop: &[&str], after: &str, add: &str) -> String {
         }
         out += &line.replace("\"blades/", &format!("\"{}/", blades.display()));
         out += "\n";
-        if line.starts_with(after) {
-            out += add;
-        }
+    }
+    for (from, to) in replace {
+        assert!(out.contains(from), "{name}.toml has no {from:?}");
+        out = out.replacen(from, to, 1);
     }
     let dir = std::env::temp_dir().join(format!("flutterscope-layup-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
@@ -390,9 +398,11 @@ fn with_the_beamdyn_files_trailing_edge() -> String {
     edited_preset(
         "iea15mw-windio",
         &[],
-        "rotate_span",
-        "trailing_edge_fill = \"glass_uni\"\ntrailing_edge_fill_length = 0.207\n\
-         trailing_edge_fill_span = [0.5, 0.975]\n",
+        &[(
+            "[section]\n",
+            "[section]\ntrailing_edge_fill = \"glass_uni\"\ntrailing_edge_fill_length = 0.207\n\
+             trailing_edge_fill_span = [0.5, 0.975]\n",
+        )],
     )
 }
 
@@ -403,10 +413,7 @@ fn with_the_beamdyn_files_trailing_edge() -> String {
 #[test]
 fn the_layup_with_the_section_codes_trailing_edge_gives_the_beamdyn_file() {
     let ours = layup_table(&preset(&with_the_beamdyn_files_trailing_edge(), &[]));
-    let bd = read_beamdyn(&DiskFile(presets_file(
-        "blades/iea15mw/IEA-15-240-RWT_BeamDyn.dat",
-    )))
-    .unwrap();
+    let bd = beamdyn_blade();
     let w = worst(&ours, &bd.table, (0.1, 0.95));
     eprintln!("with the fill, worst over 0.1–0.95: {w:+.3?}");
     assert!(w[0].abs() < 0.05 && w[3].abs() < 0.10, "{w:?}");
@@ -423,38 +430,20 @@ fn the_layup_with_the_section_codes_trailing_edge_gives_the_beamdyn_file() {
 /// (edge 1 −3.1 %, the rest within 2.9 %).
 #[test]
 fn with_the_section_codes_trailing_edge_the_modes_are_the_beamdyn_blades() {
+    // The st-file preset on the BeamDyn file instead: no twist file, no HAWC2 aerodynamics.
     let bd = edited_preset(
         "iea15mw",
         &["twist_file", "ae_file", "ae_set", "pc_file"],
-        "[blade]",
-        "",
+        &[
+            ("source = \"hawc2\"", "source = \"beamdyn\""),
+            (
+                "IEA_15MW_RWT_Blade_st_noFPM.st",
+                "IEA-15-240-RWT_BeamDyn.dat",
+            ),
+        ],
     );
-    let bd = std::fs::read_to_string(&bd)
-        .unwrap()
-        .replacen("source = \"hawc2\"", "source = \"beamdyn\"", 1)
-        .replacen(
-            "IEA_15MW_RWT_Blade_st_noFPM.st",
-            "IEA-15-240-RWT_BeamDyn.dat",
-            1,
-        );
-    let bd_file = std::env::temp_dir().join(format!(
-        "flutterscope-layup-{}/iea15mw-beamdyn.toml",
-        std::process::id()
-    ));
-    std::fs::write(&bd_file, bd).unwrap();
-    let modes = |name: &str| -> Vec<(String, f64)> {
-        modes_json(name, &["aero.model=none"])
-            .iter()
-            .map(|m| {
-                (
-                    m["label"].as_str().unwrap().to_string(),
-                    m["frequency_hz"].as_f64().unwrap(),
-                )
-            })
-            .collect()
-    };
-    let ours = modes(&with_the_beamdyn_files_trailing_edge());
-    let file = modes(bd_file.to_str().unwrap());
+    let ours = frequencies(&with_the_beamdyn_files_trailing_edge());
+    let file = frequencies(&bd);
     let mut beyond = 0;
     for ((name, f), (file_name, g)) in ours.iter().zip(&file).take(8) {
         let d = f / g - 1.0;

@@ -293,7 +293,7 @@ pub fn read_hawc2(
 /// the stations the turn leaves as they were. The file states no damping.
 pub struct WindIoFiles<'a> {
     pub windio: Arc<WindIo>,
-    pub turn: LayupRequest,
+    pub layup: LayupRequest,
     pub held: Option<&'a LayupBlade>,
 }
 
@@ -318,7 +318,7 @@ impl BladeFiles for WindIoFiles<'_> {
     fn read(&self) -> Result<TabulatedBlade> {
         let windio = self.windio.clone();
         let name = windio.path.clone();
-        let turn = self.turn.turn.as_ref().map(|t| PlyTurn {
+        let turn = self.layup.turn.as_ref().map(|t| PlyTurn {
             angle: t.angle_deg.to_radians(),
             layers: if t.layers.is_empty() {
                 PlyTurn::spar_caps(&windio)
@@ -327,7 +327,7 @@ impl BladeFiles for WindIoFiles<'_> {
             },
             span: t.span,
         });
-        let layup = LayupBlade::new(windio, turn, self.turn.fill.clone(), self.held)?;
+        let layup = LayupBlade::new(windio, turn, self.layup.fill.clone(), self.held)?;
         Ok(TabulatedBlade {
             format: BladeFormat::Windio,
             table: layup.table()?,

@@ -181,18 +181,18 @@ pub fn station_layup(
         .collect();
     if let Some(f) = fill.filter(|f| f.acts_at(eta)) {
         let edge = contour.points()[0][0];
-        let (suction, pressure) =
-            contour
-                .across_chord(edge - f.length)
-                .ok_or_else(|| Error::Invalid {
-                    origin: format!("{file}: the section at span {eta}"),
-                    message: format!(
-                        "section.trailing_edge_fill_length = {} m: the fill would reach past the \
+        let (suction, pressure) = contour.across_chord(edge - f.length).ok_or_else(|| {
+            station_error(
+                w,
+                eta,
+                format!(
+                    "section.trailing_edge_fill_length = {} m: the fill would reach past the \
                      leading edge of a {:.3} m chord",
-                        f.length,
-                        shape.chord.linear(eta)
-                    ),
-                })?;
+                    f.length,
+                    shape.chord.linear(eta)
+                ),
+            )
+        })?;
         shell.push(ShellLayer {
             material: material_index(&f.material),
             thickness: 0.0,
@@ -296,9 +296,14 @@ fn analysed(
 }
 
 fn at_station(w: &WindIo, eta: f64, e: Error) -> Error {
+    station_error(w, eta, e.to_string())
+}
+
+/// What went wrong at the station at span fraction `eta`.
+fn station_error(w: &WindIo, eta: f64, message: String) -> Error {
     Error::Invalid {
         origin: format!("{}: the section at span {eta}", w.path),
-        message: e.to_string(),
+        message,
     }
 }
 
@@ -415,21 +420,29 @@ impl LayupBlade {
     }
 }
 
+/// An error about the file `w` as the preset's keys read it.
+fn file_error(w: &WindIo, message: String) -> Result<()> {
+    Err(Error::Invalid {
+        origin: w.path.clone(),
+        message,
+    })
+}
+
+/// `span`, the preset's `key`, is span fractions `[from, to]` within the blade.
+fn check_span(w: &WindIo, key: &str, [from, to]: [f64; 2]) -> Result<()> {
+    if !(0.0..=1.0).contains(&from) || !(0.0..=1.0).contains(&to) || from > to {
+        return file_error(
+            w,
+            format!("{key} = [{from}, {to}]: expected span fractions 0 ≤ from ≤ to ≤ 1"),
+        );
+    }
+    Ok(())
+}
+
 /// A fill names a material the file has, a length > 0 and a span within the blade.
 fn check_fill(w: &WindIo, f: &TrailingEdgeFill) -> Result<()> {
-    let fail = |message: String| {
-        Err(Error::Invalid {
-            origin: w.path.clone(),
-            message,
-        })
-    };
-    let [from, to] = f.span;
-    if !(0.0..=1.0).contains(&from) || !(0.0..=1.0).contains(&to) || from > to {
-        return fail(format!(
-            "section.trailing_edge_fill_span = [{from}, {to}]: expected span fractions \
-             0 ≤ from ≤ to ≤ 1"
-        ));
-    }
+    let fail = |message: String| file_error(w, message);
+    check_span(w, "section.trailing_edge_fill_span", f.span)?;
     if !(f.length.is_finite() && f.length > 0.0) {
         return fail(format!(
             "section.trailing_edge_fill_length = {}: expected a length > 0 (m, along the chord \
@@ -451,29 +464,20 @@ fn check_fill(w: &WindIo, f: &TrailingEdgeFill) -> Result<()> {
 
 /// A turn names layers the file has, on the shell, and a span within the blade.
 fn check_turn(w: &WindIo, t: &PlyTurn) -> Result<()> {
-    let [from, to] = t.span;
-    if !(0.0..=1.0).contains(&from) || !(0.0..=1.0).contains(&to) || from > to {
-        return Err(Error::Invalid {
-            origin: w.path.clone(),
-            message: format!(
-                "section.rotate_span = [{from}, {to}]: expected span fractions 0 ≤ from ≤ to ≤ 1"
-            ),
-        });
-    }
+    check_span(w, "section.rotate_span", t.span)?;
     if !t.angle.is_finite() {
-        return Err(Error::Invalid {
-            origin: w.path.clone(),
-            message: format!("section.ply_angle = {}: expected a finite angle", t.angle),
-        });
+        return file_error(
+            w,
+            format!("section.ply_angle = {}: expected a finite angle", t.angle),
+        );
     }
     if t.layers.is_empty() {
-        return Err(Error::Invalid {
-            origin: w.path.clone(),
-            message: "section.ply_angle turns no layer: the file has no spar caps (no shell \
-                      layer named with \"spar\" and \"cap\"); name the layers in \
-                      section.rotate_layers"
+        return file_error(
+            w,
+            "section.ply_angle turns no layer: the file has no spar caps (no shell layer named \
+             with \"spar\" and \"cap\"); name the layers in section.rotate_layers"
                 .into(),
-        });
+        );
     }
     for name in &t.layers {
         if w.layer(name).is_none() {
@@ -484,14 +488,14 @@ fn check_turn(w: &WindIo, t: &PlyTurn) -> Result<()> {
                 .iter()
                 .map(|l| l.name.as_str())
                 .collect();
-            return Err(Error::Invalid {
-                origin: w.path.clone(),
-                message: format!(
+            return file_error(
+                w,
+                format!(
                     "section.rotate_layers names \"{name}\", which is no layer of \
                      components.blade.internal_structure_2d_fem.layers; the layers are: {}",
                     names.join(", ")
                 ),
-            });
+            );
         }
     }
     Ok(())

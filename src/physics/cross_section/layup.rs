@@ -393,6 +393,20 @@ impl Outline {
 }
 
 /// Whether a layer from `start` to `end` covers arc `s`.
+/// A column's stack depth in its layers outside any fill, and in its fills.
+fn depths(stack: &[f64], fills: &[bool]) -> (f64, f64) {
+    stack
+        .iter()
+        .zip(fills)
+        .fold((0.0, 0.0), |(laid, filled), (&t, &fill)| {
+            if fill {
+                (laid, filled + t)
+            } else {
+                (laid + t, filled)
+            }
+        })
+}
+
 fn covers(start: f64, end: f64, s: f64) -> bool {
     if start <= end {
         start <= s && s <= end
@@ -693,10 +707,7 @@ pub fn mesh_layup(layup: &Layup, meshing: Meshing) -> Result<LayupMesh> {
             thick[k][i] = f * l.thickness;
         }
         let point = outline.point(cols[k]);
-        let laid: f64 = (0..shell.len())
-            .filter(|&i| !fills[i])
-            .map(|i| thick[k][i])
-            .sum();
+        let (outside, _) = depths(&thick[k], &fills);
         for (i, l) in shell.iter().enumerate() {
             if let (Some(x), true) = (l.fill_to, thick[k][i] > 0.0) {
                 // Along the inward normal to the fill's line, less the layers outside it.
@@ -706,7 +717,7 @@ pub fn mesh_layup(layup: &Layup, meshing: Meshing) -> Result<LayupMesh> {
                 } else {
                     thick[k][i]
                 };
-                thick[k][i] = (to_line.min(thick[k][i]) - laid).max(0.0);
+                thick[k][i] = (to_line.min(thick[k][i]) - outside).max(0.0);
             }
         }
         points.push(point);
@@ -714,20 +725,7 @@ pub fn mesh_layup(layup: &Layup, meshing: Meshing) -> Result<LayupMesh> {
     // A stack deeper than `depth` is scaled down to it, a fill first: what it gives up is not
     // cut (it only ever takes the room left), what the other layers give up is.
     let clip = |thick: &mut Vec<Vec<f64>>, cut: &mut Vec<Vec<f64>>, k: usize, depth: f64| {
-        let (filled, laid): (f64, f64) =
-            thick[k]
-                .iter()
-                .zip(&fills)
-                .fold(
-                    (0.0, 0.0),
-                    |(f, o), (&t, &fill)| {
-                        if fill {
-                            (f + t, o)
-                        } else {
-                            (f, o + t)
-                        }
-                    },
-                );
+        let (laid, filled) = depths(&thick[k], &fills);
         if filled + laid <= depth {
             return;
         }
@@ -777,17 +775,10 @@ pub fn mesh_layup(layup: &Layup, meshing: Meshing) -> Result<LayupMesh> {
             weld[b] = Some(0);
         } else if da + db >= gap {
             // The gap is shared by the layers' depths, a fill giving way first.
-            let fixed = |k: usize| -> f64 {
-                (0..fills.len())
-                    .filter(|&i| !fills[i])
-                    .map(|i| thick[k][i])
-                    .sum()
-            };
-            let (fa, fb) = (fixed(a), fixed(b));
+            let ((fa, ga), (fb, gb)) = (depths(&thick[a], &fills), depths(&thick[b], &fills));
             let (ta, tb) = if fa + fb >= gap {
                 (gap * fa / (fa + fb), gap * fb / (fa + fb))
             } else {
-                let (ga, gb) = (da - fa, db - fb);
                 let room = gap - fa - fb;
                 (fa + room * ga / (ga + gb), fb + room * gb / (ga + gb))
             };
