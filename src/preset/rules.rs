@@ -10,6 +10,7 @@ use super::schema::{
 use crate::error::{Error, Result};
 use crate::model::files::ReadFiles;
 use crate::physics::blade::coupling::{coupling_ratio, indefinite_station};
+use crate::physics::blade::windio::is_span;
 
 /// Most samples one time response may hold (`simulation.duration × simulation.sample_rate`):
 /// 2e6 samples is 10⁴ s at 200/s; time, tip twist and flap take 48 MB.
@@ -97,7 +98,7 @@ fn bad_span(p: &Preset) -> Option<String> {
         ("section.rotate_span", s.rotate_span),
     ]
     .into_iter()
-    .find(|(_, [from, to])| !((0.0..=1.0).contains(from) && (0.0..=1.0).contains(to) && from <= to))
+    .find(|(_, span)| !is_span(*span))
     .map(|(key, [from, to])| {
         format!("{key} = [{from}, {to}]: expected span fractions [from, to] with 0 ≤ from ≤ to ≤ 1")
     })

@@ -271,6 +271,11 @@ fn the_layup_blades_modes_are_the_tabulated_blades() {
     }
 }
 
+/// A user's preset on the shipped WindIO file (`{yaml}`, as [`own_preset_error`] fills it in), in
+/// still air, up to its `[section]` table.
+const WINDIO_SECTION: &str =
+    "[blade]\nsource = \"windio\"\nfile = \"{yaml}\"\n[aero]\nmodel = \"none\"\n[section]\n";
+
 /// The error of the user's own preset file `text` (its WindIO file given by `{yaml}`).
 fn own_preset_error(name: &str, text: &str) -> String {
     let dir = std::env::temp_dir().join(format!("flutterscope-{name}-{}", std::process::id()));
@@ -288,10 +293,9 @@ fn own_preset_error(name: &str, text: &str) -> String {
 /// What a user can get wrong about the turn is an error that names the key.
 #[test]
 fn bad_turns_are_errors_naming_the_key() {
-    let windio = "[blade]\nsource = \"windio\"\nfile = \"{yaml}\"\n[aero]\nmodel = \"none\"\n";
     let e = own_preset_error(
         "layers",
-        &format!("{windio}[section]\nply_angle = 5.0\nrotate_layers = [\"Spar_Cap\"]\n"),
+        &format!("{WINDIO_SECTION}ply_angle = 5.0\nrotate_layers = [\"Spar_Cap\"]\n"),
     );
     assert!(
         e.contains("section.rotate_layers") && e.contains("Spar_Cap_SS"),
@@ -299,7 +303,7 @@ fn bad_turns_are_errors_naming_the_key() {
     );
     let e = own_preset_error(
         "span",
-        &format!("{windio}[section]\nrotate_span = [0.8, 0.2]\n"),
+        &format!("{WINDIO_SECTION}rotate_span = [0.8, 0.2]\n"),
     );
     assert!(
         e.contains("section.rotate_span") && e.contains("0 ≤ from ≤ to ≤ 1"),
@@ -461,10 +465,9 @@ fn with_the_section_codes_trailing_edge_the_modes_are_the_beamdyn_blades() {
 /// What a user can get wrong about the trailing-edge fill is an error that names the key.
 #[test]
 fn bad_fills_are_errors_naming_the_key() {
-    let windio = "[blade]\nsource = \"windio\"\nfile = \"{yaml}\"\n[aero]\nmodel = \"none\"\n";
     let e = own_preset_error(
         "fill-material",
-        &format!("{windio}[section]\ntrailing_edge_fill = \"glue\"\n"),
+        &format!("{WINDIO_SECTION}trailing_edge_fill = \"glue\"\n"),
     );
     assert!(
         e.contains("section.trailing_edge_fill") && e.contains("glass_uni"),
@@ -473,7 +476,7 @@ fn bad_fills_are_errors_naming_the_key() {
     let e = own_preset_error(
         "fill-length",
         &format!(
-            "{windio}[section]\ntrailing_edge_fill = \"adhesive\"\n\
+            "{WINDIO_SECTION}trailing_edge_fill = \"adhesive\"\n\
              trailing_edge_fill_length = 30.0\n"
         ),
     );
@@ -483,7 +486,7 @@ fn bad_fills_are_errors_naming_the_key() {
     );
     let e = own_preset_error(
         "fill-negative",
-        &format!("{windio}[section]\ntrailing_edge_fill_length = -1.0\n"),
+        &format!("{WINDIO_SECTION}trailing_edge_fill_length = -1.0\n"),
     );
     assert!(
         e.contains("section.trailing_edge_fill_length") && e.contains("allowed"),

@@ -64,8 +64,18 @@ pub struct TrailingEdgeFill {
 impl TrailingEdgeFill {
     /// Whether the fill is laid at span fraction `eta`.
     pub fn acts_at(&self, eta: f64) -> bool {
-        (self.span[0]..=self.span[1]).contains(&eta)
+        within(self.span, eta)
     }
+}
+
+/// Whether `[from, to]` are span fractions with 0 ≤ from ≤ to ≤ 1 (a ply turn's or a fill's).
+pub fn is_span([from, to]: [f64; 2]) -> bool {
+    (0.0..=1.0).contains(&from) && (0.0..=1.0).contains(&to) && from <= to
+}
+
+/// Whether span fraction `eta` lies within `span` (inclusive).
+fn within([from, to]: [f64; 2], eta: f64) -> bool {
+    (from..=to).contains(&eta)
 }
 
 /// One station's section from the layup.
@@ -320,7 +330,7 @@ pub struct LayupBlade {
 impl PlyTurn {
     /// Whether the turn changes anything at span fraction `eta`.
     pub fn acts_at(&self, eta: f64) -> bool {
-        (self.span[0]..=self.span[1]).contains(&eta)
+        within(self.span, eta)
     }
 }
 
@@ -430,7 +440,7 @@ fn file_error(w: &WindIo, message: String) -> Result<()> {
 
 /// `span`, the preset's `key`, is span fractions `[from, to]` within the blade.
 fn check_span(w: &WindIo, key: &str, [from, to]: [f64; 2]) -> Result<()> {
-    if !(0.0..=1.0).contains(&from) || !(0.0..=1.0).contains(&to) || from > to {
+    if !is_span([from, to]) {
         return file_error(
             w,
             format!("{key} = [{from}, {to}]: expected span fractions 0 ≤ from ≤ to ≤ 1"),

@@ -392,7 +392,6 @@ impl Outline {
     }
 }
 
-/// Whether a layer from `start` to `end` covers arc `s`.
 /// A column's stack depth in its layers outside any fill, and in its fills.
 fn depths(stack: &[f64], fills: &[bool]) -> (f64, f64) {
     stack
@@ -407,6 +406,7 @@ fn depths(stack: &[f64], fills: &[bool]) -> (f64, f64) {
         })
 }
 
+/// Whether a layer from `start` to `end` covers arc `s`.
 fn covers(start: f64, end: f64, s: f64) -> bool {
     if start <= end {
         start <= s && s <= end
@@ -804,16 +804,7 @@ pub fn mesh_layup(layup: &Layup, meshing: Meshing) -> Result<LayupMesh> {
     let mut normals = Vec::new();
     for _ in 0..60 {
         // A fill's depth is the cavity's, not a wall's: it does not widen the window.
-        let depth: Vec<f64> = thick
-            .iter()
-            .map(|t| {
-                t.iter()
-                    .zip(&fills)
-                    .filter(|(_, f)| !**f)
-                    .map(|(t, _)| t)
-                    .sum()
-            })
-            .collect();
+        let depth: Vec<f64> = thick.iter().map(|t| depths(t, &fills).0).collect();
         normals = (0..n)
             .map(|k| {
                 direction[k].unwrap_or_else(|| {
